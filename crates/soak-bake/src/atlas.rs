@@ -1,0 +1,313 @@
+//! The texel atlas: a compact structure of arrays over the covered texels.
+
+use nalgebra::{Point3, Vector3};
+use serde::{Deserialize, Serialize};
+
+use crate::error::BakeError;
+
+/// A run of consecutive texels that lie in one `tile_size`² block of the texture.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Tile {
+    /// Index of the tile's first texel in the atlas arrays.
+    pub start: u32,
+    /// One past the tile's last texel.
+    pub end: u32,
+}
+
+impl Tile {
+    /// The texel indices of this tile.
+    #[inline]
+    pub fn range(&self) -> std::ops::Range<usize> {
+        self.start as usize..self.end as usize
+    }
+}
+
+/// Surface samples of a mesh, one per covered texel of its UV map, stored as a
+/// structure of arrays in tile order.
+///
+/// Texel `i` sits at object-space position [`Atlas::position`]`(i)` and
+/// carries the oriented area [`Atlas::area_vectors`]`[i]` (m², along the
+/// outward face normal): the area of its triangle divided by the number of
+/// texels the triangle covers. A triangle too small to cover any texel centre
+/// gets one sample at its centroid carrying its whole area, so sums over
+/// texels integrate over the whole surface at every resolution.
+///
+/// Samples start at texel centres; by default each triangle's samples are then
+/// nudged by a fraction of a texel so their mean and covariance equal the
+/// triangle's (moment matching, [`crate::BakeOptions::moment_matching`]): every
+/// integral of a polynomial up to degree two over a whole triangle is then
+/// exact, which removes the first-order error that partly covered texels along
+/// triangle edges give to centres, inertias and torques.
+///
+/// Positions are stored in f32 relative to [`Atlas::origin`] (the bounding-box
+/// centre), which keeps their precision at any distance from the object
+/// origin; accumulate sums in f64.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Atlas {
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) tile_size: u32,
+    pub(crate) origin: [f64; 3],
+    pub(crate) local_positions: Vec<[f32; 3]>,
+    pub(crate) area_vectors: Vec<[f32; 3]>,
+    pub(crate) areas: Vec<f32>,
+    pub(crate) triangle_ids: Vec<u32>,
+    pub(crate) barycentrics: Vec<[f32; 2]>,
+    pub(crate) texels: Vec<[u16; 2]>,
+    pub(crate) centroid_samples: Vec<u32>,
+    pub(crate) tiles: Vec<Tile>,
+    pub(crate) triangles: Vec<[u32; 3]>,
+    pub(crate) texels_per_triangle: Vec<u32>,
+    pub(crate) vertex_count: usize,
+    pub(crate) bounding_radius: f64,
+}
+
+/// Rounded-free summary of an atlas: counts and the integral invariants.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AtlasSummary {
+    /// Texture width in texels.
+    pub width: u32,
+    /// Texture height in texels.
+    pub height: u32,
+    /// Number of samples (covered texels plus centroid samples).
+    pub texels: usize,
+    /// Number of mesh triangles.
+    pub triangles: usize,
+    /// Triangles represented by a single centroid sample.
+    pub centroid_samples: usize,
+    /// Number of non-empty tiles.
+    pub tiles: usize,
+    /// Σ a_i, m².
+    pub area: f64,
+    /// (1/3) Σ x_i·A_i, m³.
+    pub volume: f64,
+    /// |Σ A_i| / Σ a_i: zero for a closed mesh.
+    pub closure: f64,
+    /// Radius of the bounding sphere about the origin, m.
+    pub bounding_radius: f64,
+}
+
+impl Atlas {
+    /// Number of samples.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.area_vectors.len()
+    }
+
+    /// Whether the atlas holds no sample (never true for a baked atlas).
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.area_vectors.is_empty()
+    }
+
+    /// Texture width in texels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Texture height in texels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Side of the square texel blocks that [`Atlas::tiles`] group.
+    pub fn tile_size(&self) -> u32 {
+        self.tile_size
+    }
+
+    /// The reference point the positions are stored relative to (the mesh's
+    /// bounding-box centre at bake time), object space, m.
+    pub fn origin(&self) -> Point3<f64> {
+        Point3::from(self.origin)
+    }
+
+    /// Sample positions relative to [`Atlas::origin`], m.
+    pub fn local_positions(&self) -> &[[f32; 3]] {
+        &self.local_positions
+    }
+
+    /// Object-space position of sample `i`, m.
+    #[inline]
+    pub fn position(&self, i: usize) -> Point3<f64> {
+        let p = self.local_positions[i];
+        Point3::new(
+            self.origin[0] + p[0] as f64,
+            self.origin[1] + p[1] as f64,
+            self.origin[2] + p[2] as f64,
+        )
+    }
+
+    /// Area vectors `A_i = a_i n_i`, m², with the outward face normal.
+    pub fn area_vectors(&self) -> &[[f32; 3]] {
+        &self.area_vectors
+    }
+
+    /// Texel areas `a_i = |A_i|`, m².
+    pub fn areas(&self) -> &[f32] {
+        &self.areas
+    }
+
+    /// Triangle each sample lies on.
+    pub fn triangle_ids(&self) -> &[u32] {
+        &self.triangle_ids
+    }
+
+    /// Barycentric coordinates `(λ1, λ2)` of each sample in its triangle
+    /// (`λ0 = 1 − λ1 − λ2`).
+    pub fn barycentrics(&self) -> &[[f32; 2]] {
+        &self.barycentrics
+    }
+
+    /// Texel coordinates `(x, y)` of each sample, `x = ⌊u·W⌋`, `y = ⌊v·H⌋`.
+    pub fn texels(&self) -> &[[u16; 2]] {
+        &self.texels
+    }
+
+    /// Indices of the samples placed at the centroid of a triangle that covers no texel centre.
+    pub fn centroid_samples(&self) -> &[u32] {
+        &self.centroid_samples
+    }
+
+    /// Runs of samples per texture tile, in storage order.
+    pub fn tiles(&self) -> &[Tile] {
+        &self.tiles
+    }
+
+    /// Triangles (vertex indices) of the mesh the atlas was baked from.
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// Number of triangles of the mesh the atlas was baked from.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Number of vertices of the mesh the atlas was baked from.
+    pub fn vertex_count(&self) -> usize {
+        self.vertex_count
+    }
+
+    /// Number of samples on each triangle.
+    pub fn texels_per_triangle(&self) -> &[u32] {
+        &self.texels_per_triangle
+    }
+
+    /// Radius of a sphere about [`Atlas::origin`] that holds every sample, m.
+    pub fn bounding_radius(&self) -> f64 {
+        self.bounding_radius
+    }
+
+    /// Σ a_i in m² (f64 accumulation).
+    pub fn area(&self) -> f64 {
+        self.areas.iter().map(|&a| a as f64).sum()
+    }
+
+    /// Σ A_i in m² (f64 accumulation); zero for a closed mesh.
+    pub fn area_vector_sum(&self) -> Vector3<f64> {
+        self.area_vectors
+            .iter()
+            .map(|a| Vector3::new(a[0] as f64, a[1] as f64, a[2] as f64))
+            .sum()
+    }
+
+    /// Enclosed volume by the divergence theorem, `(1/3) Σ x_i·A_i`, m³.
+    pub fn volume(&self) -> f64 {
+        self.local_positions
+            .iter()
+            .zip(&self.area_vectors)
+            .map(|(x, a)| x[0] as f64 * a[0] as f64 + x[1] as f64 * a[1] as f64 + x[2] as f64 * a[2] as f64)
+            .sum::<f64>()
+            / 3.0
+    }
+
+    /// Counts and integral invariants.
+    pub fn summary(&self) -> AtlasSummary {
+        let area = self.area();
+        AtlasSummary {
+            width: self.width,
+            height: self.height,
+            texels: self.len(),
+            triangles: self.triangles.len(),
+            centroid_samples: self.centroid_samples.len(),
+            tiles: self.tiles.len(),
+            area,
+            volume: self.volume(),
+            closure: if area > 0.0 {
+                self.area_vector_sum().norm() / area
+            } else {
+                0.0
+            },
+            bounding_radius: self.bounding_radius,
+        }
+    }
+
+    /// Moves the samples with the mesh after it deformed (same triangles, new
+    /// vertex positions, object space, m): positions from the stored
+    /// barycentrics and area vectors from the new triangle areas. O(texels),
+    /// no rasterisation. UV coverage, and so the texel count per triangle,
+    /// stays that of the bake.
+    pub fn refresh(&mut self, positions: &[Point3<f64>]) -> Result<(), BakeError> {
+        if positions.len() != self.vertex_count {
+            return Err(BakeError::VertexCountMismatch {
+                given: positions.len(),
+                expected: self.vertex_count,
+            });
+        }
+        if let Some(vertex) = positions
+            .iter()
+            .position(|p| !(p.x.is_finite() && p.y.is_finite() && p.z.is_finite()))
+        {
+            return Err(BakeError::NonFiniteRefresh { vertex });
+        }
+        let o = Vector3::from(self.origin);
+        let per_triangle: Vec<(Vector3<f64>, [Vector3<f64>; 3])> = self
+            .triangles
+            .iter()
+            .zip(&self.texels_per_triangle)
+            .map(|(t, &n)| {
+                let [a, b, c] = t.map(|v| positions[v as usize].coords - o);
+                (0.5 * (b - a).cross(&(c - a)) / n.max(1) as f64, [a, b, c])
+            })
+            .collect();
+        use rayon::prelude::*;
+        let radius2 = self
+            .local_positions
+            .par_iter_mut()
+            .zip(self.area_vectors.par_iter_mut().zip(self.areas.par_iter_mut()))
+            .zip(self.triangle_ids.par_iter().zip(self.barycentrics.par_iter()))
+            .map(|((x, (a, area)), (&t, b))| {
+                let (av, [p0, p1, p2]) = &per_triangle[t as usize];
+                let (l1, l2) = (b[0] as f64, b[1] as f64);
+                let p = p0 * (1.0 - l1 - l2) + p1 * l1 + p2 * l2;
+                *x = [p.x as f32, p.y as f32, p.z as f32];
+                *a = [av.x as f32, av.y as f32, av.z as f32];
+                *area = av.norm() as f32;
+                p.norm_squared()
+            })
+            .reduce(|| 0.0, f64::max);
+        self.bounding_radius = radius2.sqrt();
+        Ok(())
+    }
+
+    /// Per-sample values of a W×H single-channel image laid over the UV square
+    /// (row `y` holds texels with `v·H` in `[y, y+1)`), nearest texel. The image
+    /// may have another resolution than the atlas; it is sampled at each
+    /// sample's texel centre.
+    ///
+    /// # Panics
+    /// If `image.len() != width * height` or a side is zero.
+    pub fn sample_image(&self, image: &[f32], width: u32, height: u32) -> Vec<f32> {
+        assert!(width > 0 && height > 0 && image.len() == (width * height) as usize);
+        self.texels
+            .iter()
+            .map(|t| {
+                let u = (t[0] as f64 + 0.5) / self.width as f64;
+                let v = (t[1] as f64 + 0.5) / self.height as f64;
+                let x = ((u * width as f64) as u32).min(width - 1);
+                let y = ((v * height as f64) as u32).min(height - 1);
+                image[(y * width + x) as usize]
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,311 @@
+//! Loading meshes from Wavefront OBJ, glTF 2.0 (`.gltf`, `.glb`) and `builtin:` names.
+//!
+//! UVs follow glTF's convention everywhere in soak: `(0, 0)` is the top-left
+//! corner of an image and `v` grows downwards. OBJ's `v` (which grows upwards)
+//! is flipped on load, so painted textures line up for both formats.
+
+use std::io::BufRead;
+use std::path::{Path, PathBuf};
+
+use nalgebra::{Matrix4, Point2, Point3};
+
+use crate::builtin;
+use crate::error::LoadError;
+use crate::mesh::Mesh;
+
+/// Loads a mesh from a file path (`.obj`, `.gltf`, `.glb`) or a `builtin:` name.
+///
+/// The mesh is returned as stored; validate it (or bake it, which validates)
+/// before use. Several objects or primitives in one file are merged, with
+/// glTF node transforms applied.
+pub fn load_mesh(source: &str) -> Result<Mesh, LoadError> {
+    if source.starts_with("builtin:") {
+        return builtin::parse(source);
+    }
+    let path = Path::new(source);
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("obj") => {
+            let bytes = std::fs::read(path).map_err(|source| LoadError::Io {
+                path: path.to_path_buf(),
+                source,
+            })?;
+            load_obj_bytes(&bytes, path)
+        }
+        Some("gltf" | "glb") => {
+            let bytes = std::fs::read(path).map_err(|source| LoadError::Io {
+                path: path.to_path_buf(),
+                source,
+            })?;
+            load_gltf_bytes(&bytes, path, path.parent())
+        }
+        _ => Err(LoadError::UnknownFormat {
+            path: path.to_path_buf(),
+        }),
+    }
+}
+
+fn name_of(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| path.display().to_string())
+}
+
+/// Parses Wavefront OBJ text. `path` names the mesh in messages; material
+/// libraries are not read. Polygons are triangulated; `v` is flipped to soak's
+/// UV convention.
+pub fn load_obj_bytes(bytes: &[u8], path: &Path) -> Result<Mesh, LoadError> {
+    let opts = tobj::LoadOptions {
+        single_index: true,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let mut reader = std::io::BufReader::new(bytes);
+    let (models, _materials) = tobj::load_obj_buf(&mut reader, &opts, |_| {
+        Err(tobj::LoadError::GenericFailure)
+    })
+    .map_err(|e| LoadError::Obj {
+        path: path.to_path_buf(),
+        reason: diagnose_obj(bytes, &e),
+    })?;
+    let mut positions = Vec::new();
+    let mut uvs = Vec::new();
+    let mut all_uvs = true;
+    let mut triangles = Vec::new();
+    for model in &models {
+        let m = &model.mesh;
+        let base = positions.len() as u32;
+        let n = m.positions.len() / 3;
+        for k in 0..n {
+            positions.push(Point3::new(
+                m.positions[3 * k] as f64,
+                m.positions[3 * k + 1] as f64,
+                m.positions[3 * k + 2] as f64,
+            ));
+        }
+        if m.texcoords.len() == 2 * n && n > 0 {
+            for k in 0..n {
+                uvs.push(Point2::new(
+                    m.texcoords[2 * k] as f64,
+                    1.0 - m.texcoords[2 * k + 1] as f64,
+                ));
+            }
+        } else {
+            all_uvs = false;
+        }
+        for t in m.indices.chunks(3) {
+            if t.len() == 3 {
+                triangles.push([base + t[0], base + t[1], base + t[2]]);
+            }
+        }
+    }
+    if triangles.is_empty() {
+        return Err(LoadError::Obj {
+            path: path.to_path_buf(),
+            reason: "no faces".into(),
+        });
+    }
+    Ok(Mesh::new(
+        name_of(path),
+        positions,
+        all_uvs.then_some(uvs),
+        triangles,
+    ))
+}
+
+/// Finds the line behind an OBJ parser error, so the message names it.
+fn diagnose_obj(bytes: &[u8], err: &tobj::LoadError) -> String {
+    let (mut nv, mut nvt, mut nvn) = (0i64, 0i64, 0i64);
+    for (line_no, line) in bytes.lines().enumerate() {
+        let Ok(line) = line else {
+            return format!("{err} (line {} is not UTF-8)", line_no + 1);
+        };
+        let mut words = line.split_whitespace();
+        let tag = words.next().unwrap_or("");
+        let line_no = line_no + 1;
+        let numbers_ok = |w: std::str::SplitWhitespace<'_>| w.take(3).all(|x| x.parse::<f32>().is_ok());
+        match tag {
+            "v" => {
+                if !numbers_ok(words.clone()) || words.clone().count() < 3 {
+                    return format!("line {line_no}: vertex position `{line}` is not three numbers");
+                }
+                nv += 1;
+            }
+            "vt" => {
+                if !numbers_ok(words.clone()) || words.clone().count() < 1 {
+                    return format!("line {line_no}: texture coordinate `{line}` is not numbers");
+                }
+                nvt += 1;
+            }
+            "vn" => nvn += 1,
+            "f" => {
+                let corners: Vec<&str> = words.collect();
+                if corners.len() < 3 {
+                    return format!("line {line_no}: face `{line}` has fewer than 3 corners");
+                }
+                for c in corners {
+                    for (k, (idx, count, what)) in c
+                        .split('/')
+                        .zip([(nv, "vertex"), (nvt, "texture coordinate"), (nvn, "normal")])
+                        .map(|(s, (n, w))| (s, n, w))
+                        .enumerate()
+                    {
+                        if idx.is_empty() && k > 0 {
+                            continue;
+                        }
+                        let Ok(i) = idx.parse::<i64>() else {
+                            return format!("line {line_no}: face corner `{c}` is not a valid index");
+                        };
+                        let resolved = if i < 0 { count + i + 1 } else { i };
+                        if resolved < 1 || resolved > count {
+                            return format!(
+                                "line {line_no}: face refers to {what} {i}, but only {count} are defined before it"
+                            );
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    format!("{err}")
+}
+
+/// Parses a glTF 2.0 file (`.gltf` JSON or `.glb` binary). External buffers
+/// are resolved against `base`. Triangles of every primitive in the default
+/// scene are merged, node transforms applied; the first texture coordinate set
+/// is used if every primitive has one.
+pub fn load_gltf_bytes(bytes: &[u8], path: &Path, base: Option<&Path>) -> Result<Mesh, LoadError> {
+    let gerr = |reason: String| LoadError::Gltf {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| gerr(e.to_string()))?;
+    let buffers = gltf::import_buffers(&gltf.document, base, gltf.blob.clone())
+        .map_err(|e| gerr(format!("cannot load buffers: {e}")))?;
+    let doc = &gltf.document;
+    let mut out = GltfOut::default();
+    let roots: Vec<(gltf::Node<'_>, Matrix4<f64>)> = match doc.default_scene().or_else(|| doc.scenes().next())
+    {
+        Some(scene) => scene.nodes().map(|n| (n, Matrix4::identity())).collect(),
+        None => Vec::new(),
+    };
+    if roots.is_empty() {
+        for mesh in doc.meshes() {
+            read_gltf_mesh(&mesh, &Matrix4::identity(), &buffers, path, &mut out)?;
+        }
+    } else {
+        let mut stack = roots;
+        let mut visited = 0usize;
+        while let Some((node, parent)) = stack.pop() {
+            visited += 1;
+            if visited > 1_000_000 {
+                return Err(gerr("node hierarchy too deep or cyclic".into()));
+            }
+            let local = Matrix4::from_iterator(node.transform().matrix().iter().flatten().map(|&v| v as f64));
+            let world = parent * local;
+            if let Some(mesh) = node.mesh() {
+                read_gltf_mesh(&mesh, &world, &buffers, path, &mut out)?;
+            }
+            for child in node.children() {
+                stack.push((child, world));
+            }
+        }
+    }
+    if out.triangles.is_empty() {
+        return Err(gerr("no triangle primitives".into()));
+    }
+    let uvs = out.all_uvs.then_some(out.uvs);
+    Ok(Mesh::new(name_of(path), out.positions, uvs, out.triangles))
+}
+
+#[derive(Default)]
+struct GltfOut {
+    positions: Vec<Point3<f64>>,
+    uvs: Vec<Point2<f64>>,
+    all_uvs: bool,
+    any: bool,
+    triangles: Vec<[u32; 3]>,
+}
+
+fn read_gltf_mesh(
+    mesh: &gltf::Mesh<'_>,
+    world: &Matrix4<f64>,
+    buffers: &[gltf::buffer::Data],
+    path: &Path,
+    out: &mut GltfOut,
+) -> Result<(), LoadError> {
+    let perr = |primitive: usize, reason: String| LoadError::GltfPrimitive {
+        path: PathBuf::from(path),
+        mesh: mesh.index(),
+        primitive,
+        reason,
+    };
+    let mirrored = world.fixed_view::<3, 3>(0, 0).determinant() < 0.0;
+    for (pi, prim) in mesh.primitives().enumerate() {
+        if prim.mode() != gltf::mesh::Mode::Triangles {
+            return Err(perr(
+                pi,
+                format!("mode {:?} is not supported (only triangles)", prim.mode()),
+            ));
+        }
+        for (sem, acc) in prim.attributes() {
+            if let Some(view) = acc.view()
+                && buffers.get(view.buffer().index()).is_none()
+            {
+                return Err(perr(pi, format!("attribute {sem:?} refers to a missing buffer")));
+            }
+        }
+        let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+        let Some(pos) = reader.read_positions() else {
+            return Err(perr(
+                pi,
+                "has no POSITION attribute or its buffer is missing".into(),
+            ));
+        };
+        let base = out.positions.len();
+        for p in pos {
+            let q = world.transform_point(&Point3::new(p[0] as f64, p[1] as f64, p[2] as f64));
+            out.positions.push(q);
+        }
+        let n = out.positions.len() - base;
+        match reader.read_tex_coords(0) {
+            Some(tc) => {
+                let before = out.uvs.len();
+                out.uvs
+                    .extend(tc.into_f32().map(|t| Point2::new(t[0] as f64, t[1] as f64)));
+                if out.uvs.len() - before != n {
+                    return Err(perr(
+                        pi,
+                        format!("has {} UVs for {n} positions", out.uvs.len() - before),
+                    ));
+                }
+                out.all_uvs = !out.any || out.all_uvs;
+            }
+            None => out.all_uvs = false,
+        }
+        out.any = true;
+        let indices: Vec<u32> = match reader.read_indices() {
+            Some(ix) => ix.into_u32().collect(),
+            None => (0..n as u32).collect(),
+        };
+        if !indices.len().is_multiple_of(3) {
+            return Err(perr(
+                pi,
+                format!("index count {} is not a multiple of 3", indices.len()),
+            ));
+        }
+        for t in indices.chunks(3) {
+            if let Some(&bad) = t.iter().find(|&&i| i as usize >= n) {
+                return Err(perr(pi, format!("index {bad} is out of range for {n} vertices")));
+            }
+            let (a, b, c) = (t[0] + base as u32, t[1] + base as u32, t[2] + base as u32);
+            out.triangles.push(if mirrored { [a, c, b] } else { [a, b, c] });
+        }
+    }
+    Ok(())
+}

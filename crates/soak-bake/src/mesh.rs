@@ -1,0 +1,157 @@
+//! The triangle mesh that goes into baking.
+
+use nalgebra::{Point2, Point3, Vector3};
+
+/// A triangle mesh with optional per-vertex texture coordinates.
+///
+/// Positions are in object space, in metres; triangles wind counter-clockwise
+/// seen from outside (outward normals). Vertices may be split along UV seams:
+/// topology checks weld them by position.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    /// A name for messages: a file name or a `builtin:` name.
+    pub name: String,
+    /// Vertex positions in object space, m.
+    pub positions: Vec<Point3<f64>>,
+    /// Texture coordinates in [0, 1]², one per vertex, if the mesh has them.
+    pub uvs: Option<Vec<Point2<f64>>>,
+    /// Triangles as triples of vertex indices.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl Mesh {
+    /// A mesh from its parts.
+    pub fn new(
+        name: impl Into<String>,
+        positions: Vec<Point3<f64>>,
+        uvs: Option<Vec<Point2<f64>>>,
+        triangles: Vec<[u32; 3]>,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            positions,
+            uvs,
+            triangles,
+        }
+    }
+
+    /// The three corner positions of triangle `t`.
+    ///
+    /// # Panics
+    /// If `t` or its vertex indices are out of range (validate first).
+    #[inline]
+    pub fn triangle_points(&self, t: usize) -> [Point3<f64>; 3] {
+        let [a, b, c] = self.triangles[t];
+        [
+            self.positions[a as usize],
+            self.positions[b as usize],
+            self.positions[c as usize],
+        ]
+    }
+
+    /// The three corner UVs of triangle `t`, if the mesh has UVs.
+    #[inline]
+    pub fn triangle_uvs(&self, t: usize) -> Option<[Point2<f64>; 3]> {
+        let uvs = self.uvs.as_ref()?;
+        let [a, b, c] = self.triangles[t];
+        Some([uvs[a as usize], uvs[b as usize], uvs[c as usize]])
+    }
+
+    /// Area vector of triangle `t`: area (m²) times the unit face normal.
+    #[inline]
+    pub fn triangle_area_vector(&self, t: usize) -> Vector3<f64> {
+        let [a, b, c] = self.triangle_points(t);
+        0.5 * (b - a).cross(&(c - a))
+    }
+
+    /// Total surface area, m².
+    pub fn area(&self) -> f64 {
+        (0..self.triangles.len())
+            .map(|t| self.triangle_area_vector(t).norm())
+            .sum()
+    }
+
+    /// Axis-aligned bounding box `(min, max)` of the vertices, m.
+    /// Both are the origin for a mesh without vertices.
+    pub fn bounds(&self) -> (Point3<f64>, Point3<f64>) {
+        let mut it = self.positions.iter();
+        let Some(first) = it.next() else {
+            return (Point3::origin(), Point3::origin());
+        };
+        let (mut lo, mut hi) = (*first, *first);
+        for p in it {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        (lo, hi)
+    }
+
+    /// Length of the bounding-box diagonal, m.
+    pub fn diagonal(&self) -> f64 {
+        let (lo, hi) = self.bounds();
+        (hi - lo).norm()
+    }
+
+    /// Exact signed volume enclosed by the (closed, outward-wound) mesh, m³,
+    /// by summing signed tetrahedra against the bounding-box centre.
+    pub fn volume(&self) -> f64 {
+        let (lo, hi) = self.bounds();
+        let o = nalgebra::center(&lo, &hi);
+        (0..self.triangles.len())
+            .map(|t| {
+                let [a, b, c] = self.triangle_points(t);
+                (a - o).dot(&(b - o).cross(&(c - o)))
+            })
+            .sum::<f64>()
+            / 6.0
+    }
+
+    /// Sum of the triangle area vectors, m²; zero for a closed mesh.
+    pub fn area_vector_sum(&self) -> Vector3<f64> {
+        (0..self.triangles.len())
+            .map(|t| self.triangle_area_vector(t))
+            .sum()
+    }
+
+    /// The same mesh with every triangle's winding reversed.
+    pub fn flipped(mut self) -> Self {
+        for t in &mut self.triangles {
+            t.swap(1, 2);
+        }
+        self
+    }
+
+    /// The same mesh without texture coordinates.
+    pub fn without_uvs(mut self) -> Self {
+        self.uvs = None;
+        self
+    }
+
+    /// The same mesh with every position mapped by `f` (UVs and topology kept).
+    pub fn map_positions(mut self, f: impl Fn(Point3<f64>) -> Point3<f64>) -> Self {
+        for p in &mut self.positions {
+            *p = f(*p);
+        }
+        self
+    }
+
+    /// For every vertex, the index of the first vertex at the same position
+    /// (f32 precision), so seam-split vertices are welded for topology checks.
+    pub fn position_remap(&self) -> Vec<u32> {
+        let ps: Vec<[f32; 3]> = self
+            .positions
+            .iter()
+            .map(|p| [p.x as f32, p.y as f32, p.z as f32])
+            .collect();
+        meshopt::generate_position_remap_decoder(&ps)
+    }
+
+    /// Triangles with vertex indices welded by position (see [`Mesh::position_remap`]).
+    pub fn welded_triangles(&self) -> Vec<[u32; 3]> {
+        let remap = self.position_remap();
+        self.triangles
+            .iter()
+            .map(|t| t.map(|v| remap[v as usize]))
+            .collect()
+    }
+}

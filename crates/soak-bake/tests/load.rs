@@ -1,0 +1,139 @@
+//! Loading OBJ and glTF files, and the errors real malformed files get.
+
+use std::path::PathBuf;
+
+use soak_bake::{Atlas, BakeOptions, LoadError, MeshProblem, load_mesh, validate};
+
+fn data(name: &str) -> String {
+    let p: PathBuf = [env!("CARGO_MANIFEST_DIR"), "..", "..", "data", name]
+        .iter()
+        .collect();
+    p.to_string_lossy().into_owned()
+}
+
+#[test]
+fn obj_gltf_and_glb_load_the_same_tetrahedron() {
+    let obj = load_mesh(&data("tetra.obj")).unwrap();
+    let gltf = load_mesh(&data("tetra.gltf")).unwrap();
+    let glb = load_mesh(&data("tetra.glb")).unwrap();
+    for m in [&obj, &gltf, &glb] {
+        validate::validate(m).unwrap();
+        assert_eq!(m.triangles.len(), 4);
+        assert!((m.volume() - 1.0 / 6.0).abs() < 1e-7);
+    }
+    // The glTF node translates by +2 in y.
+    assert!((gltf.bounds().0.y - 2.0).abs() < 1e-7);
+    assert_eq!(gltf.positions, glb.positions);
+    // OBJ's upward v is flipped to soak's (glTF's) convention on load.
+    let (uo, ug) = (obj.uvs.unwrap(), gltf.uvs.unwrap());
+    for (a, b) in uo.iter().zip(&ug) {
+        assert!((a - b).norm() < 1e-6, "{a} vs {b}");
+    }
+}
+
+#[test]
+fn obj_round_trip_of_every_builtin() {
+    let dir = std::env::temp_dir().join(format!("soak-obj-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in ["builtin:sphere:0.5:24:12", "builtin:torus", "builtin:boat"] {
+        let mesh = load_mesh(name).unwrap();
+        let path = dir.join("m.obj");
+        std::fs::write(&path, mesh.to_obj()).unwrap();
+        let back = load_mesh(path.to_str().unwrap()).unwrap();
+        validate::validate(&back).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(back.triangles.len(), mesh.triangles.len());
+        let a = Atlas::bake(&back, BakeOptions::square(128)).unwrap();
+        assert!((a.volume() - mesh.volume()).abs() / mesh.volume() < 1e-5);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn truncated_obj_names_the_file_and_line() {
+    let e = load_mesh(&data("bad/truncated.obj")).unwrap_err();
+    let msg = e.to_string();
+    assert!(matches!(e, LoadError::Obj { .. }), "{e:?}");
+    assert!(msg.contains("truncated.obj") && msg.contains("line 3"), "{msg}");
+}
+
+#[test]
+fn obj_with_a_bad_number_names_the_line() {
+    let msg = load_mesh(&data("bad/not_a_number.obj")).unwrap_err().to_string();
+    assert!(
+        msg.contains("not_a_number.obj") && msg.contains("line 4"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn obj_uv_index_out_of_range_names_the_line() {
+    let msg = load_mesh(&data("bad/uv_index_out_of_range.obj"))
+        .unwrap_err()
+        .to_string();
+    assert!(msg.contains("uv_index_out_of_range.obj"), "{msg}");
+    assert!(
+        msg.contains("line 29") && msg.contains("texture coordinate 19"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn obj_with_a_hole_loads_but_does_not_validate() {
+    let mesh = load_mesh(&data("bad/hole.obj")).unwrap();
+    let e = validate::validate(&mesh).unwrap_err();
+    assert!(matches!(e.problem, MeshProblem::OpenEdge { .. }));
+    assert!(e.to_string().starts_with("mesh `hole.obj` triangle"), "{e}");
+}
+
+#[test]
+fn gltf_with_a_missing_buffer_names_it() {
+    let e = load_mesh(&data("bad/missing_buffer.gltf")).unwrap_err();
+    let msg = e.to_string();
+    assert!(matches!(e, LoadError::Gltf { .. }), "{e:?}");
+    assert!(
+        msg.contains("missing_buffer.gltf") && msg.contains("buffer"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn missing_file_and_unknown_format() {
+    assert!(matches!(load_mesh(&data("nope.obj")), Err(LoadError::Io { .. })));
+    assert!(matches!(
+        load_mesh(&data("tetra.stl")),
+        Err(LoadError::UnknownFormat { .. })
+    ));
+}
+
+#[test]
+fn builtin_names_and_their_errors() {
+    for ok in [
+        "builtin:sphere",
+        "builtin:sphere:0.5",
+        "builtin:sphere:0.5:32",
+        "builtin:box:4x1x1",
+        "builtin:box:2",
+        "builtin:cylinder:0.3:2",
+        "builtin:capsule:0.2:0.6:32",
+        "builtin:torus:1:0.2",
+        "builtin:boat:6x2x1",
+        "builtin:dumbbell",
+    ] {
+        let m = load_mesh(ok).unwrap_or_else(|e| panic!("{ok}: {e}"));
+        assert_eq!(m.name, ok);
+        validate::validate(&m).unwrap_or_else(|e| panic!("{ok}: {e}"));
+    }
+    for bad in [
+        "builtin:cube",
+        "builtin:sphere:-1",
+        "builtin:sphere:abc",
+        "builtin:box:1x2",
+        "builtin:torus:0.2:0.5",
+        "builtin:sphere:1:2:3:4",
+        "builtin:sphere:1:100000",
+    ] {
+        let e = load_mesh(bad).unwrap_err();
+        assert!(matches!(e, LoadError::Builtin { .. }), "{bad}: {e:?}");
+        assert!(e.to_string().contains(bad), "{bad}: {e}");
+    }
+}

@@ -1,0 +1,640 @@
+//! `soak demo`: the thesis' Chapter 7 cases side by side, from an embedded
+//! scene, with plots and CSV written to an output folder.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::Context;
+use nalgebra::{Point3, UnitQuaternion, Vector3};
+use rapier3d::prelude::*;
+use soak_bake::{Atlas, BakeOptions, builtin};
+use soak_hydro::{Drag, Gerstner, GerstnerWave, MassModel, Water, volume_moments};
+use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakId, convert};
+
+use crate::plot::{Axis, Chart, Figure, Line, Series};
+
+/// Arguments of `soak demo`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Folder for the plots and CSV files.
+    #[arg(long, default_value = "out/demo")]
+    out: PathBuf,
+    /// Shorter runs (for a quick look or a smoke test).
+    #[arg(long)]
+    quick: bool,
+}
+
+/// A time series: named columns of equal length.
+struct Table {
+    names: Vec<&'static str>,
+    rows: Vec<Vec<f64>>,
+}
+
+impl Table {
+    fn new(names: &[&'static str]) -> Self {
+        Self {
+            names: names.to_vec(),
+            rows: Vec::new(),
+        }
+    }
+    fn push(&mut self, row: Vec<f64>) {
+        debug_assert_eq!(row.len(), self.names.len());
+        self.rows.push(row);
+    }
+    fn col(&self, name: &str) -> Vec<f64> {
+        let k = self.names.iter().position(|n| *n == name).expect("known column");
+        self.rows.iter().map(|r| r[k]).collect()
+    }
+    fn series(&self, label: &str, x: &str, y: &str) -> Series {
+        Series::new(label, self.col(x).into_iter().zip(self.col(y)).collect())
+    }
+    fn write_csv(&self, path: &Path) -> anyhow::Result<()> {
+        let mut s = self.names.join(",");
+        s.push('\n');
+        for r in &self.rows {
+            s.push_str(&r.iter().map(|v| format!("{v:.6}")).collect::<Vec<_>>().join(","));
+            s.push('\n');
+        }
+        std::fs::write(path, s).with_context(|| format!("writing {}", path.display()))
+    }
+}
+
+struct World {
+    world: PhysicsWorld,
+    soak: ForceGenerator,
+}
+
+impl World {
+    fn new(water: Water, dt: f32) -> Self {
+        let mut world = PhysicsWorld::new();
+        world.integration_parameters.dt = dt;
+        Self {
+            world,
+            soak: ForceGenerator::new(water),
+        }
+    }
+
+    fn add(
+        &mut self,
+        name: &str,
+        atlas: Atlas,
+        mass: MassModel,
+        effects: Effects,
+        pose: Pose,
+    ) -> anyhow::Result<(RigidBodyHandle, SoakId)> {
+        let h = self.world.bodies.insert(RigidBodyBuilder::dynamic().pose(pose));
+        let id = self.soak.register(
+            &mut self.world.bodies,
+            &self.world.colliders,
+            h,
+            BodyDesc {
+                name: name.into(),
+                atlas,
+                mass_model: mass,
+                effects,
+            },
+        )?;
+        Ok((h, id))
+    }
+
+    fn step(&mut self) -> anyhow::Result<()> {
+        self.soak.step(&mut self.world)?;
+        Ok(())
+    }
+
+    fn up(&self, h: RigidBodyHandle) -> Vector3<f64> {
+        convert::rotation(*self.world.bodies[h].rotation()) * Vector3::y()
+    }
+}
+
+fn tilt_deg(up: &Vector3<f64>) -> f64 {
+    up.y.clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+/// Fig. 7.2/7.3: a buoy riding a Gerstner sea.
+fn buoy(seconds: f64, out: &Path) -> anyhow::Result<String> {
+    let sea = Gerstner::new(
+        0.0,
+        vec![
+            GerstnerWave {
+                amplitude: 0.3,
+                wavelength: 12.0,
+                direction_deg: 0.0,
+                steepness: 0.6,
+                phase: 0.0,
+            },
+            GerstnerWave {
+                amplitude: 0.08,
+                wavelength: 5.0,
+                direction_deg: 30.0,
+                steepness: 0.5,
+                phase: 1.3,
+            },
+        ],
+        9.81,
+    )?;
+    let mut w = World::new(Water::new(sea), 1.0 / 60.0);
+    let mesh = builtin::capsule(0.3, 0.6, 32);
+    let atlas = Atlas::bake(&mesh, BakeOptions::square(128))?;
+    let drag = Drag {
+        coefficient: 0.8,
+        linear: 60.0,
+    };
+    let (h, id) = w.add(
+        "buoy",
+        atlas,
+        MassModel::Solid { density: 150.0 },
+        Effects::buoyancy().with_drag(drag),
+        Pose::IDENTITY,
+    )?;
+    // Ballast low in the hull keeps the buoy upright.
+    let ballast = soak_hydro::MassProperties::point(75.0, Point3::new(0.0, -0.55, 0.0));
+    w.soak
+        .set_extra_mass(id, Some(ballast), &mut w.world.bodies, &w.world.colliders)?;
+    let mut t = Table::new(&[
+        "t_s",
+        "buoy_y_m",
+        "sea_y_m",
+        "tilt_deg",
+        "buoyancy_n",
+        "weight_n",
+        "submerged_m3",
+    ]);
+    let weight = w.world.bodies[h].mass() as f64 * 9.81;
+    let steps = (seconds * 60.0) as usize;
+    for _ in 0..steps {
+        w.step()?;
+        let rb = &w.world.bodies[h];
+        let p = convert::vector(rb.translation());
+        let f = *w.soak.body(id).expect("registered").forces();
+        let sea_y = w.soak.water().surface.height(p.x, p.z, w.soak.time());
+        t.push(vec![
+            w.soak.time(),
+            p.y,
+            sea_y,
+            tilt_deg(&w.up(h)),
+            f.buoyancy.force.y,
+            weight,
+            f.submerged_volume,
+        ]);
+    }
+    t.write_csv(&out.join("buoy.csv"))?;
+    Figure::new(1500, 450)
+        .title("Buoy on a Gerstner sea (thesis Fig. 7.2/7.3)")
+        .panel(
+            Chart::new("Heave")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("height (m)"))
+                .series(
+                    t.series("sea surface at the buoy", "t_s", "sea_y_m")
+                        .line(Line::Dashed),
+                )
+                .series(t.series("buoy centre", "t_s", "buoy_y_m")),
+        )
+        .panel(
+            Chart::new("Tilt")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("tilt from vertical (°)"))
+                .series(t.series("tilt", "t_s", "tilt_deg")),
+        )
+        .panel(
+            Chart::new("Forces")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("force (N)"))
+                .series(t.series("buoyancy", "t_s", "buoyancy_n"))
+                .series(t.series("weight", "t_s", "weight_n").line(Line::Dashed)),
+        )
+        .write_png(&out.join("buoy.png"))?;
+    let ys = t.col("buoy_y_m");
+    let (lo, hi) = ys
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &y| (a.min(y), b.max(y)));
+    Ok(format!("buoy: heaves between {lo:.2} and {hi:.2} m"))
+}
+
+/// Fig. 7.6: a ball whose centre of mass is above its centre of buoyancy
+/// turns over to a new equilibrium instead of returning.
+fn top_heavy_ball(seconds: f64, out: &Path) -> anyhow::Result<String> {
+    let mut w = World::new(Water::calm(0.0), 1.0 / 60.0);
+    let mesh = builtin::sphere(0.5, 48, 24);
+    let atlas = Atlas::bake(&mesh, BakeOptions::square(128))?;
+    let sigma: Vec<f32> = (0..atlas.len())
+        .map(|i| if atlas.position(i).y > 0.25 { 40.0 } else { 4.0 })
+        .collect();
+    let nudge = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 3f64.to_radians());
+    // Light: it floats with most of it above water, so start it there.
+    let pose = Pose::from_parts(Vector::new(0.0, 0.38, 0.0), convert::to_rotation(&nudge));
+    let drag = Drag {
+        coefficient: 0.5,
+        linear: 15.0,
+    };
+    let (h, id) = w.add(
+        "ball",
+        atlas,
+        MassModel::ShellTexture { areal_density: sigma },
+        Effects::buoyancy().with_drag(drag),
+        pose,
+    )?;
+    let mut t = Table::new(&["t_s", "tilt_deg", "centre_y_m", "com_height_m", "cob_height_m"]);
+    for _ in 0..(seconds * 60.0) as usize {
+        w.step()?;
+        let rb = &w.world.bodies[h];
+        let f = *w.soak.body(id).expect("registered").forces();
+        t.push(vec![
+            w.soak.time(),
+            tilt_deg(&w.up(h)),
+            rb.translation().y as f64,
+            rb.center_of_mass().y as f64,
+            if f.submerged_volume > 0.0 {
+                f.center_of_buoyancy.y
+            } else {
+                f64::NAN
+            },
+        ]);
+    }
+    t.write_csv(&out.join("top_heavy_ball.csv"))?;
+    Figure::new(1100, 450)
+        .title("A top-heavy ball turns over (thesis Fig. 7.6)")
+        .panel(
+            Chart::new("Orientation")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("tilt from start (°)").range(0.0, 190.0))
+                .series(t.series("tilt", "t_s", "tilt_deg")),
+        )
+        .panel(
+            Chart::new("Centres")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("height (m)"))
+                .series(t.series("centre of mass", "t_s", "com_height_m"))
+                .series(
+                    t.series("centre of buoyancy", "t_s", "cob_height_m")
+                        .line(Line::Dashed),
+                ),
+        )
+        .write_png(&out.join("top_heavy_ball.png"))?;
+    Ok(format!(
+        "top-heavy ball: ends tilted {:.0}° from its start",
+        t.col("tilt_deg").last().copied().unwrap_or(0.0)
+    ))
+}
+
+/// Fig. 7.7: the shell density moves over time (people walking in a small
+/// boat); mass, centre of mass and inertia follow every step and the ball
+/// rolls after its heavy side.
+fn moving_mass(seconds: f64, out: &Path) -> anyhow::Result<String> {
+    let mut w = World::new(Water::calm(0.0), 1.0 / 60.0);
+    let mesh = builtin::sphere(0.5, 48, 24);
+    let atlas = Atlas::bake(&mesh, BakeOptions::square(128))?;
+    let dirs: Vec<Vector3<f64>> = (0..atlas.len())
+        .map(|i| (atlas.position(i) - atlas.origin()).normalize())
+        .collect();
+    let texture = |phase: f64, growth: f64| -> Vec<f32> {
+        // A heavy patch that travels round the ball's equator in its own frame.
+        let d = Vector3::new(phase.cos(), 0.0, phase.sin());
+        dirs.iter()
+            .map(|n| (3.0 + growth * 40.0 * n.dot(&d).max(0.0).powi(6)) as f32)
+            .collect()
+    };
+    let drag = Drag {
+        coefficient: 0.5,
+        linear: 15.0,
+    };
+    let (h, id) = w.add(
+        "ball",
+        atlas.clone(),
+        MassModel::ShellTexture {
+            areal_density: texture(0.0, 0.0),
+        },
+        Effects::buoyancy().with_drag(drag),
+        Pose::IDENTITY,
+    )?;
+    let mut t = Table::new(&[
+        "t_s",
+        "mass_kg",
+        "com_offset_m",
+        "patch_deg",
+        "heavy_side_down_deg",
+    ]);
+    let period = 20.0;
+    for _ in 0..(seconds * 60.0) as usize {
+        let time = w.soak.time();
+        let phase = std::f64::consts::TAU * time / period;
+        let growth = (time / 5.0).min(1.0);
+        let model = MassModel::ShellTexture {
+            areal_density: texture(phase, growth),
+        };
+        w.soak
+            .set_mass_model(id, model, &mut w.world.bodies, &w.world.colliders)?;
+        w.step()?;
+        let rb = &w.world.bodies[h];
+        let q = convert::rotation(*rb.rotation());
+        let com_local = convert::vector(rb.local_center_of_mass());
+        // Angle between the heavy side (world) and straight down.
+        let heavy = q * Vector3::new(phase.cos(), 0.0, phase.sin());
+        let down = heavy.dot(&-Vector3::y()).clamp(-1.0, 1.0).acos().to_degrees();
+        t.push(vec![
+            time,
+            rb.mass() as f64,
+            com_local.norm(),
+            phase.to_degrees() % 360.0,
+            down,
+        ]);
+    }
+    t.write_csv(&out.join("moving_mass.csv"))?;
+    Figure::new(1500, 450)
+        .title("Mass that moves inside a floating ball (thesis Fig. 7.7)")
+        .panel(
+            Chart::new("Mass as Rapier has it")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("mass (kg)"))
+                .series(t.series("mass", "t_s", "mass_kg")),
+        )
+        .panel(
+            Chart::new("Centre of mass")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("offset from the centre (m)"))
+                .series(t.series("|c|", "t_s", "com_offset_m")),
+        )
+        .panel(
+            Chart::new("The heavy side seeks the bottom")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("angle from straight down (°)").range(0.0, 180.0))
+                .series(t.series("heavy side", "t_s", "heavy_side_down_deg")),
+        )
+        .write_png(&out.join("moving_mass.png"))?;
+    let late: Vec<f64> = t
+        .rows
+        .iter()
+        .filter(|r| r[0] > seconds * 0.5)
+        .map(|r| r[4])
+        .collect();
+    let mean = late.iter().sum::<f64>() / late.len().max(1) as f64;
+    Ok(format!(
+        "moving mass: heavy side within {mean:.0}° of straight down on average once loaded"
+    ))
+}
+
+/// Fig. 7.9: a balloon inflating while it rises through air; its mesh
+/// deforms every step and the atlas follows from its barycentrics.
+fn balloon(seconds: f64, out: &Path) -> anyhow::Result<String> {
+    let mut w = World::new(Water::air(), 1.0 / 60.0);
+    let r0 = 1.0;
+    let mesh = builtin::sphere(r0, 48, 24);
+    let atlas = Atlas::bake(&mesh, BakeOptions::square(128))?;
+    let envelope = 3.0; // kg of fabric
+    let sigma0 = envelope / atlas.area();
+    let helium = 0.17; // kg/m³
+    let drag = Drag {
+        coefficient: 0.5,
+        linear: 0.0,
+    };
+    let (h, id) = w.add(
+        "balloon",
+        atlas,
+        MassModel::Shell {
+            areal_density: sigma0,
+        },
+        Effects::buoyancy().with_drag(drag),
+        Pose::IDENTITY,
+    )?;
+    let mut t = Table::new(&["t_s", "altitude_m", "radius_m", "volume_m3", "lift_n", "weight_n"]);
+    let grow = seconds * 0.6;
+    for _ in 0..(seconds * 60.0) as usize {
+        let time = w.soak.time();
+        let r = r0 * (1.0 + 1.5 * (time / grow).min(1.0));
+        let moved: Vec<Point3<f64>> = mesh
+            .positions
+            .iter()
+            .map(|p| Point3::from(p.coords * (r / r0)))
+            .collect();
+        w.soak
+            .deform(id, &moved, &mut w.world.bodies, &w.world.colliders)?;
+        // The fabric stretches (constant mass); the gas inside is a uniform solid.
+        let area = w.soak.body(id).expect("registered").atlas().area();
+        w.soak.set_mass_model(
+            id,
+            MassModel::Shell {
+                areal_density: envelope / area,
+            },
+            &mut w.world.bodies,
+            &w.world.colliders,
+        )?;
+        let gas = volume_moments(w.soak.body(id).expect("registered").atlas()).solid(helium);
+        w.soak
+            .set_extra_mass(id, Some(gas), &mut w.world.bodies, &w.world.colliders)?;
+        w.step()?;
+        let rb = &w.world.bodies[h];
+        let f = *w.soak.body(id).expect("registered").forces();
+        t.push(vec![
+            time,
+            rb.translation().y as f64,
+            r,
+            f.submerged_volume,
+            f.buoyancy.force.y,
+            rb.mass() as f64 * 9.81,
+        ]);
+    }
+    t.write_csv(&out.join("balloon.csv"))?;
+    Figure::new(1500, 450)
+        .title("A balloon inflating as it rises through air (thesis Fig. 7.9)")
+        .panel(
+            Chart::new("Altitude")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("height (m)"))
+                .series(t.series("balloon", "t_s", "altitude_m")),
+        )
+        .panel(
+            Chart::new("Displaced air")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("volume (m³)"))
+                .series(t.series("volume", "t_s", "volume_m3")),
+        )
+        .panel(
+            Chart::new("Forces")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("force (N)"))
+                .series(t.series("buoyancy", "t_s", "lift_n"))
+                .series(
+                    t.series("weight (fabric + helium)", "t_s", "weight_n")
+                        .line(Line::Dashed),
+                ),
+        )
+        .write_png(&out.join("balloon.png"))?;
+    Ok(format!(
+        "balloon: rose to {:.1} m while its volume grew {:.0}×",
+        t.col("altitude_m").last().copied().unwrap_or(0.0),
+        (2.5f64).powi(3)
+    ))
+}
+
+/// Fig. 7.4/7.5: a boat holed at the bow (starboard) and one holed at the
+/// stern on both sides take on water compartment by compartment and sink,
+/// bow first and stern first.
+fn sinking_boats(seconds: f64, out: &Path) -> anyhow::Result<String> {
+    use soak_graph::{Flooding, FlowOptions, Format, Permeability, parse_graph};
+    use soak_rapier::liquid::{self, LiquidBody, pitch_degrees};
+    let graph_text = include_str!("../../../data/graphs/boat.toml");
+    let mesh = builtin::boat(4.0, 1.2, 0.6);
+    let atlas = Atlas::bake(&mesh, BakeOptions::square(128))?;
+    let mut world = World::new(Water::calm(0.0), 1.0 / 30.0);
+    let damage: [(&str, Vec<Point3<f64>>, f64, f32); 2] = [
+        ("bow", vec![Point3::new(1.5, 0.15, 0.125)], 0.15, -3.0),
+        (
+            "stern",
+            vec![Point3::new(-1.6, 0.1, 0.2), Point3::new(-1.6, 0.1, -0.2)],
+            0.12,
+            3.0,
+        ),
+    ];
+    let drag = Drag {
+        coefficient: 1.0,
+        linear: 50.0,
+    };
+    let mut boats = Vec::new();
+    let mut handles = Vec::new();
+    for (name, _, _, z) in &damage {
+        let pose = Pose::from_translation(Vector::new(0.0, -0.15, *z));
+        let (h, id) = w_add(&mut world, name, atlas.clone(), drag, pose)?;
+        let graph = parse_graph(graph_text, Format::Toml, Path::new("boat.toml"))?;
+        let flooding = Flooding::for_atlas(
+            &atlas,
+            graph,
+            Permeability::watertight(&atlas),
+            FlowOptions::default(),
+        )?;
+        boats.push(LiquidBody::attach(
+            &mut world.soak,
+            &mut world.world,
+            id,
+            flooding,
+        )?);
+        handles.push(h);
+    }
+    let punch = 5.0;
+    let mut punched = false;
+    let mut sunk: [Option<f64>; 2] = [None, None];
+    let mut t = Table::new(&[
+        "t_s",
+        "bow_water_m3",
+        "stern_water_m3",
+        "bow_mass_kg",
+        "stern_mass_kg",
+        "bow_pitch_deg",
+        "stern_pitch_deg",
+    ]);
+    let steps = (seconds * 30.0) as usize;
+    for _ in 0..steps {
+        let time = world.soak.time();
+        if !punched && time >= punch {
+            for (b, (_, centres, radius, _)) in boats.iter_mut().zip(&damage) {
+                let p = b
+                    .flooding_mut()
+                    .permeability_mut()
+                    .ok_or_else(|| anyhow::anyhow!("sealed hull"))?;
+                for c in centres {
+                    p.paint(&atlas, *c, *radius, 1e-6)?;
+                }
+            }
+            punched = true;
+        }
+        liquid::step(&mut world.soak, &mut boats, &mut world.world)?;
+        let mut row = vec![world.soak.time()];
+        let pitch: Vec<f64> = handles
+            .iter()
+            .map(|h| pitch_degrees(&convert::pose(world.world.bodies[*h].position())))
+            .collect();
+        for b in &boats {
+            row.push(b.flooding().inside());
+        }
+        for h in &handles {
+            row.push(world.world.bodies[*h].mass() as f64);
+        }
+        row.extend(&pitch);
+        for (k, h) in handles.iter().enumerate() {
+            // Sunk: the deck is under water.
+            let deck = world.world.bodies[*h].translation().y as f64 + 0.6 * 0.8;
+            if sunk[k].is_none() && deck < -0.5 {
+                sunk[k] = Some(world.soak.time() - punch);
+            }
+        }
+        t.push(row);
+    }
+    t.write_csv(&out.join("sinking_boats.csv"))?;
+    Figure::new(1500, 450)
+        .title("Holed boats take on water and sink (thesis Fig. 7.4, bow; Fig. 7.5, stern)")
+        .panel(
+            Chart::new("Water inside")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("volume (m³)"))
+                .series(t.series("bow hole", "t_s", "bow_water_m3"))
+                .series(t.series("stern holes", "t_s", "stern_water_m3")),
+        )
+        .panel(
+            Chart::new("Mass as Rapier has it")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("mass (kg)"))
+                .series(t.series("bow hole", "t_s", "bow_mass_kg"))
+                .series(t.series("stern holes", "t_s", "stern_mass_kg")),
+        )
+        .panel(
+            Chart::new("Trim (bow up > 0)")
+                .x(Axis::linear("time (s)"))
+                .y(Axis::linear("pitch (°)"))
+                .series(t.series("bow hole", "t_s", "bow_pitch_deg"))
+                .series(t.series("stern holes", "t_s", "stern_pitch_deg")),
+        )
+        .write_png(&out.join("sinking_boats.png"))?;
+    let when = |s: Option<f64>| {
+        s.map_or("still afloat".to_string(), |t| {
+            format!("sank {t:.0} s after the damage")
+        })
+    };
+    Ok(format!(
+        "sinking boats: bow-holed {}, stern-holed {}",
+        when(sunk[0]),
+        when(sunk[1])
+    ))
+}
+
+fn w_add(
+    w: &mut World,
+    name: &str,
+    atlas: Atlas,
+    drag: Drag,
+    pose: Pose,
+) -> anyhow::Result<(RigidBodyHandle, SoakId)> {
+    w.add(
+        name,
+        atlas,
+        MassModel::Shell { areal_density: 40.0 },
+        Effects::buoyancy().with_drag(drag),
+        pose,
+    )
+}
+
+/// A demo case: runs for the given seconds, writes into the folder, returns a summary line.
+type Case = fn(f64, &Path) -> anyhow::Result<String>;
+
+pub fn run(args: &Args) -> anyhow::Result<()> {
+    let start = Instant::now();
+    std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
+    let s = if args.quick { 0.25 } else { 1.0 };
+    let cases: [(&str, Case, f64); 5] = [
+        ("buoy", buoy, 40.0),
+        ("top_heavy_ball", top_heavy_ball, 30.0),
+        ("moving_mass", moving_mass, 60.0),
+        ("balloon", balloon, 30.0),
+        ("sinking_boats", sinking_boats, 150.0),
+    ];
+    for (name, case, seconds) in cases {
+        let t0 = Instant::now();
+        let line = case(seconds * s, &args.out).with_context(|| format!("demo case `{name}`"))?;
+        println!("{line}  ({:.1} s)", t0.elapsed().as_secs_f64());
+    }
+    println!(
+        "plots and CSV in {} ({:.1} s in all)",
+        args.out.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}

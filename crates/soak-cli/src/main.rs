@@ -1,0 +1,58 @@
+//! `soak`: bake meshes, measure hydrostatics and accuracy, run scenes.
+
+mod accuracy;
+mod bake;
+mod common;
+mod demo;
+mod gpu;
+mod hydro;
+mod plot;
+mod segment;
+mod simulate;
+
+use clap::{Parser, Subcommand};
+
+/// Textured meshes that float, take on water, sink, get wet and dry.
+#[derive(Parser)]
+#[command(name = "soak", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run the embedded demo: the thesis' Chapter 7 cases, with plots.
+    Demo(demo::Args),
+    /// Bake a mesh into a texel atlas and print its summary.
+    Bake(bake::Args),
+    /// Mass properties and hydrostatics of a mesh at a pose, against the exact reference.
+    Hydro(hydro::Args),
+    /// Run a scene file headless; print final states, write time series.
+    Simulate(simulate::Args),
+    /// What each digit of accuracy costs in time: errors and times per path and resolution.
+    Accuracy(accuracy::Args),
+    /// Segment a closed mesh into its liquid graph: print nodes and edges, draw them on the mesh.
+    Segment(segment::Args),
+}
+
+fn main() -> std::process::ExitCode {
+    match run(Cli::parse()) {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Demo(args) => demo::run(&args),
+        Command::Bake(args) => bake::run(&args),
+        Command::Hydro(args) => hydro::run(&args),
+        Command::Simulate(args) => simulate::run(&args),
+        Command::Accuracy(args) => accuracy::run(&args),
+        Command::Segment(args) => segment::run(&args),
+    }
+}

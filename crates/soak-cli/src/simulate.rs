@@ -1,0 +1,159 @@
+//! `soak simulate SCENE.toml`: run a scene headless.
+
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+
+use anyhow::Context;
+use soak_rapier::{Backend, LoadedScene, Sample, Simulation};
+
+/// Arguments of `soak simulate`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The scene file (TOML).
+    scene: PathBuf,
+    /// Print the final state of every body as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Write the time series (pose, forces, submerged volume, mass) as CSV.
+    #[arg(long)]
+    csv: Option<PathBuf>,
+    /// Override the scene's duration, s.
+    #[arg(long)]
+    duration: Option<f64>,
+    /// Override the scene's backend: `cpu` (tiled), `per-texel` or `gpu`.
+    #[arg(long, value_enum)]
+    backend: Option<SimBackend>,
+}
+
+/// Where `soak simulate` evaluates the texel sums.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum SimBackend {
+    /// The CPU, tiled for planar water.
+    Cpu,
+    /// The CPU, every texel.
+    PerTexel,
+    /// The GPU, all bodies in one batch per step.
+    Gpu,
+}
+
+pub fn run(args: &Args) -> anyhow::Result<()> {
+    let mut loaded = LoadedScene::from_file(&args.scene)?;
+    if let Some(d) = args.duration {
+        anyhow::ensure!(
+            d.is_finite() && d > 0.0,
+            "--duration must be a positive number of seconds"
+        );
+        loaded.scene.duration = d;
+    }
+    if let Some(b) = args.backend {
+        loaded.scene.backend = match b {
+            SimBackend::Cpu => Backend::Tiled,
+            SimBackend::PerTexel => Backend::PerTexel,
+            SimBackend::Gpu => Backend::Gpu,
+        };
+    }
+    let mut sim = Simulation::from_scene(&loaded)?;
+    sim.record(args.csv.is_some());
+    let total = sim.total_steps();
+    let bar = if std::io::stderr().is_terminal() {
+        let bar = indicatif::ProgressBar::new(total);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template("{msg} {wide_bar} {pos}/{len} steps, eta {eta}")
+                .expect("valid template"),
+        );
+        bar.set_message(args.scene.display().to_string());
+        Some(bar)
+    } else {
+        None
+    };
+    sim.run(|k| {
+        if let Some(b) = &bar
+            && k % 16 == 0
+        {
+            b.set_position(k);
+        }
+    })?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    if let Some(path) = &args.csv {
+        write_csv(path, &sim)?;
+    }
+    let report = sim.report();
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        println!(
+            "{} after {:.2} s ({} steps):",
+            args.scene.display(),
+            sim.time(),
+            total
+        );
+        for r in &report {
+            println!(
+                "  {:<16} at ({:>8.3}, {:>8.3}, {:>8.3}) m, tilt ({:>7.2}, {:>7.2}, {:>7.2})°, {:>5.1} % submerged, {:.2} kg{}{}",
+                r.name,
+                r.position[0],
+                r.position[1],
+                r.position[2],
+                r.euler_deg[0],
+                r.euler_deg[1],
+                r.euler_deg[2],
+                100.0 * r.submerged_fraction,
+                r.mass,
+                r.liquid_inside
+                    .map(|l| format!(", {l:.3} m³ of water inside"))
+                    .unwrap_or_default(),
+                if r.non_finite { "  NON-FINITE" } else { "" }
+            );
+        }
+        if let Some(path) = &args.csv {
+            println!("time series in {}", path.display());
+        }
+    }
+    if sim.soak.firewall().count() > 0 {
+        eprintln!(
+            "warning: {} non-finite or absurd quantities were kept from Rapier",
+            sim.soak.firewall().count()
+        );
+    }
+    Ok(())
+}
+
+/// Writes recorded samples as CSV, one row per body and time.
+pub fn write_csv(path: &std::path::Path, sim: &Simulation) -> anyhow::Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    let file = std::fs::File::create(path).with_context(|| format!("cannot write {}", path.display()))?;
+    let mut w = std::io::BufWriter::new(file);
+    writeln!(
+        w,
+        "t_s,body,x_m,y_m,z_m,qx,qy,qz,qw,vx_m_s,vy_m_s,vz_m_s,wx_rad_s,wy_rad_s,wz_rad_s,\
+         buoyancy_x_n,buoyancy_y_n,buoyancy_z_n,drag_x_n,drag_y_n,drag_z_n,submerged_volume_m3,mass_kg,liquid_inside_m3"
+    )?;
+    for s in sim.samples() {
+        write_row(&mut w, &sim.bodies[s.body].name, s)?;
+    }
+    w.flush()?;
+    Ok(())
+}
+
+fn write_row(w: &mut impl Write, name: &str, s: &Sample) -> std::io::Result<()> {
+    let f = |v: &[f64]| v.iter().map(|x| format!("{x:.6}")).collect::<Vec<_>>().join(",");
+    writeln!(
+        w,
+        "{:.5},{},{},{},{},{},{},{},{:.6},{:.4},{:.6}",
+        s.t,
+        name,
+        f(&s.position),
+        f(&s.rotation),
+        f(&s.linear_velocity),
+        f(&s.angular_velocity),
+        f(&s.buoyancy),
+        f(&s.drag),
+        s.submerged_volume,
+        s.mass,
+        s.liquid_inside
+    )
+}

@@ -1,0 +1,60 @@
+//! Hydrostatics at 1024²: per texel, tiled, a plain streaming read of the same
+//! atlas (the bandwidth floor), exact clipping and the per-triangle baseline.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use soak_bake::{Atlas, BakeOptions, builtin};
+use soak_hydro::reference::{self, ClipPlane};
+use soak_hydro::{BodyState, HydroOptions, MassModel, TiledAtlas, Water, evaluate};
+
+/// Reads every position and area vector once, summing them: the floor any
+/// per-texel pass over the atlas is bound by.
+fn streaming_read(atlas: &Atlas) -> f64 {
+    use rayon::prelude::*;
+    atlas
+        .local_positions()
+        .par_chunks(4096)
+        .zip(atlas.area_vectors().par_chunks(4096))
+        .map(|(x, a)| {
+            let mut s = 0.0f32;
+            for (x, a) in x.iter().zip(a) {
+                s += x[0] + x[1] + x[2] + a[0] + a[1] + a[2];
+            }
+            s as f64
+        })
+        .sum()
+}
+
+fn hydro(c: &mut Criterion) {
+    let mesh = builtin::sphere(0.5, 64, 32);
+    let atlas = Atlas::bake(&mesh, BakeOptions::square(1024)).unwrap();
+    let tiled = TiledAtlas::new(&atlas);
+    let mass = MassModel::Solid { density: 500.0 }
+        .mass_properties(&atlas)
+        .unwrap();
+    let pose = Isometry3::from_parts(
+        Vector3::new(0.0, 0.1, 0.0).into(),
+        UnitQuaternion::from_euler_angles(0.3, 0.2, 0.1),
+    );
+    let state = BodyState::at_rest(pose);
+    let water = Water::calm(0.0);
+    let opts = HydroOptions::default();
+    let mut g = c.benchmark_group("sphere_1024");
+    g.bench_function("streaming_read", |b| b.iter(|| streaming_read(&atlas)));
+    g.bench_function("per_texel", |b| {
+        b.iter(|| evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap())
+    });
+    g.bench_function("tiled", |b| {
+        b.iter(|| tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap())
+    });
+    g.bench_function("exact_clipping", |b| {
+        b.iter(|| reference::submerged_part(&mesh, &pose, &ClipPlane::horizontal(0.0)))
+    });
+    g.bench_function("per_triangle_baseline", |b| {
+        b.iter(|| reference::per_triangle_buoyancy(&mesh, &pose, &ClipPlane::horizontal(0.0), 1000.0, 9.81))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, hydro);
+criterion_main!(benches);

@@ -1,0 +1,126 @@
+//! Buffer layouts shared with the kernels: `#[repr(C)]` bytemuck structs
+//! mirrored field by field in `shaders/hydro_bindings.wgsl`. Only `[f32; 4]`,
+//! `[u32; 4]` and `u32` fields, so no WGSL alignment padding can hide.
+
+use bytemuck::{Pod, Zeroable};
+
+/// Invocations per workgroup (`WG` in the WGSL).
+pub(crate) const WG: u32 = 64;
+/// Texels per invocation (`PER_THREAD` in the WGSL).
+pub(crate) const PER_THREAD: u32 = 64;
+/// Texels per work item (one workgroup, one partial).
+pub(crate) const ITEM_TEXELS: u32 = WG * PER_THREAD;
+/// vec4s per hydrostatics partial (`SLOTS` in buoyancy.wgsl).
+pub(crate) const HYDRO_SLOTS: u32 = 10;
+/// vec4s per mass partial (`SLOTS` in mass.wgsl).
+pub(crate) const MASS_SLOTS: u32 = 3;
+/// Bytes per texel in a page: position and area vector, two vec4s.
+pub(crate) const TEXEL_BYTES: u64 = 32;
+/// Bytes per texel of the triangle id and barycentrics.
+pub(crate) const TRIBARY_BYTES: u64 = 16;
+/// Stride of the per-dispatch uniforms (dynamic offsets).
+pub(crate) const DISPATCH_STRIDE: u64 = 256;
+/// Workgroups per dispatch dimension the WebGPU baseline allows.
+pub(crate) const MAX_GROUPS_X: u32 = 65535;
+
+pub(crate) const SURFACE_PLANE: u32 = 0;
+pub(crate) const SURFACE_GERSTNER: u32 = 1;
+pub(crate) const SURFACE_HEIGHT_FIELD: u32 = 2;
+pub(crate) const SURFACE_UNBOUNDED: u32 = 3;
+
+/// One body of a batch (WGSL `Body`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub(crate) struct Body {
+    pub rot0: [f32; 4],
+    pub rot1: [f32; 4],
+    pub rot2: [f32; 4],
+    pub surface: [f32; 4],
+    pub surface2: [f32; 4],
+    pub current: [f32; 4],
+    pub com: [f32; 4],
+    pub linear_velocity: [f32; 4],
+    pub angular_velocity: [f32; 4],
+    pub drag: [f32; 4],
+    pub info: [u32; 4],
+    pub slot: [u32; 4],
+}
+
+/// One Gerstner wave (WGSL `Wave`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub(crate) struct Wave {
+    pub a: [f32; 4],
+    pub b: [f32; 4],
+}
+
+/// A run of texels of one page (WGSL `Item`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub(crate) struct Item {
+    pub body: u32,
+    pub start: u32,
+    pub end: u32,
+    pub partial: u32,
+}
+
+/// Per-dispatch constants (WGSL `Dispatch`), at a 256-byte stride.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub(crate) struct Dispatch {
+    pub base: u32,
+    pub count: u32,
+    pub groups_x: u32,
+    pub mode: u32,
+    pub param: [f32; 4],
+}
+
+impl Dispatch {
+    /// Constants and workgroup counts `(x, y)` for `count` workgroups from `base`.
+    pub(crate) fn new(base: u32, count: u32, mode: u32, param: [f32; 4]) -> (Self, [u32; 2]) {
+        let x = count.clamp(1, MAX_GROUPS_X);
+        let y = count.div_ceil(x).max(1);
+        (
+            Self {
+                base,
+                count,
+                groups_x: x,
+                mode,
+                param,
+            },
+            [x, y],
+        )
+    }
+}
+
+/// Packs dispatch constants at [`DISPATCH_STRIDE`] for dynamic offsets.
+pub(crate) fn dispatch_bytes(dispatches: &[Dispatch]) -> Vec<u8> {
+    let mut out = vec![0u8; dispatches.len().max(1) * DISPATCH_STRIDE as usize];
+    for (i, d) in dispatches.iter().enumerate() {
+        let at = i * DISPATCH_STRIDE as usize;
+        out[at..at + size_of::<Dispatch>()].copy_from_slice(bytemuck::bytes_of(d));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_match_the_wgsl() {
+        assert_eq!(size_of::<Body>(), 12 * 16);
+        assert_eq!(size_of::<Wave>(), 32);
+        assert_eq!(size_of::<Item>(), 16);
+        assert_eq!(size_of::<Dispatch>(), 32);
+    }
+
+    #[test]
+    fn dispatches_fold_into_two_dimensions() {
+        let (d, g) = Dispatch::new(0, 200_000, 0, [0.0; 4]);
+        assert_eq!(g[0], MAX_GROUPS_X);
+        assert!(g[0] as u64 * g[1] as u64 >= 200_000);
+        assert_eq!(d.groups_x, MAX_GROUPS_X);
+        assert_eq!(Dispatch::new(0, 0, 0, [0.0; 4]).1, [1, 1]);
+    }
+}

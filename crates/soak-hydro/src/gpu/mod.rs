@@ -1,0 +1,42 @@
+//! Hydrostatics, drag and mass properties with wgpu compute kernels
+//! (feature `gpu`), in agreement with the CPU by test.
+//!
+//! [`GpuHydro`] keeps atlases on a device the caller provides and evaluates
+//! the per-texel sums of [`crate::evaluate`] there: one kernel transforms
+//! each texel, finds its depth under the water surface (plane, Gerstner sea,
+//! height field or unbounded medium, in `shaders/water_surface.wgsl`) and
+//! sums buoyancy and drag terms per workgroup; a second reduces the partials
+//! per body. The sums come back (160 bytes per body) and the CPU turns them
+//! into [`crate::HydroForces`] with the code [`crate::evaluate`] uses, the
+//! implicit drag solve included. Many bodies, each with its own atlas, pose
+//! and water, go in one submission and one readback
+//! ([`GpuHydro::evaluate_batch`]).
+//!
+//! Precision: texel positions are relative to the atlas origin and water
+//! parameters relative to the body's world position, computed in f64 and
+//! rounded once, so f32 holds its precision anywhere in the world; sums are
+//! f32 trees (64 texels per invocation, 64 invocations per workgroup, then the
+//! partials). The tests hold GPU and CPU to 1e-4 relative on volumes,
+//! forces and masses, and to 1e-4 of the body's diameter on centres.
+//!
+//! Kernels stay within the WebGPU baseline (no float atomics, subgroups or
+//! f64; at most 7 storage buffers per stage), so Mesa's llvmpipe (GL) and
+//! lavapipe (Vulkan) run them headless.
+
+mod batch;
+mod deform;
+mod device;
+mod error;
+mod hydro;
+mod kernels;
+mod layout;
+mod mass_properties;
+mod scope;
+mod surface;
+
+pub use batch::GpuBody;
+pub use deform::GpuTexels;
+pub use device::{adapter_label, headless_device, is_software};
+pub use error::{GpuAtlasId, GpuError};
+pub use hydro::{GpuHydro, GpuOptions};
+pub use kernels::kernel_sources;

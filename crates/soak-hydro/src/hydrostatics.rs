@@ -1,0 +1,628 @@
+//! Buoyancy and drag of a body from its texel atlas, per texel.
+//!
+//! For texel `i` at world position `p_i` with world area vector `A_i`,
+//! depth `d_i = f(p_i) − p_i.y` and submerged set `S = {i : d_i > 0}`:
+//! `V_s = Σ_S −A_{i,y} d_i` (signed columns, exact for non-convex bodies and
+//! any surface `y = f(x, z)`), `C_B = (1/V_s) Σ_S −A_{i,y} d_i (p_x, p_y + d_i/2, p_z)`;
+//! Archimedes mode applies `ρ g V_s` up at `C_B`; pressure mode sums
+//! `−ρ g d_i A_i` and its torque (equal on a plane, and it also feels the
+//! sideways push of a wave's slope). Drag is quadratic per submerged texel
+//! facing its relative velocity, plus optional linear skin friction, and is
+//! integrated implicitly over the step so it never reverses a velocity.
+
+use nalgebra::{Isometry3, Matrix3, Matrix6, Point3, Vector3, Vector6};
+use serde::{Deserialize, Serialize};
+use soak_bake::Atlas;
+
+use crate::error::HydroError;
+use crate::mass::{MassProperties, chunked_sum};
+use crate::water::{SurfaceKind, Water};
+
+/// Which buoyancy force is reported as [`HydroForces::buoyancy`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BuoyancyMode {
+    /// `ρ g V_s` straight up at the centre of buoyancy (the thesis' model).
+    #[default]
+    Archimedes,
+    /// Sum of hydrostatic pressure forces `−ρ g d_i A_i` and their torques.
+    Pressure,
+    /// No buoyancy.
+    Off,
+}
+
+/// Drag coefficients.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Drag {
+    /// Quadratic pressure-drag coefficient `C_d` (dimensionless); 1.0 is a
+    /// flat plate, about 0.5 a sphere.
+    pub coefficient: f64,
+    /// Linear skin friction, N·s/m per m² of wetted surface, on the
+    /// tangential relative velocity.
+    #[serde(default)]
+    pub linear: f64,
+}
+
+impl Default for Drag {
+    fn default() -> Self {
+        Self {
+            coefficient: 1.0,
+            linear: 0.0,
+        }
+    }
+}
+
+/// What to compute.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct HydroOptions {
+    /// Buoyancy model.
+    pub buoyancy: BuoyancyMode,
+    /// Drag, if any.
+    pub drag: Option<Drag>,
+    /// Time step over which drag is integrated implicitly, s. Zero reports
+    /// the explicit drag force of the current velocity.
+    pub dt: f64,
+}
+
+impl Default for HydroOptions {
+    fn default() -> Self {
+        Self {
+            buoyancy: BuoyancyMode::Archimedes,
+            drag: None,
+            dt: 1.0 / 60.0,
+        }
+    }
+}
+
+/// Pose and velocity of a body.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BodyState {
+    /// Object-to-world transform (m).
+    pub pose: Isometry3<f64>,
+    /// Velocity of the centre of mass, world frame, m/s.
+    pub linear_velocity: Vector3<f64>,
+    /// Angular velocity, world frame, rad/s.
+    pub angular_velocity: Vector3<f64>,
+}
+
+impl BodyState {
+    /// A body at rest at `pose`.
+    pub fn at_rest(pose: Isometry3<f64>) -> Self {
+        Self {
+            pose,
+            linear_velocity: Vector3::zeros(),
+            angular_velocity: Vector3::zeros(),
+        }
+    }
+
+    pub(crate) fn check(&self) -> Result<(), HydroError> {
+        let fin = |v: &[f64]| v.iter().all(|c| c.is_finite());
+        if !fin(self.pose.translation.vector.as_slice()) || !fin(self.pose.rotation.coords.as_slice()) {
+            return Err(HydroError::NonFiniteState { field: "pose" });
+        }
+        if !fin(self.linear_velocity.as_slice()) {
+            return Err(HydroError::NonFiniteState {
+                field: "linear_velocity",
+            });
+        }
+        if !fin(self.angular_velocity.as_slice()) {
+            return Err(HydroError::NonFiniteState {
+                field: "angular_velocity",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A force and a torque, world frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Wrench {
+    /// Force, N.
+    pub force: Vector3<f64>,
+    /// Torque about the centre of mass, N·m.
+    pub torque: Vector3<f64>,
+}
+
+impl std::ops::Add for Wrench {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self {
+            force: self.force + o.force,
+            torque: self.torque + o.torque,
+        }
+    }
+}
+
+impl Wrench {
+    /// Whether force and torque are finite.
+    pub fn is_finite(&self) -> bool {
+        self.force.iter().chain(self.torque.iter()).all(|c| c.is_finite())
+    }
+}
+
+/// Everything the fluid does to a body in one evaluation, world frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct HydroForces {
+    /// Submerged volume `V_s`, m³.
+    pub submerged_volume: f64,
+    /// Centre of buoyancy, world, m (the body's centre of mass when dry).
+    pub center_of_buoyancy: Point3<f64>,
+    /// Wetted (submerged) surface area, m².
+    pub wetted_area: f64,
+    /// Submerged texels.
+    pub submerged_texels: usize,
+    /// Archimedes buoyancy: `ρ g V_s` up at the centre of buoyancy.
+    pub archimedes: Wrench,
+    /// Pressure-mode buoyancy: `Σ −ρ g d_i A_i` and its torque.
+    pub pressure: Wrench,
+    /// The buoyancy selected by [`HydroOptions::buoyancy`].
+    pub buoyancy: Wrench,
+    /// Drag as applied: the implicit integral over the step divided by `dt`.
+    pub drag: Wrench,
+    /// Drag at the current velocity (explicit), for reporting.
+    pub drag_explicit: Wrench,
+}
+
+impl HydroForces {
+    /// Buoyancy plus drag: what to apply to the body.
+    pub fn total(&self) -> Wrench {
+        self.buoyancy + self.drag
+    }
+}
+
+/// Buoyancy sums relative to the body's world reference point `o_w`
+/// (the atlas origin carried by the pose).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct BuoyancySums {
+    /// Σ w, w = −A_y d.
+    pub vol: f64,
+    /// Σ w r, r = p − o_w.
+    pub wr: Vector3<f64>,
+    /// Σ w d / 2.
+    pub wd2: f64,
+    /// Σ −d A.
+    pub f: Vector3<f64>,
+    /// Σ r × (−d A).
+    pub rxf: Vector3<f64>,
+    /// Σ a over submerged texels.
+    pub area: f64,
+    /// Submerged texels.
+    pub count: usize,
+}
+
+impl BuoyancySums {
+    /// The sums with their vector parts rotated by `rot` (object → world).
+    pub(crate) fn rotated(&self, rot: &Matrix3<f64>) -> Self {
+        Self {
+            wr: rot * self.wr,
+            f: rot * self.f,
+            rxf: rot * self.rxf,
+            ..*self
+        }
+    }
+}
+
+impl std::ops::Add for BuoyancySums {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self {
+            vol: self.vol + o.vol,
+            wr: self.wr + o.wr,
+            wd2: self.wd2 + o.wd2,
+            f: self.f + o.f,
+            rxf: self.rxf + o.rxf,
+            area: self.area + o.area,
+            count: self.count + o.count,
+        }
+    }
+}
+
+impl BuoyancySums {
+    #[inline]
+    pub(crate) fn add_texel(&mut self, r: &Vector3<f64>, a: &Vector3<f64>, area: f64, d: f64) {
+        self.add_local(r, a, a.y, area, d);
+    }
+
+    /// Adds a texel in any frame rotated from the world's: `r` and `a` in
+    /// that frame, `ay` the world-vertical component of `a`. Rotate the sums
+    /// back with [`BuoyancySums::rotated`].
+    #[inline]
+    pub(crate) fn add_local(&mut self, r: &Vector3<f64>, a: &Vector3<f64>, ay: f64, area: f64, d: f64) {
+        let w = -ay * d;
+        self.vol += w;
+        self.wr += w * r;
+        self.wd2 += w * d * 0.5;
+        let f = -d * a;
+        self.f += f;
+        self.rxf += r.cross(&f);
+        self.area += area;
+        self.count += 1;
+    }
+}
+
+/// Linear drag system about the centre of mass: wrench = −K q + b.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct DragSums {
+    pub k: Matrix6<f64>,
+    pub b: Vector6<f64>,
+}
+
+impl Default for DragSums {
+    fn default() -> Self {
+        Self {
+            k: Matrix6::zeros(),
+            b: Vector6::zeros(),
+        }
+    }
+}
+
+impl std::ops::Add for DragSums {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self {
+            k: self.k + o.k,
+            b: self.b + o.b,
+        }
+    }
+}
+
+#[inline]
+fn skew(r: &Vector3<f64>) -> Matrix3<f64> {
+    r.cross_matrix()
+}
+
+impl DragSums {
+    /// Adds a submerged texel at `rc` from the centre of mass with world area
+    /// vector `a`, relative velocity `vrel` and fluid velocity `u`.
+    #[inline]
+    pub(crate) fn add_texel(
+        &mut self,
+        drag: &Drag,
+        rho: f64,
+        rc: &Vector3<f64>,
+        a: &Vector3<f64>,
+        vrel: &Vector3<f64>,
+        u: &Vector3<f64>,
+    ) {
+        let facing = a.dot(vrel);
+        let kq = if facing > 0.0 {
+            0.5 * rho * drag.coefficient * facing
+        } else {
+            0.0
+        };
+        let area = a.norm();
+        let mut ki = Matrix3::identity() * kq;
+        if drag.linear > 0.0 && area > 0.0 {
+            let n = a / area;
+            ki += (Matrix3::identity() - n * n.transpose()) * (drag.linear * area);
+        }
+        if kq == 0.0 && drag.linear <= 0.0 {
+            return;
+        }
+        // Texel velocity = J q with J = [I, −[r]×]; K += Jᵀ K_i J, b += Jᵀ K_i u.
+        let s = skew(rc);
+        let kvv = ki;
+        let kvw = -ki * s;
+        let kwv = s * ki;
+        let kww = -s * ki * s;
+        {
+            let mut v = self.k.fixed_view_mut::<3, 3>(0, 0);
+            v += kvv;
+        }
+        {
+            let mut v = self.k.fixed_view_mut::<3, 3>(0, 3);
+            v += kvw;
+        }
+        {
+            let mut v = self.k.fixed_view_mut::<3, 3>(3, 0);
+            v += kwv;
+        }
+        {
+            let mut v = self.k.fixed_view_mut::<3, 3>(3, 3);
+            v += kww;
+        }
+        let f = ki * u;
+        {
+            let mut v = self.b.fixed_rows_mut::<3>(0);
+            v += f;
+        }
+        {
+            let mut v = self.b.fixed_rows_mut::<3>(3);
+            v += rc.cross(&f);
+        }
+    }
+}
+
+/// Buoyancy and drag sums of one pass.
+#[derive(Clone, Copy, Default)]
+struct Both {
+    b: BuoyancySums,
+    d: DragSums,
+}
+
+impl std::ops::Add for Both {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self {
+            b: self.b + o.b,
+            d: self.d + o.d,
+        }
+    }
+}
+
+/// Per-evaluation constants shared by the CPU paths.
+pub(crate) struct Frame {
+    /// For planar water, depth `d(x) = α + β·x` in object coordinates
+    /// relative to the atlas origin, and the world up axis in object axes.
+    pub local_plane: Option<(f64, Vector3<f64>, Vector3<f64>)>,
+    pub rot: Matrix3<f64>,
+    /// World position of the atlas origin.
+    pub ow: Vector3<f64>,
+    /// World centre of mass.
+    pub com: Vector3<f64>,
+    pub plane: Option<(Vector3<f64>, f64)>,
+}
+
+impl Frame {
+    pub(crate) fn new(
+        atlas: &Atlas,
+        water: &Water,
+        state: &BodyState,
+        mass: &MassProperties,
+        t: f64,
+    ) -> Self {
+        let rot = state.pose.rotation.to_rotation_matrix().into_inner();
+        let ow = (state.pose * atlas.origin()).coords;
+        let com = (state.pose * mass.center_of_mass).coords;
+        let plane = match water.surface.kind(t) {
+            SurfaceKind::Plane { normal, offset } => Some((normal, offset)),
+            // No free surface: a horizontal plane above the whole body gives
+            // the same sums (Σ A = 0 for a closed surface) with finite depths.
+            SurfaceKind::Unbounded => Some((Vector3::y(), ow.y + atlas.bounding_radius() + 1.0)),
+            SurfaceKind::General => None,
+        };
+        let local_plane = plane.map(|(n, c)| {
+            let alpha = (c - n.dot(&ow)) / n.y;
+            let beta = -(rot.transpose() * n) / n.y;
+            (alpha, beta, rot.transpose() * Vector3::y())
+        });
+        Self {
+            local_plane,
+            rot,
+            ow,
+            com,
+            plane,
+        }
+    }
+
+    #[inline]
+    pub(crate) fn depth(&self, water: &Water, p: &Vector3<f64>, t: f64) -> f64 {
+        match self.plane {
+            Some((n, c)) => (c - n.dot(p)) / n.y,
+            None => water.surface.depth(&Point3::from(*p), t),
+        }
+    }
+}
+
+#[inline]
+pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
+    let x = atlas.local_positions()[i];
+    let a = atlas.area_vectors()[i];
+    (
+        Vector3::new(x[0] as f64, x[1] as f64, x[2] as f64),
+        Vector3::new(a[0] as f64, a[1] as f64, a[2] as f64),
+    )
+}
+
+/// Buoyancy and drag on a body, summing over every texel (rayon, f64,
+/// deterministic for any thread count).
+///
+/// `mass` are the body's mass properties (object frame): the centre of mass
+/// is where torques are taken, and mass and inertia make the implicit drag.
+///
+/// # Example
+/// ```
+/// use nalgebra::{Isometry3, Vector3};
+/// use soak_bake::{Atlas, BakeOptions, builtin};
+/// use soak_hydro::prelude::*;
+///
+/// let atlas = Atlas::bake(&builtin::cuboid(1.0, 1.0, 1.0), BakeOptions::square(128))?;
+/// let mass = MassModel::Solid { density: 500.0 }.mass_properties(&atlas)?;
+/// // Box centred 0.2 m below the surface at y = 0: 0.7 m³ submerged.
+/// let state = BodyState::at_rest(Isometry3::translation(0.0, -0.2, 0.0));
+/// let f = evaluate(&atlas, &Water::calm(0.0), &state, &mass, 0.0, &HydroOptions::default())?;
+/// assert!((f.submerged_volume - 0.7).abs() < 1e-6);
+/// assert!((f.buoyancy.force.y - 1000.0 * 9.80665 * 0.7).abs() < 1e-2);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn evaluate(
+    atlas: &Atlas,
+    water: &Water,
+    state: &BodyState,
+    mass: &MassProperties,
+    t: f64,
+    options: &HydroOptions,
+) -> Result<HydroForces, HydroError> {
+    water.validate()?;
+    state.check()?;
+    let frame = Frame::new(atlas, water, state, mass, t);
+    let sums = match frame.local_plane {
+        // Planar water: depth is affine in object coordinates, so sum there
+        // and rotate once.
+        Some((alpha, beta, g)) => chunked_sum(atlas.len(), BuoyancySums::default(), |range| {
+            let mut s = BuoyancySums::default();
+            for i in range {
+                let (x, a) = texel(atlas, i);
+                let d = alpha + beta.dot(&x);
+                if d > 0.0 {
+                    s.add_local(&x, &a, g.dot(&a), atlas.areas()[i] as f64, d);
+                }
+            }
+            s
+        })
+        .rotated(&frame.rot),
+        None => {
+            // Any surface: one probe per texel gives the depth and, for drag,
+            // the fluid velocity; neighbouring texels warm-start each other.
+            let both = chunked_sum(atlas.len(), Both::default(), |range| {
+                let mut s = Both::default();
+                let mut hint = [0.0; 2];
+                for i in range {
+                    let (x, a) = texel(atlas, i);
+                    let r = frame.rot * x;
+                    let p = frame.ow + r;
+                    let (d, u) = water
+                        .surface
+                        .probe(&Point3::from(p), t, options.drag.is_some(), &mut hint);
+                    if d > 0.0 {
+                        let aw = frame.rot * a;
+                        s.b.add_texel(&r, &aw, atlas.areas()[i] as f64, d);
+                        if let Some(drag) = &options.drag {
+                            let rc = p - frame.com;
+                            let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
+                            s.d.add_texel(drag, water.density, &rc, &aw, &v, &u);
+                        }
+                    }
+                }
+                s
+            });
+            let drag = options.drag.map(|_| both.d);
+            return Ok(finish(
+                &frame,
+                water,
+                state,
+                mass,
+                &both.b,
+                drag.as_ref(),
+                options,
+            ));
+        }
+    };
+    let drag = options
+        .drag
+        .map(|drag| drag_sums(atlas, water, state, &frame, &drag, t, 0..atlas.len()));
+    Ok(finish(&frame, water, state, mass, &sums, drag.as_ref(), options))
+}
+
+/// Drag sums over the submerged texels of `range`.
+pub(crate) fn drag_sums(
+    atlas: &Atlas,
+    water: &Water,
+    state: &BodyState,
+    frame: &Frame,
+    drag: &Drag,
+    t: f64,
+    range: std::ops::Range<usize>,
+) -> DragSums {
+    let start = range.start;
+    chunked_sum(range.len(), DragSums::default(), |r| {
+        let mut s = DragSums::default();
+        for i in r.start + start..r.end + start {
+            let (x, a) = texel(atlas, i);
+            let rr = frame.rot * x;
+            let p = frame.ow + rr;
+            let d = frame.depth(water, &p, t);
+            if d > 0.0 {
+                let rc = p - frame.com;
+                let u = water.surface.velocity(&Point3::from(p), t);
+                let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
+                s.add_texel(drag, water.density, &rc, &(frame.rot * a), &v, &u);
+            }
+        }
+        s
+    })
+}
+
+/// Turns the sums into forces.
+pub(crate) fn finish(
+    frame: &Frame,
+    water: &Water,
+    state: &BodyState,
+    mass: &MassProperties,
+    s: &BuoyancySums,
+    drag: Option<&DragSums>,
+    options: &HydroOptions,
+) -> HydroForces {
+    let rg = water.density * water.gravity;
+    let com = frame.com;
+    let ow = frame.ow;
+    let volume = s.vol.max(0.0);
+    let cb = if s.vol > 0.0 {
+        ow + (s.wr + Vector3::y() * s.wd2) / s.vol
+    } else {
+        com
+    };
+    let archimedes = {
+        let force = Vector3::new(0.0, rg * volume, 0.0);
+        Wrench {
+            force,
+            torque: (cb - com).cross(&force),
+        }
+    };
+    let pressure = {
+        let force = rg * s.f;
+        // Σ (p − c) × F = Σ r × F − (c − o_w) × Σ F
+        Wrench {
+            force,
+            torque: rg * s.rxf - (com - ow).cross(&force),
+        }
+    };
+    let buoyancy = match options.buoyancy {
+        BuoyancyMode::Archimedes => archimedes,
+        BuoyancyMode::Pressure => pressure,
+        BuoyancyMode::Off => Wrench::default(),
+    };
+    let (drag, drag_explicit) = match drag {
+        Some(d) => implicit_drag(d, state, mass, options.dt),
+        None => (Wrench::default(), Wrench::default()),
+    };
+    HydroForces {
+        submerged_volume: volume,
+        center_of_buoyancy: Point3::from(cb),
+        wetted_area: s.area,
+        submerged_texels: s.count,
+        archimedes,
+        pressure,
+        buoyancy,
+        drag,
+        drag_explicit,
+    }
+}
+
+/// `(applied, explicit)`: the applied drag is `M (q' − q)/dt` with
+/// `q' = (M + dt K)⁻¹ (M q + dt b)`, which decays the relative velocity
+/// without ever reversing it, for any `dt`.
+fn implicit_drag(d: &DragSums, state: &BodyState, mass: &MassProperties, dt: f64) -> (Wrench, Wrench) {
+    let q = Vector6::new(
+        state.linear_velocity.x,
+        state.linear_velocity.y,
+        state.linear_velocity.z,
+        state.angular_velocity.x,
+        state.angular_velocity.y,
+        state.angular_velocity.z,
+    );
+    let explicit = d.b - d.k * q;
+    let wrench = |v: &Vector6<f64>| Wrench {
+        force: Vector3::new(v[0], v[1], v[2]),
+        torque: Vector3::new(v[3], v[4], v[5]),
+    };
+    if dt.is_nan() || dt <= 0.0 || mass.mass <= 0.0 {
+        return (wrench(&explicit), wrench(&explicit));
+    }
+    let rot = state.pose.rotation.to_rotation_matrix().into_inner();
+    let inertia = rot * mass.inertia * rot.transpose();
+    let mut m = Matrix6::zeros();
+    m.fixed_view_mut::<3, 3>(0, 0)
+        .copy_from(&(Matrix3::identity() * mass.mass));
+    m.fixed_view_mut::<3, 3>(3, 3).copy_from(&inertia);
+    // A massless rotational axis (point mass) gets no rotational drag.
+    let sys = m + d.k * dt;
+    let rhs = m * q + d.b * dt;
+    let q_new = sys
+        .cholesky()
+        .map(|c| c.solve(&rhs))
+        .or_else(|| sys.lu().solve(&rhs))
+        .unwrap_or(q);
+    let applied = m * (q_new - q) / dt;
+    (wrench(&applied), wrench(&explicit))
+}

@@ -1,0 +1,571 @@
+//! Buoyancy and drag from texel sums against exact clipping and physics.
+
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use soak_bake::{Atlas, BakeOptions, Mesh, builtin, load_mesh};
+use soak_hydro::reference::{self, ClipPlane, analytic};
+use soak_hydro::{
+    BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HydroForces, HydroOptions, MassModel,
+    MassProperties, Plane, TiledAtlas, Water, evaluate,
+};
+
+const RHO: f64 = 1000.0;
+const G: f64 = 9.80665;
+
+/// A small deterministic generator for poses.
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+    fn pose(&mut self, spread: f64) -> Isometry3<f64> {
+        let q = UnitQuaternion::from_euler_angles(
+            self.range(-3.1, 3.1),
+            self.range(-1.5, 1.5),
+            self.range(-3.1, 3.1),
+        );
+        Isometry3::from_parts(
+            Translation3::new(
+                self.range(-1.0, 1.0),
+                self.range(-spread, spread),
+                self.range(-1.0, 1.0),
+            ),
+            q,
+        )
+    }
+}
+
+fn bake(mesh: &Mesh, res: u32) -> Atlas {
+    Atlas::bake(mesh, BakeOptions::square(res)).unwrap()
+}
+
+fn solid(atlas: &Atlas) -> MassProperties {
+    MassModel::Solid { density: 500.0 }
+        .mass_properties(atlas)
+        .unwrap()
+}
+
+fn at(atlas: &Atlas, water: &Water, pose: Isometry3<f64>, opts: &HydroOptions) -> HydroForces {
+    evaluate(atlas, water, &BodyState::at_rest(pose), &solid(atlas), 0.0, opts).unwrap()
+}
+
+#[test]
+fn sphere_submerged_volume_within_0_2_percent_at_1024_and_the_baseline_is_far_off() {
+    let r = 0.5;
+    let mesh = builtin::sphere(r, 64, 32);
+    let atlas = bake(&mesh, 1024);
+    let full = mesh.volume();
+    let water = Water::calm(0.0);
+    let mut worst: f64 = 0.0;
+    let mut baseline_worst: f64 = 0.0;
+    for k in 0..=20 {
+        // Water level relative to the centre from −0.5 (dry) to 0.5 (submerged).
+        let level = -0.5 + k as f64 * 0.05;
+        let pose = Isometry3::translation(0.0, -level, 0.0);
+        let f = at(&atlas, &water, pose, &HydroOptions::default());
+        let exact = reference::submerged_part(&mesh, &pose, &ClipPlane::horizontal(0.0));
+        worst = worst.max((f.submerged_volume - exact.volume).abs() / full);
+        let base = reference::per_triangle_buoyancy(&mesh, &pose, &ClipPlane::horizontal(0.0), RHO, G);
+        baseline_worst = baseline_worst.max((base.volume - exact.volume).abs() / full);
+        if exact.volume > 1e-3 * full {
+            let cb = (f.center_of_buoyancy - exact.centroid).norm() / (2.0 * r);
+            assert!(
+                cb < 2e-3,
+                "level {level}: centre of buoyancy off by {cb} of the diameter"
+            );
+        }
+    }
+    assert!(worst < 0.002, "worst texel error {worst}");
+    assert!(
+        baseline_worst > 0.2,
+        "the per-triangle baseline error is {baseline_worst}"
+    );
+    // Fine mesh: also within 0.2 % of the analytic sphere cap.
+    let fine = builtin::sphere(r, 256, 128);
+    let atlas = bake(&fine, 1024);
+    for k in 0..=10 {
+        let level = -0.5 + k as f64 * 0.1;
+        let f = at(
+            &atlas,
+            &water,
+            Isometry3::translation(0.0, -level, 0.0),
+            &HydroOptions::default(),
+        );
+        let cap = analytic::sphere_submerged(r, level);
+        let full = 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+        assert!(
+            (f.submerged_volume - cap.volume).abs() / full < 0.002,
+            "level {level}"
+        );
+    }
+}
+
+#[test]
+fn pressure_mode_equals_archimedes_on_a_plane() {
+    let mut rng = Lcg(7);
+    for name in [
+        "builtin:boat",
+        "builtin:torus",
+        "builtin:box:4x1x1",
+        "builtin:capsule",
+    ] {
+        let mesh = load_mesh(name).unwrap();
+        let atlas = bake(&mesh, 512);
+        let diameter = 2.0 * atlas.bounding_radius();
+        for _ in 0..10 {
+            let pose = rng.pose(0.6);
+            let f = at(&atlas, &Water::calm(0.1), pose, &HydroOptions::default());
+            let (a, p) = (f.archimedes, f.pressure);
+            let mag = a.force.norm();
+            if mag < 1.0 {
+                continue;
+            }
+            assert!(
+                (a.force - p.force).norm() / mag < 1e-3,
+                "{name}: {} vs {}",
+                a.force,
+                p.force
+            );
+            let t = (a.torque - p.torque).norm() / (mag * diameter);
+            assert!(t < 5e-3, "{name}: torque differs by {t} of |F|·diameter");
+        }
+    }
+}
+
+#[test]
+fn on_a_wave_slope_pressure_pushes_sideways_and_archimedes_does_not() {
+    let sea = Gerstner::new(
+        0.0,
+        vec![GerstnerWave {
+            amplitude: 0.4,
+            wavelength: 6.0,
+            direction_deg: 0.0,
+            steepness: 0.6,
+            phase: 0.0,
+        }],
+        G,
+    )
+    .unwrap();
+    let water = Water::new(sea);
+    let atlas = bake(&builtin::sphere(0.5, 64, 32), 512);
+    // A quarter wavelength from the crest the surface slopes; x = 1.5 m at t = 0.
+    let f = at(
+        &atlas,
+        &water,
+        Isometry3::translation(1.5, 0.0, 0.0),
+        &HydroOptions::default(),
+    );
+    assert_eq!(f.archimedes.force.x, 0.0);
+    assert_eq!(f.archimedes.force.z, 0.0);
+    let side = f.pressure.force.x.abs() / f.pressure.force.y;
+    assert!(side > 0.05, "pressure mode has only {side} sideways");
+    // And it pushes down the slope: the surface falls towards +x there.
+    let h = |x: f64| soak_hydro::Surface::height(&*water.surface, x, 0.0, 0.0);
+    let slope = (h(1.51) - h(1.49)) / 0.02;
+    assert!(
+        slope.signum() != f.pressure.force.x.signum(),
+        "slope {slope}, force {}",
+        f.pressure.force.x
+    );
+}
+
+#[test]
+fn tiled_equals_per_texel_at_arbitrary_poses() {
+    let mut rng = Lcg(11);
+    for name in [
+        "builtin:sphere",
+        "builtin:boat",
+        "builtin:torus",
+        "builtin:dumbbell",
+    ] {
+        let mesh = load_mesh(name).unwrap();
+        let atlas = bake(&mesh, 256);
+        let tiled = TiledAtlas::new(&atlas);
+        let mass = solid(&atlas);
+        for k in 0..20 {
+            let state = BodyState {
+                pose: rng.pose(0.8),
+                linear_velocity: Vector3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), 0.3),
+                angular_velocity: Vector3::new(0.2, rng.range(-1.0, 1.0), 0.1),
+            };
+            let water = if k % 2 == 0 {
+                Water::calm(rng.range(-0.3, 0.3))
+            } else {
+                Water::new(Plane::tilted(Point3::new(0.0, 0.1, 0.0), Vector3::new(0.1, 1.0, -0.2)).unwrap())
+            };
+            let opts = HydroOptions {
+                drag: Some(Drag {
+                    coefficient: 0.8,
+                    linear: 0.3,
+                }),
+                ..Default::default()
+            };
+            let a = evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap();
+            let b = tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap();
+            let scale = a.buoyancy.force.norm().max(1.0);
+            let close = |x: f64, y: f64, s: f64| (x - y).abs() <= 1e-6 * s.max(1e-12);
+            assert!(
+                close(a.submerged_volume, b.submerged_volume, mesh.volume()),
+                "{name}"
+            );
+            assert_eq!(a.submerged_texels, b.submerged_texels, "{name}");
+            for (x, y) in a.pressure.force.iter().zip(b.pressure.force.iter()) {
+                assert!(
+                    close(*x, *y, scale),
+                    "{name}: {} vs {}",
+                    a.pressure.force,
+                    b.pressure.force
+                );
+            }
+            let tscale = scale * atlas.bounding_radius();
+            for (x, y) in a.pressure.torque.iter().zip(b.pressure.torque.iter()) {
+                assert!(
+                    close(*x, *y, tscale),
+                    "{name}: {} vs {}",
+                    a.pressure.torque,
+                    b.pressure.torque
+                );
+            }
+            if a.submerged_volume > 1e-6 {
+                assert!(
+                    (a.center_of_buoyancy - b.center_of_buoyancy).norm() < 1e-6 * atlas.bounding_radius()
+                );
+            }
+            assert!((a.drag.force - b.drag.force).norm() <= 1e-6 * a.drag.force.norm().max(1e-9));
+        }
+    }
+}
+
+/// Compares with the exact clipping reference at one pose.
+fn check_exact(mesh: &Mesh, atlas: &Atlas, pose: Isometry3<f64>, level: f64, what: &str) {
+    let f = at(atlas, &Water::calm(level), pose, &HydroOptions::default());
+    let exact = reference::submerged_part(mesh, &pose, &ClipPlane::horizontal(level));
+    let v = mesh.volume();
+    assert!(
+        f.submerged_volume.is_finite() && f.center_of_buoyancy.iter().all(|c| c.is_finite()),
+        "{what}"
+    );
+    assert!(f.buoyancy.is_finite() && f.pressure.is_finite(), "{what}");
+    assert!(
+        (f.submerged_volume - exact.volume).abs() / v < 2e-3,
+        "{what}: {} vs {}",
+        f.submerged_volume,
+        exact.volume
+    );
+    if exact.volume > 1e-2 * v {
+        let d = (f.center_of_buoyancy - exact.centroid).norm() / mesh.diagonal();
+        assert!(d < 2e-3, "{what}: centre of buoyancy off by {d} of the diagonal");
+    }
+}
+
+#[test]
+fn hard_cases_waterline_dry_submerged_upside_down() {
+    let mesh = builtin::boat(4.0, 1.2, 0.6);
+    let atlas = bake(&mesh, 512);
+    let v = mesh.volume();
+    // Exactly at the waterline: the deck is in the surface plane.
+    check_exact(
+        &mesh,
+        &atlas,
+        Isometry3::translation(0.0, -0.6, 0.0),
+        0.0,
+        "deck at the waterline",
+    );
+    // Keel touching the water only.
+    let f = at(
+        &atlas,
+        &Water::calm(0.0),
+        Isometry3::identity(),
+        &HydroOptions::default(),
+    );
+    assert_eq!(f.submerged_volume, 0.0);
+    assert_eq!(f.buoyancy.force, Vector3::zeros());
+    // Fully dry, far above.
+    let f = at(
+        &atlas,
+        &Water::calm(0.0),
+        Isometry3::translation(0.0, 50.0, 0.0),
+        &HydroOptions::default(),
+    );
+    assert_eq!(f.submerged_volume, 0.0);
+    assert!(f.center_of_buoyancy.iter().all(|c| c.is_finite()));
+    // Fully submerged: the whole volume, centre of buoyancy at the centroid.
+    let pose = Isometry3::translation(0.0, -30.0, 0.0);
+    let f = at(&atlas, &Water::calm(0.0), pose, &HydroOptions::default());
+    assert!((f.submerged_volume - v).abs() / v < 1e-6);
+    let exact = reference::solid_mass_properties(&mesh, 1.0);
+    assert!((f.center_of_buoyancy - pose * exact.centroid).norm() < 1e-5);
+    // Upside down, half in.
+    let flip = Isometry3::from_parts(
+        Translation3::new(0.0, 0.3, 0.0),
+        UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI),
+    );
+    check_exact(&mesh, &atlas, flip, 0.0, "upside down");
+}
+
+#[test]
+fn hard_cases_waterline_through_a_vertex_and_along_an_edge() {
+    let mesh = builtin::cuboid(1.0, 1.0, 1.0);
+    let atlas = bake(&mesh, 256);
+    // A corner straight down: the waterline through the vertex, then a bit above it.
+    let corner_down =
+        UnitQuaternion::rotation_between(&Vector3::new(-1.0, -1.0, -1.0), &-Vector3::y()).unwrap();
+    let depth_of_corner = 3f64.sqrt() / 2.0;
+    for dz in [0.0, 1e-9, 0.1, depth_of_corner] {
+        let pose = Isometry3::from_parts(Translation3::new(0.0, depth_of_corner - dz, 0.0), corner_down);
+        check_exact(&mesh, &atlas, pose, 0.0, &format!("corner down, {dz} m in"));
+    }
+    // An edge along the waterline: rotated 45° about z, edge at depth 0.
+    let edge_down = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::FRAC_PI_4);
+    let half_diag = 2f64.sqrt() / 2.0;
+    for level in [0.0, half_diag, 0.3] {
+        let pose = Isometry3::from_parts(Translation3::new(0.0, half_diag, 0.0), edge_down);
+        check_exact(&mesh, &atlas, pose, level, &format!("edge down, level {level}"));
+    }
+}
+
+#[test]
+fn hard_cases_tiny_and_huge_scales() {
+    for s in [1e-3, 1.0, 1e3] {
+        let mesh = builtin::sphere(0.5 * s, 48, 24);
+        let atlas = bake(&mesh, 512);
+        let pose = Isometry3::translation(0.0, 0.1 * s, 0.0);
+        check_exact(&mesh, &atlas, pose, 0.0, &format!("scale {s}"));
+        let f = at(&atlas, &Water::calm(0.0), pose, &HydroOptions::default());
+        let exact = reference::submerged_part(&mesh, &pose, &ClipPlane::horizontal(0.0));
+        let rel = (f.buoyancy.force.y - RHO * G * exact.volume).abs() / (RHO * G * mesh.volume());
+        assert!(rel < 2e-3, "scale {s}: {rel}");
+    }
+}
+
+#[test]
+fn unbounded_air_immerses_everything() {
+    let mesh = builtin::sphere(1.0, 64, 32);
+    let atlas = bake(&mesh, 256);
+    for y in [-100.0, 0.0, 1e4] {
+        let f = at(
+            &atlas,
+            &Water::air(),
+            Isometry3::translation(0.0, y, 0.0),
+            &HydroOptions::default(),
+        );
+        assert!((f.submerged_volume - mesh.volume()).abs() / mesh.volume() < 1e-6);
+        assert!((f.buoyancy.force.y - 1.2 * G * f.submerged_volume).abs() < 1e-6);
+        assert!((f.center_of_buoyancy - Point3::new(0.0, y, 0.0)).norm() < 1e-4 * (1.0 + y.abs()));
+    }
+}
+
+#[test]
+fn drag_of_a_flat_plate_is_half_rho_cd_a_v_squared() {
+    // A 1 m × 1 m plate, 1 cm thick, moving along its normal deep under water.
+    let plate = builtin::cuboid(1.0, 0.01, 1.0);
+    let atlas = bake(&plate, 256);
+    let mass = solid(&atlas);
+    for (v, cd) in [(0.5, 1.0), (2.0, 1.17), (-3.0, 0.9)] {
+        let state = BodyState {
+            pose: Isometry3::translation(0.0, -5.0, 0.0),
+            linear_velocity: Vector3::new(0.0, v, 0.0),
+            angular_velocity: Vector3::zeros(),
+        };
+        let opts = HydroOptions {
+            buoyancy: BuoyancyMode::Off,
+            drag: Some(Drag {
+                coefficient: cd,
+                linear: 0.0,
+            }),
+            dt: 0.0,
+        };
+        let f = evaluate(&atlas, &Water::calm(0.0), &state, &mass, 0.0, &opts).unwrap();
+        let expected = -0.5 * RHO * cd * 1.0 * v * v * v.signum();
+        let got = f.drag_explicit.force.y;
+        assert!(
+            (got - expected).abs() / expected.abs() < 1e-4,
+            "v {v}: {got} vs {expected}"
+        );
+        assert!(f.drag_explicit.force.x.abs() < 1e-6 * expected.abs());
+        assert!(f.drag_explicit.torque.norm() < 1e-4 * expected.abs());
+    }
+}
+
+#[test]
+fn drag_never_reverses_the_relative_velocity() {
+    let mesh = builtin::sphere(0.5, 48, 24);
+    let atlas = bake(&mesh, 256);
+    let mut rng = Lcg(3);
+    for dt in [1.0 / 240.0, 1.0 / 60.0, 1.0 / 15.0, 0.1] {
+        for rel_density in [0.01, 0.1, 1.0, 10.0] {
+            let mass = MassModel::Solid {
+                density: 1000.0 * rel_density,
+            }
+            .mass_properties(&atlas)
+            .unwrap();
+            let inv_inertia = mass.inertia.try_inverse().unwrap();
+            for _ in 0..20 {
+                let v = Vector3::new(
+                    rng.range(-20.0, 20.0),
+                    rng.range(-20.0, 20.0),
+                    rng.range(-20.0, 20.0),
+                );
+                let w = Vector3::new(
+                    rng.range(-30.0, 30.0),
+                    rng.range(-30.0, 30.0),
+                    rng.range(-30.0, 30.0),
+                );
+                let state = BodyState {
+                    pose: Isometry3::translation(0.0, -3.0, 0.0),
+                    linear_velocity: v,
+                    angular_velocity: w,
+                };
+                let opts = HydroOptions {
+                    buoyancy: BuoyancyMode::Off,
+                    drag: Some(Drag {
+                        coefficient: 1.2,
+                        linear: 5.0,
+                    }),
+                    dt,
+                };
+                let f = evaluate(&atlas, &Water::calm(0.0), &state, &mass, 0.0, &opts).unwrap();
+                let v1 = v + f.drag.force * dt / mass.mass;
+                let w1 = w + inv_inertia * f.drag.torque * dt;
+                // In the mass metric the step is a contraction: kinetic energy
+                // never grows and the generalised velocity never reverses.
+                let ke = |v: &Vector3<f64>, w: &Vector3<f64>| {
+                    mass.mass * v.norm_squared() + w.dot(&(mass.inertia * w))
+                };
+                let cross = mass.mass * v1.dot(&v) + w1.dot(&(mass.inertia * w));
+                assert!(
+                    ke(&v1, &w1) <= ke(&v, &w) * (1.0 + 1e-9),
+                    "dt {dt} s {rel_density}: energy grew"
+                );
+                assert!(cross >= 0.0, "dt {dt} s {rel_density}: velocity reversed");
+                // The naive explicit impulse would overshoot for light bodies and long steps.
+                if rel_density == 0.01 && dt >= 1.0 / 15.0 {
+                    let naive = v + f.drag_explicit.force * dt / mass.mass;
+                    assert!(naive.dot(&v) < 0.0, "explicit drag should reverse here");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn drag_never_reverses_a_pure_translation_or_rotation() {
+    let atlas = bake(&builtin::boat(4.0, 1.2, 0.6), 256);
+    for dt in [1.0 / 240.0, 1.0 / 60.0, 0.1] {
+        for rel_density in [0.01, 1.0] {
+            let mass = MassModel::Solid {
+                density: 1000.0 * rel_density,
+            }
+            .mass_properties(&atlas)
+            .unwrap();
+            let inv_inertia = mass.inertia.try_inverse().unwrap();
+            let opts = HydroOptions {
+                buoyancy: BuoyancyMode::Off,
+                drag: Some(Drag {
+                    coefficient: 1.2,
+                    linear: 5.0,
+                }),
+                dt,
+            };
+            for dir in [
+                Vector3::x(),
+                Vector3::y(),
+                -Vector3::z(),
+                Vector3::new(1.0, -2.0, 0.5),
+            ] {
+                let pose = Isometry3::translation(0.0, -5.0, 0.0);
+                let v = dir * 10.0;
+                let s = BodyState {
+                    pose,
+                    linear_velocity: v,
+                    angular_velocity: Vector3::zeros(),
+                };
+                let f = evaluate(&atlas, &Water::calm(0.0), &s, &mass, 0.0, &opts).unwrap();
+                let v1 = v + f.drag.force * dt / mass.mass;
+                assert!(v1.dot(&v) >= 0.0 && v1.norm() <= v.norm(), "dt {dt}: {v} -> {v1}");
+                let w = dir * 10.0;
+                let s = BodyState {
+                    pose,
+                    linear_velocity: Vector3::zeros(),
+                    angular_velocity: w,
+                };
+                let f = evaluate(&atlas, &Water::calm(0.0), &s, &mass, 0.0, &opts).unwrap();
+                let w1 = w + inv_inertia * f.drag.torque * dt;
+                assert!(w1.dot(&(mass.inertia * w)) >= 0.0, "dt {dt}: {w} -> {w1}");
+            }
+        }
+    }
+}
+
+#[test]
+fn drag_follows_the_water_not_the_world() {
+    // A body at rest in a current is pushed along with it; moving with the
+    // current it feels nothing.
+    let atlas = bake(&builtin::sphere(0.5, 32, 16), 128);
+    let mass = solid(&atlas);
+    let current = Vector3::new(1.5, 0.0, 0.0);
+    let water = Water::new(Plane::horizontal(10.0).with_current(current));
+    let opts = HydroOptions {
+        buoyancy: BuoyancyMode::Off,
+        drag: Some(Drag::default()),
+        dt: 0.0,
+    };
+    let rest = BodyState::at_rest(Isometry3::identity());
+    let f = evaluate(&atlas, &water, &rest, &mass, 0.0, &opts).unwrap();
+    assert!(f.drag_explicit.force.x > 0.0);
+    let along = BodyState {
+        linear_velocity: current,
+        ..rest
+    };
+    let f = evaluate(&atlas, &water, &along, &mass, 0.0, &opts).unwrap();
+    assert!(f.drag_explicit.force.norm() < 1e-9);
+}
+
+#[test]
+fn bad_state_and_water_are_refused() {
+    let atlas = bake(&builtin::sphere(0.5, 16, 8), 64);
+    let mass = solid(&atlas);
+    let mut state = BodyState::at_rest(Isometry3::identity());
+    state.linear_velocity.x = f64::NAN;
+    let e = evaluate(
+        &atlas,
+        &Water::calm(0.0),
+        &state,
+        &mass,
+        0.0,
+        &HydroOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!(e.to_string(), "body state `linear_velocity` is not finite");
+    let water = Water::calm(0.0).with_density(-1.0);
+    let e = evaluate(
+        &atlas,
+        &water,
+        &BodyState::at_rest(Isometry3::identity()),
+        &mass,
+        0.0,
+        &HydroOptions::default(),
+    );
+    assert!(e.is_err());
+    assert!(Plane::tilted(Point3::origin(), Vector3::new(1.0, 0.0, 0.0)).is_err());
+    assert!(
+        Gerstner::new(
+            0.0,
+            vec![GerstnerWave {
+                amplitude: 1.0,
+                wavelength: -2.0,
+                direction_deg: 0.0,
+                steepness: 0.5,
+                phase: 0.0
+            }],
+            G
+        )
+        .is_err()
+    );
+}

@@ -1,0 +1,707 @@
+//! The force generator: buoyancy and drag for rapier3d bodies, every step.
+
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use rapier3d::prelude::{
+    ColliderSet, IntegrationParameters, PhysicsWorld, RigidBody, RigidBodyHandle, RigidBodySet,
+};
+use serde::{Deserialize, Serialize};
+use soak_bake::Atlas;
+use soak_hydro::{
+    BodyState, BuoyancyMode, Drag, HydroForces, HydroOptions, MassModel, MassProperties, TiledAtlas, Water,
+    Wrench,
+};
+
+use crate::convert;
+use crate::error::SoakError;
+use crate::firewall::Firewall;
+
+/// Which effects a body takes part in. Effects left off allocate and cost nothing.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Effects {
+    /// Buoyancy, and in which mode; `None` for none.
+    pub buoyancy: Option<BuoyancyMode>,
+    /// Drag, if any.
+    pub drag: Option<Drag>,
+}
+
+impl Effects {
+    /// Archimedes buoyancy only.
+    pub fn buoyancy() -> Self {
+        Self {
+            buoyancy: Some(BuoyancyMode::Archimedes),
+            drag: None,
+        }
+    }
+
+    /// The same effects with drag.
+    pub fn with_drag(mut self, drag: Drag) -> Self {
+        self.drag = Some(drag);
+        self
+    }
+
+    /// The same effects with another buoyancy mode.
+    pub fn with_mode(mut self, mode: BuoyancyMode) -> Self {
+        self.buoyancy = Some(mode);
+        self
+    }
+
+    /// Whether the body needs hydrostatics at all.
+    pub fn any(&self) -> bool {
+        self.buoyancy.is_some_and(|m| m != BuoyancyMode::Off) || self.drag.is_some()
+    }
+}
+
+/// How texel sums are evaluated on the CPU; both give the same answer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Backend {
+    /// Every texel, every step.
+    PerTexel,
+    /// Closed forms for tiles wholly under planar water (the default).
+    #[default]
+    Tiled,
+    /// All bodies in one GPU batch per step (the `gpu` feature; see
+    /// `ForceGenerator::with_gpu`); the tiled path stands by on the CPU.
+    Gpu,
+}
+
+/// Identifies a body registered with a [`ForceGenerator`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub struct SoakId(pub usize);
+
+/// What to register: a mesh's atlas, its mass model and its effects.
+#[derive(Clone, Debug)]
+pub struct BodyDesc {
+    /// A name for reports and log lines.
+    pub name: String,
+    /// The baked atlas of the body's mesh, in the rigid body's local frame.
+    pub atlas: Atlas,
+    /// How the body's mass is distributed.
+    pub mass_model: MassModel,
+    /// The effects it takes part in.
+    pub effects: Effects,
+}
+
+/// A body driven by the generator.
+#[derive(Debug)]
+pub struct SoakBody {
+    name: String,
+    handle: RigidBodyHandle,
+    atlas: Atlas,
+    tiled: Option<TiledAtlas>,
+    mass_model: MassModel,
+    /// Mass from the model alone.
+    model_mass: MassProperties,
+    /// Mass carried besides the model (liquid inside, a gas, a payload), local frame.
+    extra_mass: Option<MassProperties>,
+    /// `model_mass` combined with `extra_mass`: what Rapier has.
+    mass: MassProperties,
+    effects: Effects,
+    forces: HydroForces,
+    applied: Wrench,
+    dry_skips: u64,
+}
+
+impl SoakBody {
+    /// The name given at registration.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+    /// The Rapier body.
+    pub fn handle(&self) -> RigidBodyHandle {
+        self.handle
+    }
+    /// Its atlas (object frame = the rigid body's local frame).
+    pub fn atlas(&self) -> &Atlas {
+        &self.atlas
+    }
+    /// Its mass model.
+    pub fn mass_model(&self) -> &MassModel {
+        &self.mass_model
+    }
+    /// Mass carried besides the mass model, if any.
+    pub fn extra_mass(&self) -> Option<&MassProperties> {
+        self.extra_mass.as_ref()
+    }
+    /// Its current mass properties, local frame, as handed to Rapier.
+    pub fn mass_properties(&self) -> &MassProperties {
+        &self.mass
+    }
+    /// Its effects.
+    pub fn effects(&self) -> &Effects {
+        &self.effects
+    }
+    /// The hydrostatics of the last step (zero when skipped or dry).
+    pub fn forces(&self) -> &HydroForces {
+        &self.forces
+    }
+    /// The force and torque handed to Rapier at the last step, world frame.
+    pub fn applied(&self) -> &Wrench {
+        &self.applied
+    }
+    /// Steps at which the body was above the highest crest and skipped.
+    pub fn dry_skips(&self) -> u64 {
+        self.dry_skips
+    }
+}
+
+/// What a body's run changes, for saving: its mass model and extra mass,
+/// the last forces and the firewall's memory of them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BodyRunState {
+    /// The mass model now.
+    pub mass_model: MassModel,
+    /// Extra mass now.
+    pub extra_mass: Option<MassProperties>,
+    /// Hydrostatics of the last step.
+    pub forces: HydroForces,
+    /// What was handed to Rapier at the last step.
+    pub applied: Wrench,
+    /// Dry steps skipped so far.
+    pub dry_skips: u64,
+}
+
+/// The evolving state of a [`ForceGenerator`] (not its atlases or water,
+/// which come from the scene).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GeneratorState {
+    /// Simulated time, s.
+    pub time: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// Per body, in registration order.
+    pub bodies: Vec<BodyRunState>,
+}
+
+/// Applies buoyancy and drag to registered rapier3d bodies before each step.
+///
+/// Gravity stays Rapier's: the generator only adds fluid forces and keeps
+/// each body's mass properties in line with its mass model. User forces in
+/// Rapier persist across steps, so every step resets the body's forces and
+/// torques before adding the new ones.
+///
+/// # Example
+/// ```
+/// use rapier3d::prelude::*;
+/// use soak_bake::{Atlas, BakeOptions, builtin};
+/// use soak_hydro::{Drag, MassModel, Water};
+/// use soak_rapier::{BodyDesc, Effects, ForceGenerator};
+///
+/// let mut world = PhysicsWorld::new();
+/// let handle = world.bodies.insert(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.0, 0.0)));
+/// let atlas = Atlas::bake(&builtin::cuboid(1.0, 1.0, 1.0), BakeOptions::square(64))?;
+/// let mut soak = ForceGenerator::new(Water::calm(0.0));
+/// soak.register(&mut world.bodies, &world.colliders, handle, BodyDesc {
+///     name: "crate".into(),
+///     atlas,
+///     mass_model: MassModel::Solid { density: 500.0 },
+///     effects: Effects::buoyancy().with_drag(Drag::default()),
+/// })?;
+/// for _ in 0..1200 {
+///     soak.step(&mut world)?;
+/// }
+/// // Half as dense as water: it floats half submerged (its centre near y = 0).
+/// assert!(world.bodies[handle].translation().y.abs() < 0.1);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug)]
+pub struct ForceGenerator {
+    water: Water,
+    bodies: Vec<SoakBody>,
+    backend: Backend,
+    time: f64,
+    steps: u64,
+    firewall: Firewall,
+    #[cfg(feature = "gpu")]
+    gpu: Option<crate::gpu::GpuBackend>,
+}
+
+impl ForceGenerator {
+    /// A generator for bodies in `water` (any fluid: water, a sea, air).
+    pub fn new(water: Water) -> Self {
+        Self {
+            water,
+            bodies: Vec::new(),
+            backend: Backend::default(),
+            time: 0.0,
+            steps: 0,
+            firewall: Firewall::default(),
+            #[cfg(feature = "gpu")]
+            gpu: None,
+        }
+    }
+
+    /// Evaluates every body on the GPU, all in one batch per step (one
+    /// submission, one readback), with the caller's device. Results are
+    /// interchangeable with the CPU backends; should the GPU fail in a step,
+    /// that step is evaluated on the CPU and the firewall records it.
+    #[cfg(feature = "gpu")]
+    pub fn with_gpu(mut self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Self, SoakError> {
+        let mut gpu = crate::gpu::GpuBackend::new(device, queue)?;
+        for b in &self.bodies {
+            gpu.upload(&b.atlas)?;
+        }
+        self.gpu = Some(gpu);
+        Ok(self)
+    }
+
+    /// Whether bodies are evaluated on the GPU.
+    pub fn uses_gpu(&self) -> bool {
+        #[cfg(feature = "gpu")]
+        return self.gpu.is_some();
+        #[cfg(not(feature = "gpu"))]
+        false
+    }
+
+    /// The same generator with another CPU backend.
+    pub fn with_backend(mut self, backend: Backend) -> Self {
+        self.backend = backend;
+        for b in &mut self.bodies {
+            b.tiled = (backend != Backend::PerTexel && b.effects.any()).then(|| TiledAtlas::new(&b.atlas));
+        }
+        self
+    }
+
+    /// The fluid.
+    pub fn water(&self) -> &Water {
+        &self.water
+    }
+
+    /// Replaces the fluid (a new sea state, a rising tide).
+    pub fn set_water(&mut self, water: Water) {
+        self.water = water;
+    }
+
+    /// Simulated time, s (advanced by [`ForceGenerator::step`] and [`ForceGenerator::advance`]).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// The registered bodies, in registration order.
+    pub fn bodies(&self) -> &[SoakBody] {
+        &self.bodies
+    }
+
+    /// One body.
+    pub fn body(&self, id: SoakId) -> Option<&SoakBody> {
+        self.bodies.get(id.0)
+    }
+
+    /// The evolving state, for saving.
+    pub fn state(&self) -> GeneratorState {
+        GeneratorState {
+            time: self.time,
+            steps: self.steps,
+            bodies: self
+                .bodies
+                .iter()
+                .map(|b| BodyRunState {
+                    mass_model: b.mass_model.clone(),
+                    extra_mass: b.extra_mass,
+                    forces: b.forces,
+                    applied: b.applied,
+                    dry_skips: b.dry_skips,
+                })
+                .collect(),
+        }
+    }
+
+    /// Restores a state saved from a generator with the same bodies. The
+    /// Rapier world is restored separately (its bodies already carry the
+    /// saved mass properties).
+    pub fn restore_state(&mut self, state: &GeneratorState) -> Result<(), SoakError> {
+        if state.bodies.len() != self.bodies.len() {
+            return Err(SoakError::State(format!(
+                "state has {} bodies, the generator {}",
+                state.bodies.len(),
+                self.bodies.len()
+            )));
+        }
+        for (b, s) in self.bodies.iter_mut().zip(&state.bodies) {
+            let model_mass = s
+                .mass_model
+                .mass_properties(&b.atlas)
+                .map_err(|source| SoakError::Hydro {
+                    name: b.name.clone(),
+                    source,
+                })?;
+            b.mass_model = s.mass_model.clone();
+            b.model_mass = model_mass;
+            b.extra_mass = s.extra_mass;
+            b.mass = with_extra(&model_mass, s.extra_mass.as_ref());
+            b.forces = s.forces;
+            b.applied = s.applied;
+            b.dry_skips = s.dry_skips;
+        }
+        self.time = state.time;
+        self.steps = state.steps;
+        Ok(())
+    }
+
+    /// Rejected quantities so far.
+    pub fn firewall(&self) -> &Firewall {
+        &self.firewall
+    }
+
+    /// Registers a rigid body: computes its mass properties from the mass
+    /// model and hands them to Rapier (readable at once through `mass()`).
+    /// Its colliders must have density 0: soak owns the body's mass.
+    pub fn register(
+        &mut self,
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+        handle: RigidBodyHandle,
+        desc: BodyDesc,
+    ) -> Result<SoakId, SoakError> {
+        let body = bodies.get_mut(handle).ok_or_else(|| SoakError::MissingBody {
+            name: desc.name.clone(),
+        })?;
+        for &ch in body.colliders() {
+            if let Some(c) = colliders.get(ch)
+                && c.density() != 0.0
+            {
+                return Err(SoakError::ColliderHasMass {
+                    name: desc.name.clone(),
+                    collider: ch.into_raw_parts().0,
+                    density: c.density(),
+                });
+            }
+        }
+        let mass = desc
+            .mass_model
+            .mass_properties(&desc.atlas)
+            .map_err(|source| SoakError::Hydro {
+                name: desc.name.clone(),
+                source,
+            })?;
+        push_mass(&desc.name, body, colliders, &mass)?;
+        let tiled =
+            (self.backend != Backend::PerTexel && desc.effects.any()).then(|| TiledAtlas::new(&desc.atlas));
+        #[cfg(feature = "gpu")]
+        if let Some(gpu) = &mut self.gpu {
+            gpu.upload(&desc.atlas)?;
+        }
+        self.bodies.push(SoakBody {
+            name: desc.name,
+            handle,
+            atlas: desc.atlas,
+            tiled,
+            mass_model: desc.mass_model,
+            model_mass: mass,
+            extra_mass: None,
+            mass,
+            effects: desc.effects,
+            forces: HydroForces::default(),
+            applied: Wrench::default(),
+            dry_skips: 0,
+        });
+        Ok(SoakId(self.bodies.len() - 1))
+    }
+
+    /// Changes a body's mass model (e.g. a shell density texture that
+    /// changes every frame) and updates Rapier's mass properties at once.
+    pub fn set_mass_model(
+        &mut self,
+        id: SoakId,
+        model: MassModel,
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Result<(), SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        let mass = model
+            .mass_properties(&b.atlas)
+            .map_err(|source| SoakError::Hydro {
+                name: b.name.clone(),
+                source,
+            })?;
+        let rb = bodies
+            .get_mut(b.handle)
+            .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
+        push_mass(&b.name, rb, colliders, &with_extra(&mass, b.extra_mass.as_ref()))?;
+        b.mass = with_extra(&mass, b.extra_mass.as_ref());
+        b.model_mass = mass;
+        b.mass_model = model;
+        Ok(())
+    }
+
+    /// Sets the mass a body carries besides its mass model (local frame):
+    /// liquid inside, a gas, a payload. It is combined with the model's
+    /// about the common centre of mass and handed to Rapier at once.
+    pub fn set_extra_mass(
+        &mut self,
+        id: SoakId,
+        extra: Option<MassProperties>,
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Result<(), SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        if let Some(e) = &extra
+            && !e.is_finite()
+        {
+            return Err(SoakError::MassProperties {
+                name: b.name.clone(),
+                reason: format!("extra mass {e:?} is not finite"),
+            });
+        }
+        let total = with_extra(&b.model_mass, extra.as_ref());
+        let rb = bodies
+            .get_mut(b.handle)
+            .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
+        push_mass(&b.name, rb, colliders, &total)?;
+        b.extra_mass = extra;
+        b.mass = total;
+        Ok(())
+    }
+
+    /// Follows a deforming mesh: new vertex positions (local frame, m, same
+    /// topology) refresh the atlas from its barycentrics (no re-bake) and the
+    /// mass properties.
+    pub fn deform(
+        &mut self,
+        id: SoakId,
+        positions: &[Point3<f64>],
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Result<(), SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        let mut atlas = b.atlas.clone();
+        atlas.refresh(positions).map_err(|source| SoakError::Bake {
+            name: b.name.clone(),
+            source,
+        })?;
+        let mass = b
+            .mass_model
+            .mass_properties(&atlas)
+            .map_err(|source| SoakError::Hydro {
+                name: b.name.clone(),
+                source,
+            })?;
+        let rb = bodies
+            .get_mut(b.handle)
+            .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
+        let total = with_extra(&mass, b.extra_mass.as_ref());
+        push_mass(&b.name, rb, colliders, &total)?;
+        if b.tiled.is_some() {
+            b.tiled = Some(TiledAtlas::new(&atlas));
+        }
+        #[cfg(feature = "gpu")]
+        if let Some(gpu) = &mut self.gpu {
+            gpu.deform(id.0, positions)?;
+        }
+        b.atlas = atlas;
+        b.model_mass = mass;
+        b.mass = total;
+        Ok(())
+    }
+
+    /// Evaluates every body's effects and applies them as forces and torques
+    /// (resetting the previous step's), for the Rapier step that `params`
+    /// describe. Does not advance time; [`ForceGenerator::step`] does both.
+    ///
+    /// Rapier holds an external force constant over its `s` solver substeps,
+    /// which makes any position-dependent force (a spring, buoyancy) gain
+    /// energy every step. Evaluating the force at the pose predicted
+    /// `β = (s − 1)/(2s)` of a step ahead makes the step area-preserving
+    /// again (exactly so for a linear restoring force), so a floating body
+    /// bobs for minutes without its amplitude growing or decaying.
+    pub fn apply(&mut self, bodies: &mut RigidBodySet, params: &IntegrationParameters) {
+        let dt = params.dt as f64;
+        let substeps = params.num_solver_iterations.max(1) as f64;
+        let lookahead = (substeps - 1.0) / (2.0 * substeps) * dt;
+        let t = self.time;
+        let step = self.steps;
+        let bounds = self.water.surface.height_bounds(t);
+
+        // 1. Which bodies need texel work, at which predicted state.
+        let mut work: Vec<(usize, BodyState, HydroOptions)> = Vec::new();
+        for (k, b) in self.bodies.iter_mut().enumerate() {
+            if !b.effects.any() {
+                continue;
+            }
+            let Some(rb) = bodies.get_mut(b.handle) else {
+                continue;
+            };
+            let (v, w) = (convert::vector(rb.linvel()), convert::vector(rb.angvel()));
+            let now = convert::pose(rb.position());
+            // Predicted pose: the centre of mass moves with v, the body turns with ω.
+            let com = now * b.mass.center_of_mass;
+            let rotation = UnitQuaternion::from_scaled_axis(w * lookahead) * now.rotation;
+            let translation = (com + v * lookahead).coords - rotation * b.mass.center_of_mass.coords;
+            let state = BodyState {
+                pose: Isometry3::from_parts(Translation3::from(translation), rotation),
+                linear_velocity: v,
+                angular_velocity: w,
+            };
+            // Above the highest crest: no texel work at all.
+            let centre = state.pose * b.atlas.origin();
+            if let Some((_, highest)) = bounds
+                && centre.y - b.atlas.bounding_radius() > highest
+            {
+                b.dry_skips += 1;
+                b.forces = HydroForces {
+                    center_of_buoyancy: state.pose * b.mass.center_of_mass,
+                    ..HydroForces::default()
+                };
+                apply_wrench(rb, &Wrench::default());
+                b.applied = Wrench::default();
+                continue;
+            }
+            let options = HydroOptions {
+                buoyancy: b.effects.buoyancy.unwrap_or(BuoyancyMode::Off),
+                drag: b.effects.drag,
+                dt,
+            };
+            work.push((k, state, options));
+        }
+
+        // 2. Evaluate: one GPU batch, or body by body on the CPU.
+        let mut results: Vec<Result<HydroForces, String>> = Vec::with_capacity(work.len());
+        #[cfg(feature = "gpu")]
+        if let Some(gpu) = &self.gpu {
+            match gpu.evaluate(&self.bodies, &self.water, &work, t) {
+                Ok(forces) => results.extend(forces.into_iter().map(Ok)),
+                Err(e) => {
+                    // Keep going on the CPU for this step; say so once per failure.
+                    self.firewall.reject(
+                        step,
+                        "(all)",
+                        "gpu evaluation",
+                        format!("{e}; evaluated on the CPU"),
+                    );
+                }
+            }
+        }
+        if results.is_empty() {
+            for (k, state, options) in &work {
+                let b = &self.bodies[*k];
+                let r = match &b.tiled {
+                    Some(tiled) => tiled.evaluate(&b.atlas, &self.water, state, &b.mass, t, options),
+                    None => soak_hydro::evaluate(&b.atlas, &self.water, state, &b.mass, t, options),
+                };
+                results.push(r.map_err(|e| e.to_string()));
+            }
+        }
+
+        // 3. The firewall, then Rapier.
+        for ((k, _, _), result) in work.iter().zip(results) {
+            let b = &mut self.bodies[*k];
+            let Some(rb) = bodies.get_mut(b.handle) else {
+                continue;
+            };
+            let forces = match result {
+                Ok(f) => f,
+                Err(e) => {
+                    self.firewall.reject(step, &b.name, "body state", e);
+                    let keep = b.applied;
+                    apply_wrench(rb, &keep);
+                    continue;
+                }
+            };
+            let mut wrench = Wrench::default();
+            // Buoyancy can never exceed the weight of fluid the whole body displaces.
+            let limit = 1.5 * self.water.density * self.water.gravity * b.atlas.volume().abs() + 1e-9;
+            let bw = forces.buoyancy;
+            if !bw.is_finite() {
+                self.firewall
+                    .reject(step, &b.name, "buoyancy", format!("non-finite {bw:?}"));
+                wrench = wrench + last_part(&b.forces.buoyancy);
+            } else if bw.force.norm() > limit {
+                self.firewall.reject(
+                    step,
+                    &b.name,
+                    "buoyancy",
+                    format!("|F| = {:.3e} N exceeds {:.3e} N", bw.force.norm(), limit),
+                );
+                wrench = wrench + last_part(&b.forces.buoyancy);
+            } else {
+                wrench = wrench + bw;
+            }
+            if forces.drag.is_finite() {
+                wrench = wrench + forces.drag;
+            } else {
+                self.firewall
+                    .reject(step, &b.name, "drag", format!("non-finite {:?}", forces.drag));
+            }
+            apply_wrench(rb, &wrench);
+            b.applied = wrench;
+            b.forces = forces;
+        }
+    }
+
+    /// Advances the generator's clock (for moving waves) by `dt` seconds.
+    pub fn advance(&mut self, dt: f64) {
+        self.time += dt;
+        self.steps += 1;
+    }
+
+    /// Makes the fluid's hydrostatic gravity the world's (m/s²). [`ForceGenerator::step`]
+    /// does this every step; call it when driving Rapier yourself.
+    pub fn sync_gravity(&mut self, world: &PhysicsWorld) {
+        self.water.gravity = convert::vector(world.gravity).norm();
+    }
+
+    /// Applies the fluid forces, steps the world once and advances time. The
+    /// fluid's gravity follows the world's.
+    pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<(), SoakError> {
+        self.sync_gravity(world);
+        let dt = world.integration_parameters.dt as f64;
+        let params = world.integration_parameters;
+        self.apply(&mut world.bodies, &params);
+        world.step();
+        self.advance(dt);
+        Ok(())
+    }
+}
+
+fn with_extra(model: &MassProperties, extra: Option<&MassProperties>) -> MassProperties {
+    match extra {
+        Some(e) => model.combine(e),
+        None => *model,
+    }
+}
+
+fn last_part(w: &Wrench) -> Wrench {
+    if w.is_finite() { *w } else { Wrench::default() }
+}
+
+fn apply_wrench(rb: &mut RigidBody, w: &Wrench) {
+    rb.reset_forces(false);
+    rb.reset_torques(false);
+    if w.force != Vector3::zeros() || w.torque != Vector3::zeros() {
+        rb.add_force(convert::to_vector(&w.force), true);
+        rb.add_torque(convert::to_vector(&w.torque), true);
+    }
+}
+
+/// Hands mass properties to Rapier and makes them readable at once.
+fn push_mass(
+    name: &str,
+    rb: &mut RigidBody,
+    colliders: &ColliderSet,
+    m: &MassProperties,
+) -> Result<(), SoakError> {
+    if !m.is_finite() || m.mass <= 0.0 {
+        return Err(SoakError::MassProperties {
+            name: name.to_string(),
+            reason: format!(
+                "mass {} kg and inertia {:?} are not a valid body",
+                m.mass, m.inertia
+            ),
+        });
+    }
+    let p = m.principal();
+    let props = rapier3d::prelude::MassProperties::with_principal_inertia_frame(
+        convert::point_to_vector(&m.center_of_mass),
+        m.mass as f32,
+        convert::to_vector(&p.moments),
+        convert::to_rotation(&p.frame),
+    );
+    rb.set_additional_mass_properties(props, true);
+    rb.recompute_mass_properties_from_colliders(colliders);
+    Ok(())
+}

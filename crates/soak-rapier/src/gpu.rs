@@ -1,0 +1,74 @@
+//! The GPU backend of the force generator: every body's atlas on the device,
+//! all bodies evaluated in one batch per step.
+
+use nalgebra::Point3;
+use soak_bake::Atlas;
+use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuHydro};
+use soak_hydro::{BodyState, HydroForces, HydroOptions, Water};
+
+use crate::error::SoakError;
+use crate::generator::SoakBody;
+
+/// Device-side atlases in registration order.
+pub(crate) struct GpuBackend {
+    hydro: GpuHydro,
+    atlases: Vec<GpuAtlasId>,
+}
+
+impl std::fmt::Debug for GpuBackend {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("GpuBackend")
+            .field("atlases", &self.atlases.len())
+            .finish_non_exhaustive()
+    }
+}
+
+fn gpu_err(e: soak_hydro::gpu::GpuError) -> SoakError {
+    SoakError::Gpu(e.to_string())
+}
+
+impl GpuBackend {
+    pub(crate) fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Self, SoakError> {
+        Ok(Self {
+            hydro: GpuHydro::new(device, queue).map_err(gpu_err)?,
+            atlases: Vec::new(),
+        })
+    }
+
+    /// Uploads the next registered body's atlas (deformable).
+    pub(crate) fn upload(&mut self, atlas: &Atlas) -> Result<(), SoakError> {
+        let id = self
+            .hydro
+            .upload_deformable(atlas, atlas.triangles())
+            .map_err(gpu_err)?;
+        self.atlases.push(id);
+        Ok(())
+    }
+
+    /// Moves body `k`'s texels on the device.
+    pub(crate) fn deform(&mut self, k: usize, positions: &[Point3<f64>]) -> Result<(), SoakError> {
+        let id = self.atlases[k];
+        self.hydro.deform(id, positions).map_err(gpu_err)
+    }
+
+    /// One batch for the bodies in `work` (index, state, options).
+    pub(crate) fn evaluate(
+        &self,
+        bodies: &[SoakBody],
+        water: &Water,
+        work: &[(usize, BodyState, HydroOptions)],
+        t: f64,
+    ) -> Result<Vec<HydroForces>, soak_hydro::gpu::GpuError> {
+        let batch: Vec<GpuBody<'_>> = work
+            .iter()
+            .map(|(k, state, options)| GpuBody {
+                atlas: self.atlases[*k],
+                water,
+                state: *state,
+                mass: *bodies[*k].mass_properties(),
+                options: *options,
+            })
+            .collect();
+        self.hydro.evaluate_batch(&batch, t)
+    }
+}

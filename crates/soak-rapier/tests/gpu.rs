@@ -1,0 +1,103 @@
+//! The GPU backend of the force generator is interchangeable with the CPU's.
+#![cfg(feature = "gpu")]
+
+use rapier3d::prelude::*;
+use soak_bake::{Atlas, BakeOptions, load_mesh};
+use soak_hydro::{Drag, Gerstner, GerstnerWave, MassModel, Water};
+use soak_rapier::{BodyDesc, Effects, ForceGenerator};
+
+fn device() -> Option<(wgpu::Device, wgpu::Queue)> {
+    match soak_hydro::gpu::headless_device() {
+        Ok((d, q, info)) => {
+            eprintln!("adapter: {}", soak_hydro::gpu::adapter_label(&info));
+            Some((d, q))
+        }
+        Err(e) if std::env::var("CI").is_ok_and(|v| v == "true") => panic!("no GPU adapter under CI: {e}"),
+        Err(e) => {
+            eprintln!("no GPU adapter ({e}): skipping");
+            None
+        }
+    }
+}
+
+fn world(
+    water: Water,
+    gpu: Option<&(wgpu::Device, wgpu::Queue)>,
+) -> (PhysicsWorld, ForceGenerator, Vec<RigidBodyHandle>) {
+    let mut world = PhysicsWorld::new();
+    let mut soak = ForceGenerator::new(water);
+    if let Some((d, q)) = gpu {
+        soak = soak.with_gpu(d, q).unwrap();
+    }
+    let mut handles = Vec::new();
+    for (i, name) in ["builtin:boat", "builtin:sphere:0.5:32", "builtin:torus"]
+        .iter()
+        .enumerate()
+    {
+        let h = world
+            .bodies
+            .insert(RigidBodyBuilder::dynamic().translation(Vector::new(3.0 * i as f32, 0.2, 0.0)));
+        let atlas = Atlas::bake(&load_mesh(name).unwrap(), BakeOptions::square(128)).unwrap();
+        soak.register(
+            &mut world.bodies,
+            &world.colliders,
+            h,
+            BodyDesc {
+                name: name.to_string(),
+                atlas,
+                mass_model: MassModel::Solid {
+                    density: 400.0 + 100.0 * i as f64,
+                },
+                effects: Effects::buoyancy().with_drag(Drag {
+                    coefficient: 0.8,
+                    linear: 10.0,
+                }),
+            },
+        )
+        .unwrap();
+        handles.push(h);
+    }
+    (world, soak, handles)
+}
+
+#[test]
+fn gpu_and_cpu_worlds_follow_the_same_trajectories() {
+    let Some(gpu) = device() else { return };
+    let make = |wavy: bool| {
+        if wavy {
+            let wave = GerstnerWave {
+                amplitude: 0.2,
+                wavelength: 7.0,
+                direction_deg: 20.0,
+                steepness: 0.5,
+                phase: 0.0,
+            };
+            Water::new(Gerstner::new(0.0, vec![wave], 9.81).unwrap())
+        } else {
+            Water::calm(0.0)
+        }
+    };
+    for wavy in [false, true] {
+        let (mut wc, mut sc, hc) = world(make(wavy), None);
+        let (mut wg, mut sg, hg) = world(make(wavy), Some(&gpu));
+        assert!(sg.uses_gpu() && !sc.uses_gpu());
+        // One second: forces agree closely step by step, trajectories stay together.
+        for step in 0..60 {
+            sc.step(&mut wc).unwrap();
+            sg.step(&mut wg).unwrap();
+            for (k, (a, b)) in hc.iter().zip(&hg).enumerate() {
+                let (fa, fb) = (sc.bodies()[k].applied(), sg.bodies()[k].applied());
+                let scale = fa.force.norm().max(100.0);
+                assert!(
+                    (fa.force - fb.force).norm() < 2e-3 * scale,
+                    "step {step} body {k}: {} vs {}",
+                    fa.force,
+                    fb.force
+                );
+                let (pa, pb) = (wc.bodies[*a].translation(), wg.bodies[*b].translation());
+                assert!((pa - pb).length() < 1e-3, "step {step} body {k}: {pa} vs {pb}");
+            }
+        }
+        assert_eq!(sg.firewall().count(), 0);
+    }
+}

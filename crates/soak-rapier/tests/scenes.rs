@@ -1,0 +1,139 @@
+//! Scene files: good ones build and run, bad ones name the key and the line.
+
+use std::path::PathBuf;
+
+use soak_rapier::{LoadedScene, SceneError, Simulation};
+
+fn data(name: &str) -> PathBuf {
+    [env!("CARGO_MANIFEST_DIR"), "..", "..", "data", name]
+        .iter()
+        .collect()
+}
+
+fn error(name: &str) -> (SceneError, String) {
+    let path = data(name);
+    let e = LoadedScene::from_file(&path)
+        .and_then(|s| Simulation::from_scene(&s).map(|_| ()))
+        .unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.contains(path.file_name().unwrap().to_str().unwrap()), "{msg}");
+    (e, msg)
+}
+
+#[test]
+fn unknown_key_names_it_and_its_line() {
+    let (e, msg) = error("bad/scene_unknown_key.toml");
+    assert!(matches!(e, SceneError::Parse { .. }), "{e:?}");
+    assert!(msg.contains("positon") && msg.contains("line 10"), "{msg}");
+}
+
+#[test]
+fn negative_density_names_the_key_and_line() {
+    let (e, msg) = error("bad/scene_negative_density.toml");
+    match e {
+        SceneError::Invalid { line, key, .. } => {
+            assert_eq!(key, "bodies[1].mass.density");
+            assert_eq!(line, 15, "{msg}");
+        }
+        e => panic!("{e:?}"),
+    }
+}
+
+#[test]
+fn a_time_step_in_the_wrong_unit_is_refused() {
+    let (e, msg) = error("bad/scene_wrong_unit.toml");
+    assert!(matches!(e, SceneError::Invalid { line: 2, .. }), "{msg}");
+    assert!(msg.contains("`dt`"), "{msg}");
+}
+
+#[test]
+fn keys_that_do_not_apply_are_refused() {
+    let (e, msg) = error("bad/scene_waves_on_a_plane.toml");
+    assert!(matches!(e, SceneError::Invalid { line: 3, .. }), "{msg}");
+    assert!(msg.contains("water.waves"), "{msg}");
+}
+
+#[test]
+fn a_missing_mesh_names_the_body_and_line() {
+    let (e, msg) = error("bad/scene_missing_mesh.toml");
+    assert!(matches!(e, SceneError::Body { line: 6, .. }), "{msg}");
+    assert!(msg.contains("ghost") && msg.contains("no_such_mesh.obj"), "{msg}");
+}
+
+#[test]
+fn the_three_boxes_settle_at_their_drafts() {
+    let scene = LoadedScene::from_file(&data("scenes/three_boxes.toml")).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    sim.run(|_| {}).unwrap();
+    for (r, s) in sim.report().iter().zip([0.25, 0.5, 0.75]) {
+        let draft = 0.5 - r.position[1];
+        assert!((draft - s).abs() < 0.01 * s, "{}: draft {draft}", r.name);
+        assert!(
+            (r.submerged_fraction - s).abs() < 0.01,
+            "{}: {}",
+            r.name,
+            r.submerged_fraction
+        );
+        assert!(!r.non_finite);
+    }
+}
+
+#[test]
+fn the_buoy_rides_the_waves() {
+    let scene = LoadedScene::from_file(&data("scenes/buoy_on_waves.toml")).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    sim.record(true);
+    sim.run(|_| {}).unwrap();
+    let ys: Vec<f64> = sim
+        .samples()
+        .iter()
+        .filter(|s| s.t > 5.0)
+        .map(|s| s.position[1])
+        .collect();
+    let (lo, hi) = ys
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &y| (a.min(y), b.max(y)));
+    // It heaves with the sea (crest to trough about 0.7 m) and stays afloat.
+    assert!(hi - lo > 0.2 && hi - lo < 1.5, "heave range {lo}..{hi}");
+    assert!(lo > -1.0);
+    assert!(!sim.report()[0].non_finite);
+}
+
+#[test]
+fn the_holed_boat_floods_and_sinks_bow_first() {
+    let scene = LoadedScene::from_file(&data("scenes/sinking_boat.toml")).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    sim.record(true);
+    sim.run(|_| {}).unwrap();
+    let r = &sim.report()[0];
+    assert!(r.liquid_inside.unwrap() > 1.0, "{:?}", r.liquid_inside);
+    assert!(r.position[1] < -2.0, "still afloat at {:?}", r.position);
+    // Before it went under, the bow dipped: pitch (bow up > 0) negative.
+    let min_pitch = sim
+        .samples()
+        .iter()
+        .map(|s| {
+            let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                s.rotation[3],
+                s.rotation[0],
+                s.rotation[1],
+                s.rotation[2],
+            ));
+            (q * nalgebra::Vector3::x()).y.asin().to_degrees()
+        })
+        .fold(f64::MAX, f64::min);
+    assert!(min_pitch < -20.0, "bow never dipped: {min_pitch}°");
+    assert!(!r.non_finite);
+}
+
+#[test]
+fn permeability_without_a_graph_is_refused() {
+    let text = "[water]\nkind = \"plane\"\n\n[[bodies]]\nname = \"b\"\nmesh = \"builtin:box\"\n\
+                mass = { model = \"shell\", areal_density = 5.0 }\n\
+                permeability = [{ centre = [0.0, 0.0, 0.0], radius = 0.1, kappa = 1e-6 }]\n";
+    let e = LoadedScene::from_str(text, std::path::Path::new("inline.toml")).unwrap_err();
+    assert!(
+        e.to_string().contains("bodies[0].permeability") && e.to_string().contains("line 8"),
+        "{e}"
+    );
+}

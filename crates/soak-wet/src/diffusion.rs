@@ -1,0 +1,485 @@
+//! Diffusion of the liquid over the surface through a voxel field (the
+//! thesis' *campo de densidad de líquido*, §5.4.1), in two modes.
+//!
+//! Texels are binned into a regular grid of cubic voxels; a voxel holding
+//! at least one texel is *defined*. (In a [`crate::SharedField`] each body
+//! has its own cell in a voxel it shares with others, and the cells of one
+//! voxel are neighbours: below, "voxel" means cell.) One diffusion step:
+//!
+//! 1. **texels → voxels.** [`DiffusionMode::Thesis`]: the voxel's value is
+//!    the Shepard average of its texels' `h` (Eq. 5.9–5.10, `p = 1`, the
+//!    distance to the voxel centre floored at 1/50 of a voxel).
+//!    [`DiffusionMode::Conservative`]: the voxel holds the liquid volume
+//!    `M_v = Σ a_i h_i` (m³) and the capacity `C_v = Σ a_i h_max,i`.
+//! 2. **the 3×3×3 kernel** (Eq. 5.12) over defined voxels, in substeps:
+//!    `V'_x = (1 − w·Count(x)) V_x + w Σ_{y defined} V_y`, `Count(x)` the
+//!    defined neighbours of `x`. The conservative mode writes the same
+//!    kernel in flux form on the fill fraction `φ_v = M_v / C_v`:
+//!    `M'_v = M_v + w Σ_u min(C_v, C_u) (φ_u − φ_v)`; each pair exchanges
+//!    equal and opposite amounts, so the total is conserved to rounding,
+//!    and where neighbours hold equal capacity it *is* Eq. 5.12 on the
+//!    liquid per area. Liquid flows from fuller to emptier surface, also
+//!    between materials of different saturation (a wet sponge on wood).
+//! 3. **voxels → texels.** Thesis: each texel takes the Shepard average of
+//!    the defined voxels among the 8 nearest voxel centres (Eq. 5.13–5.14),
+//!    clamped to `[0, h_max]`. This averages and re-interpolates, so it does
+//!    not conserve liquid (the thesis says it does); the step reports the
+//!    drift. Conservative: each voxel's change `M'_v − M_v` goes back to
+//!    its own texels, exactly. First a smooth share: the voxels' fill
+//!    changes `Δφ` interpolated trilinearly at the texel (over the defined
+//!    voxels among the 8 nearest), times `h_max`, clamped to keep the texel
+//!    in `[0, h_max]`; then the voxel's rest by area: a gain fills each
+//!    texel's remaining room by the same fraction, a loss takes the same
+//!    fraction of each texel's liquid. The rest always fits (the voxel's
+//!    new content lies in `[0, C_v]`), so every texel stays in
+//!    `[0, h_max]` and the voxel's texels gain exactly `M'_v − M_v`: smooth
+//!    across voxel borders, conservative, and changes are added, so detail
+//!    finer than a voxel (a waterline) survives.
+//!
+//! # The effective diffusion coefficient
+//!
+//! In one substep a defined voxel sends the fraction `w β` of its content
+//! to each defined neighbour (β = 1, or `min(C_v, C_u)/C_v` in the
+//! conservative mode, 1 between equal neighbours). Take a flat surface
+//! lying in one layer of voxels parallel to a grid plane: an interior voxel
+//! has the 8 neighbours of its layer, 6 of them one voxel (Δx) away along
+//! each in-plane axis. The variance of a spreading spot grows per substep
+//! by `Σ_u w (Δx_u)² = 6 w Δx²` along each in-plane axis (the cross
+//! moments cancel: the kernel is isotropic to second order), and a
+//! diffusion with coefficient `D` grows it by `2 D Δt_s`. Hence
+//!
+//! `D_eff = 3 w Δx² / Δt_s`, and we set `w = D Δt_s / (3 Δx²)`
+//!
+//! from the material's [`Diffusion::coefficient`] `D` (m²/s). A volume of
+//! defined voxels (all 26 neighbours) would give `9 w Δx² / Δt_s`, three
+//! times as much: surfaces that cross voxel layers (oblique or curved
+//! ones, or two sheets a voxel apart) spread somewhat faster than `D`; the
+//! test `diffusion_physics` measures a flat plate (grid-aligned, the
+//! formula holds) and a tilted one.
+//!
+//! # Stability
+//!
+//! The kernel is a convex combination, hence non-negative and free of new
+//! extrema, while `w · Count ≤ 1`. A step of `Δt` needs the weight
+//! `W = D Δt / (3 Δx²)`; it is split into `n = ⌈W · Count_max⌉` substeps of
+//! `w = W / n`. Past [`Diffusion::max_substeps`] the weight is capped at
+//! `1 / Count_max` per substep (diffusion slower than asked, still stable)
+//! and the step says so ([`DiffusionReport::limited`]).
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::error::{WetError, non_negative};
+use crate::grid::FieldResolution;
+use crate::layout::{Layout, NONE};
+use crate::reduce::liquid_volume;
+
+/// Minimum Shepard distance, in voxels (the thesis' `Dist_min = S_V / 50`).
+pub const SHEPARD_MIN_DISTANCE: f64 = 1.0 / 50.0;
+
+/// Which diffusion scheme runs on the voxel field.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DiffusionMode {
+    /// Moves liquid volumes between voxels and returns each voxel's change
+    /// to its texels by area: total liquid is conserved to rounding.
+    #[default]
+    Conservative,
+    /// The thesis' scheme (reference): Shepard averages in, Eq. 5.12,
+    /// Shepard interpolation out. Smooth, but not conservative.
+    Thesis,
+}
+
+/// Diffusion settings of a field.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Diffusion {
+    /// Diffusion coefficient D (thesis Table 5.1), m²/s: a spot's variance
+    /// grows by `2 D` per second along each direction of the surface (see
+    /// the module docs for how the voxel kernel realises it). Zero turns
+    /// diffusion off without dropping the field.
+    pub coefficient: f64,
+    /// The scheme.
+    #[serde(default)]
+    pub mode: DiffusionMode,
+    /// Voxel size.
+    #[serde(default)]
+    pub resolution: FieldResolution,
+    /// Most substeps per step before the rate is capped (default 1024).
+    #[serde(default = "default_max_substeps")]
+    pub max_substeps: u32,
+}
+
+fn default_max_substeps() -> u32 {
+    1024
+}
+
+impl Diffusion {
+    /// Conservative diffusion with coefficient `coefficient` (m²/s) on an
+    /// automatically sized field.
+    pub fn new(coefficient: f64) -> Self {
+        Self {
+            coefficient,
+            mode: DiffusionMode::Conservative,
+            resolution: FieldResolution::Auto,
+            max_substeps: default_max_substeps(),
+        }
+    }
+
+    /// The same settings in another mode.
+    pub fn with_mode(mut self, mode: DiffusionMode) -> Self {
+        self.mode = mode;
+        self
+    }
+
+    /// The same settings at another resolution.
+    pub fn with_resolution(mut self, resolution: FieldResolution) -> Self {
+        self.resolution = resolution;
+        self
+    }
+
+    /// Checks the coefficient is finite and non-negative and at least one
+    /// substep is allowed.
+    pub fn validate(&self) -> Result<(), WetError> {
+        non_negative("diffusion.coefficient", self.coefficient)?;
+        if self.max_substeps == 0 {
+            return Err(WetError::parameter("diffusion.max_substeps", 0.0, ">= 1"));
+        }
+        Ok(())
+    }
+
+    /// The substeps for a step of `dt` (s) on voxels of edge `voxel_size`
+    /// (m) with at most `count_max` defined neighbours per voxel.
+    pub fn plan(&self, dt: f64, voxel_size: f64, count_max: u32) -> SubstepPlan {
+        let total = self.coefficient * dt / (3.0 * voxel_size * voxel_size);
+        if !(total > 0.0) || count_max == 0 {
+            return SubstepPlan::default();
+        }
+        let c = count_max as f64;
+        let needed = (total * c).ceil();
+        if needed <= self.max_substeps as f64 {
+            let n = needed.max(1.0);
+            SubstepPlan {
+                substeps: n as u32,
+                weight: total / n,
+                limited: false,
+            }
+        } else {
+            SubstepPlan {
+                substeps: self.max_substeps,
+                weight: 1.0 / c,
+                limited: true,
+            }
+        }
+    }
+}
+
+/// How one step's diffusion is split.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SubstepPlan {
+    /// Kernel applications.
+    pub substeps: u32,
+    /// Kernel weight `w` per substep (dimensionless; `w · Count ≤ 1`).
+    pub weight: f64,
+    /// Whether the weight was capped at `1 / Count_max` because the step
+    /// needed more than [`Diffusion::max_substeps`].
+    pub limited: bool,
+}
+
+/// What one diffusion step did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct DiffusionReport {
+    /// The substeps run.
+    pub plan: SubstepPlan,
+    /// Defined voxels.
+    pub voxels: usize,
+    /// Most defined neighbours of a voxel (`Count` of Eq. 5.12).
+    pub count_max: u32,
+    /// Texels that lie outside the field and were left alone.
+    pub outside: usize,
+    /// Change of total liquid the diffusion itself made, m³: zero to
+    /// rounding in the conservative mode (not measured there, reported as
+    /// 0), the thesis scheme's error otherwise.
+    pub drift: f64,
+}
+
+/// Buffers of one field, reused between steps.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Scratch {
+    start: Vec<f64>,
+    value: Vec<f64>,
+    next: Vec<f64>,
+    aux: Vec<f64>,
+    delta: Vec<f64>,
+    active: Vec<bool>,
+    partials: Vec<f64>,
+}
+
+impl Scratch {
+    pub fn bytes(&self) -> usize {
+        8 * (self.start.capacity()
+            + self.value.capacity()
+            + self.next.capacity()
+            + self.aux.capacity()
+            + self.delta.capacity()
+            + self.partials.capacity())
+            + self.active.capacity()
+    }
+}
+
+/// Runs one diffusion step over the texels `h` (concatenated as in
+/// `layout`) and returns the drift (m³, thesis mode only).
+pub(crate) fn run(
+    layout: &Layout,
+    h: &mut [f64],
+    mode: DiffusionMode,
+    plan: &SubstepPlan,
+    s: &mut Scratch,
+) -> f64 {
+    if plan.substeps == 0 || layout.defined() == 0 {
+        return 0.0;
+    }
+    match mode {
+        DiffusionMode::Conservative => {
+            conservative(layout, h, plan, s);
+            0.0
+        }
+        DiffusionMode::Thesis => {
+            let before = liquid_volume(h, &layout.areas, &mut s.partials);
+            thesis(layout, h, plan, s);
+            liquid_volume(h, &layout.areas, &mut s.partials) - before
+        }
+    }
+}
+
+fn members(layout: &Layout, v: usize) -> &[u32] {
+    &layout.members[layout.start[v] as usize..layout.start[v + 1] as usize]
+}
+
+fn neighbours(layout: &Layout, v: usize) -> &[u32] {
+    &layout.neighbours[layout.nstart[v] as usize..layout.nstart[v + 1] as usize]
+}
+
+fn resize(buffer: &mut Vec<f64>, n: usize) {
+    buffer.clear();
+    buffer.resize(n, 0.0);
+}
+
+fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scratch) {
+    let nv = layout.defined();
+    resize(&mut s.start, nv);
+    resize(&mut s.next, nv);
+    resize(&mut s.aux, nv);
+    s.start.par_iter_mut().enumerate().for_each(|(v, m)| {
+        *m = members(layout, v)
+            .iter()
+            .map(|&i| layout.areas[i as usize] as f64 * h[i as usize])
+            .sum();
+    });
+    s.value.clear();
+    s.value.extend_from_slice(&s.start);
+    let cap = &layout.capacity;
+    let w = plan.weight;
+    for _ in 0..plan.substeps {
+        let (value, phi) = (&s.value, &mut s.aux);
+        phi.par_iter_mut()
+            .enumerate()
+            .for_each(|(v, p)| *p = value[v] / cap[v]);
+        let phi = &s.aux;
+        s.next.par_iter_mut().enumerate().for_each(|(v, out)| {
+            let (pv, cv) = (phi[v], cap[v]);
+            let flux: f64 = neighbours(layout, v)
+                .iter()
+                .map(|&u| cv.min(cap[u as usize]) * (phi[u as usize] - pv))
+                .sum();
+            *out = value[v] + w * flux;
+        });
+        std::mem::swap(&mut s.value, &mut s.next);
+    }
+    // Each cell's change of fill, Δφ = (M' − M) / C.
+    let (start, value) = (&s.start, &s.value);
+    s.aux.par_iter_mut().enumerate().for_each(|(v, d)| {
+        *d = (value[v].clamp(0.0, cap[v]) - start[v]) / cap[v];
+    });
+    // Cells whose texels may change: some cell of the 3×3×3 block changed
+    // (the others' texels keep their liquid exactly, so skip them).
+    let dphi = &s.aux;
+    s.active.clear();
+    s.active.resize(nv, false);
+    s.active.par_iter_mut().enumerate().for_each(|(v, a)| {
+        *a = dphi[v] != 0.0 || neighbours(layout, v).iter().any(|&u| dphi[u as usize] != 0.0);
+    });
+    // Each texel's smooth share of the change (zero where nothing nearby
+    // changed).
+    let active = &s.active;
+    s.delta.clear();
+    s.delta.resize(h.len(), 0.0);
+    for seg in &layout.segments {
+        let hmax = seg.saturation;
+        let range = seg.start..seg.end;
+        s.delta[range.clone()]
+            .par_iter_mut()
+            .zip(h[range.clone()].par_iter())
+            .zip(layout.voxel_of[range].par_iter())
+            .enumerate()
+            .for_each(|(k, ((d, &h), &v))| {
+                if v != NONE && active[v as usize] {
+                    *d = smooth_change(layout, dphi, seg.start + k, v as usize, h, hmax);
+                }
+            });
+    }
+    // Per cell, what the smooth shares leave over of its change, as a
+    // factor: f > 0 fills that fraction of the room left, f < 0 takes that
+    // fraction of the liquid left.
+    let delta = &s.delta;
+    s.next.par_iter_mut().enumerate().for_each(|(v, f)| {
+        if !active[v] {
+            *f = 0.0;
+            return;
+        }
+        let spread: f64 = members(layout, v)
+            .iter()
+            .map(|&i| layout.areas[i as usize] as f64 * delta[i as usize])
+            .sum();
+        let (m0, c) = (start[v], cap[v]);
+        let rest = (value[v].clamp(0.0, c) - m0) - spread;
+        let (room, content) = (c - m0 - spread, m0 + spread);
+        *f = if rest > 0.0 && room > 0.0 {
+            (rest / room).min(1.0)
+        } else if rest < 0.0 && content > 0.0 {
+            (rest / content).max(-1.0)
+        } else {
+            0.0
+        };
+    });
+    let factor = &s.next;
+    for seg in &layout.segments {
+        let hmax = seg.saturation;
+        let range = seg.start..seg.end;
+        h[range.clone()]
+            .par_iter_mut()
+            .zip(layout.voxel_of[range.clone()].par_iter())
+            .zip(delta[range].par_iter())
+            .for_each(|((h, &v), &d)| {
+                if v != NONE && active[v as usize] {
+                    let x = *h + d;
+                    let f = factor[v as usize];
+                    let x = if f < 0.0 {
+                        x * (1.0 + f)
+                    } else {
+                        x + f * (hmax - x)
+                    };
+                    *h = x.clamp(0.0, hmax);
+                }
+            });
+    }
+}
+
+/// The smooth share of texel `i`'s change in the conservative return: the
+/// cells' fill changes `dphi` interpolated trilinearly at the texel over
+/// the defined cells of its body among the 8 nearest, times `h_max`,
+/// clamped so the texel stays in `[0, h_max]`.
+#[inline]
+fn smooth_change(layout: &Layout, dphi: &[f64], i: usize, v: usize, h: f64, hmax: f64) -> f64 {
+    let (ids, t) = layout.nearest(i, v);
+    let (mut num, mut den) = (0.0, 0.0);
+    for (corner, &id) in ids.iter().enumerate() {
+        if id == NONE {
+            continue;
+        }
+        let w = |k: usize| if (corner >> k) & 1 == 1 { t[k] } else { 1.0 - t[k] };
+        let w = w(0) * w(1) * w(2);
+        num += w * dphi[id as usize];
+        den += w;
+    }
+    if den > 0.0 {
+        (num / den * hmax).clamp(-h, hmax - h)
+    } else {
+        0.0
+    }
+}
+
+/// Shepard weight `1 / max(d, d_min)` (p = 1) for a distance `d` in voxels.
+#[inline]
+fn shepard(d2: f64) -> f64 {
+    1.0 / d2.sqrt().max(SHEPARD_MIN_DISTANCE)
+}
+
+fn thesis(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scratch) {
+    let nv = layout.defined();
+    resize(&mut s.value, nv);
+    resize(&mut s.next, nv);
+    s.value.par_iter_mut().enumerate().for_each(|(v, out)| {
+        let c = layout.cells[v].map(|x| x as f64 + 0.5);
+        let (mut num, mut den) = (0.0, 0.0);
+        for &i in members(layout, v) {
+            let g = layout.grid_pos[i as usize];
+            let d2 = (0..3).map(|k| (g[k] as f64 - c[k]).powi(2)).sum::<f64>();
+            let wgt = shepard(d2);
+            num += wgt * h[i as usize];
+            den += wgt;
+        }
+        *out = num / den;
+    });
+    let w = plan.weight;
+    for _ in 0..plan.substeps {
+        let value = &s.value;
+        s.next.par_iter_mut().enumerate().for_each(|(v, out)| {
+            let x = value[v];
+            let nb = neighbours(layout, v);
+            let sum: f64 = nb.iter().map(|&u| value[u as usize]).sum();
+            *out = (1.0 - w * nb.len() as f64) * x + w * sum;
+        });
+        std::mem::swap(&mut s.value, &mut s.next);
+    }
+    let value = &s.value;
+    for seg in &layout.segments {
+        let hmax = seg.saturation;
+        let range = seg.start..seg.end;
+        h[range.clone()]
+            .par_iter_mut()
+            .zip(layout.voxel_of[range].par_iter())
+            .enumerate()
+            .for_each(|(k, (h, &v))| {
+                if v == NONE {
+                    return;
+                }
+                let (ids, t) = layout.nearest(seg.start + k, v as usize);
+                let (mut num, mut den) = (0.0, 0.0);
+                for (corner, &id) in ids.iter().enumerate() {
+                    if id == NONE {
+                        continue;
+                    }
+                    let d2: f64 = (0..3).map(|k| (t[k] - ((corner >> k) & 1) as f64).powi(2)).sum();
+                    let wgt = shepard(d2);
+                    num += wgt * value[id as usize];
+                    den += wgt;
+                }
+                if den > 0.0 {
+                    *h = (num / den).clamp(0.0, hmax);
+                }
+            });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn substeps_keep_the_kernel_convex() {
+        let d = Diffusion::new(1e-3);
+        let p = d.plan(0.1, 0.01, 8);
+        // W = 1e-3 · 0.1 / (3 · 1e-4) = 1/3, W · 8 = 2.67 → 3 substeps.
+        assert_eq!(p.substeps, 3);
+        assert!((p.weight - 1.0 / 9.0).abs() < 1e-12);
+        assert!(p.weight * 8.0 <= 1.0);
+        assert!(!p.limited);
+        let p = d.plan(1e6, 0.01, 26);
+        assert!(p.limited);
+        assert_eq!(p.substeps, 1024);
+        assert!((p.weight - 1.0 / 26.0).abs() < 1e-15);
+        assert_eq!(Diffusion::new(0.0).plan(1.0, 0.01, 8).substeps, 0);
+        assert_eq!(d.plan(0.0, 0.01, 8).substeps, 0);
+        assert_eq!(d.plan(f64::INFINITY, 0.01, 8).substeps, 1024);
+    }
+}

@@ -1,0 +1,112 @@
+//! Water surfaces in the terms of soak-hydro's `shaders/water_surface.wgsl`:
+//! parameters relative to the body's world reference point `o_w`, computed
+//! in f64 and rounded once to f32.
+//!
+//! This mirrors soak-hydro's own (crate-private) encoder for the four
+//! surfaces its WGSL knows: Plane, Gerstner, HeightField and Unbounded.
+
+use nalgebra::Vector3;
+use soak_hydro::gpu::GpuError;
+use soak_hydro::{Gerstner, HeightField, Plane, Unbounded, Water, WaterError};
+
+use super::layout::{Body, SURFACE_GERSTNER, SURFACE_HEIGHT_FIELD, SURFACE_PLANE, SURFACE_UNBOUNDED, Wave};
+
+fn v4(v: &Vector3<f64>, w: f64) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, w as f32]
+}
+
+/// Fills the surface fields of `body` for `water` seen from `ow` at time
+/// `t`, appending waves and height samples.
+pub(crate) fn encode_surface(
+    water: &Water,
+    ow: &Vector3<f64>,
+    t: f64,
+    body: &mut Body,
+    waves: &mut Vec<Wave>,
+    heights: &mut Vec<f32>,
+) -> Result<(), GpuError> {
+    let any = water
+        .surface
+        .as_any()
+        .ok_or(GpuError::UnsupportedSurface { body: 0 })?;
+    if let Some(p) = any.downcast_ref::<Plane>() {
+        let n = p.normal;
+        if !(n.iter().all(|c| c.is_finite()) && n.y > 0.0 && p.offset.is_finite()) {
+            return Err(GpuError::Water {
+                body: 0,
+                source: WaterError::PlaneNormal { normal: n.into() },
+            });
+        }
+        body.info[0] = SURFACE_PLANE;
+        body.surface = v4(&n, p.offset - n.dot(ow));
+    } else if let Some(g) = any.downcast_ref::<Gerstner>() {
+        body.info[0] = SURFACE_GERSTNER;
+        body.info[1] = waves.len() as u32;
+        body.info[2] = g.waves.len() as u32;
+        body.surface = [(g.level - ow.y) as f32, 0.0, 0.0, 0.0];
+        body.surface2 = [ow.x as f32, ow.z as f32, 0.0, 0.0];
+        // Gerstner::new's per-wave constants, from the public fields.
+        let n = g.waves.len().max(1) as f64;
+        for w in &g.waves {
+            let k = w.wavenumber();
+            let q = if w.amplitude > 0.0 {
+                w.steepness / (k * w.amplitude * n)
+            } else {
+                0.0
+            };
+            let omega = (g.gravity * k).sqrt();
+            let a = w.direction_deg.to_radians();
+            let dir = (a.cos(), a.sin());
+            let phase =
+                (k * (dir.0 * ow.x + dir.1 * ow.z) - omega * t + w.phase).rem_euclid(std::f64::consts::TAU);
+            waves.push(Wave {
+                a: [dir.0 as f32, dir.1 as f32, k as f32, omega as f32],
+                b: [(q * w.amplitude) as f32, w.amplitude as f32, phase as f32, 0.0],
+            });
+        }
+    } else if let Some(h) = any.downcast_ref::<HeightField>() {
+        if h.nx < 2 || h.nz < 2 || h.heights.len() != h.nx * h.nz || h.nx * h.nz > u32::MAX as usize / 2 {
+            return Err(GpuError::Water {
+                body: 0,
+                source: WaterError::HeightFieldShape {
+                    nx: h.nx,
+                    nz: h.nz,
+                    len: h.heights.len(),
+                },
+            });
+        }
+        for (name, v) in [("spacing x", h.spacing[0]), ("spacing z", h.spacing[1])] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(GpuError::Water {
+                    body: 0,
+                    source: WaterError::Parameter { name, value: v },
+                });
+            }
+        }
+        if let Some(i) = h.heights.iter().position(|v| !v.is_finite()) {
+            return Err(GpuError::Water {
+                body: 0,
+                source: WaterError::HeightFieldSample {
+                    index: i,
+                    value: h.heights[i],
+                },
+            });
+        }
+        let reference = h.heights.iter().sum::<f64>() / h.heights.len() as f64;
+        let first = heights.len() as u32;
+        heights.extend(h.heights.iter().map(|v| (v - reference) as f32));
+        body.info = [SURFACE_HEIGHT_FIELD, first, h.nx as u32, h.nz as u32];
+        body.surface = [
+            ((ow.x - h.origin[0]) / h.spacing[0]) as f32,
+            ((ow.z - h.origin[1]) / h.spacing[1]) as f32,
+            (1.0 / h.spacing[0]) as f32,
+            (1.0 / h.spacing[1]) as f32,
+        ];
+        body.surface2 = [(reference - ow.y) as f32, 0.0, 0.0, 0.0];
+    } else if any.downcast_ref::<Unbounded>().is_some() {
+        body.info[0] = SURFACE_UNBOUNDED;
+    } else {
+        return Err(GpuError::UnsupportedSurface { body: 0 });
+    }
+    Ok(())
+}

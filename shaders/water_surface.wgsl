@@ -1,0 +1,108 @@
+// soak: water surfaces on the GPU, mirroring crates/soak-hydro/src/water.rs.
+//
+// Needs hydro_bindings.wgsl and, in the including module, the bindings
+// `waves: array<Wave>`, `heights: array<f32>` and `radii: array<u32>`.
+// Points are `r = p - o_w` (world axes, relative to the body's atlas origin).
+
+// Fixed-point inversion of the Gerstner displacement: the CPU's iteration
+// count, and its relative tolerance scaled to f32 (the CPU uses 1e-10 in f64).
+const GERSTNER_ITERATIONS: u32 = 32u;
+const GERSTNER_TOLERANCE: f32 = 4.8e-7;
+
+struct SurfacePoint {
+    // Depth below the surface, m (positive under water).
+    depth: f32,
+    // Gerstner: rest position (x0, z0) of the surface particle above the
+    // point, relative to o_w; unused otherwise.
+    rest: vec2<f32>,
+}
+
+// Horizontal displacement (x, z) and height (y) of the particle at rest
+// position x0 (relative to o_w), summed over the body's waves.
+fn gerstner_displacement(b: Body, x0: vec2<f32>) -> vec3<f32> {
+    var d = vec3<f32>(0.0);
+    for (var i = b.info.y; i < b.info.y + b.info.z; i++) {
+        let w = waves[i];
+        let th = w.a.z * dot(w.a.xy, x0) + w.b.z;
+        let s = sin(th);
+        let c = cos(th);
+        d.x -= w.b.x * w.a.x * s;
+        d.z -= w.b.x * w.a.y * s;
+        d.y += w.b.y * c;
+    }
+    return d;
+}
+
+fn gerstner_rest(b: Body, x: vec2<f32>) -> vec2<f32> {
+    var x0 = x;
+    let world = abs(b.surface2.xy + x);
+    let tolerance = GERSTNER_TOLERANCE * (1.0 + world.x + world.y);
+    for (var it = 0u; it < GERSTNER_ITERATIONS; it++) {
+        let d = gerstner_displacement(b, x0);
+        let dx = x0.x + d.x - x.x;
+        let dz = x0.y + d.z - x.y;
+        x0.x -= dx;
+        x0.y -= dz;
+        if (abs(dx) + abs(dz) < tolerance) {
+            break;
+        }
+    }
+    return x0;
+}
+
+fn height_sample(b: Body, i: u32, j: u32) -> f32 {
+    return heights[b.info.y + j * b.info.z + i];
+}
+
+fn surface_at(b: Body, r: vec3<f32>) -> SurfacePoint {
+    var out = SurfacePoint(0.0, vec2<f32>(0.0));
+    switch b.info.x {
+        case SURFACE_GERSTNER: {
+            let x0 = gerstner_rest(b, r.xz);
+            out.rest = x0;
+            out.depth = b.surface.x + gerstner_displacement(b, x0).y - r.y;
+        }
+        case SURFACE_HEIGHT_FIELD: {
+            let nx = b.info.z;
+            let nz = b.info.w;
+            let fx = clamp(b.surface.x + r.x * b.surface.z, 0.0, f32(nx - 1u));
+            let fz = clamp(b.surface.y + r.z * b.surface.w, 0.0, f32(nz - 1u));
+            let ix = min(u32(fx), nx - 2u);
+            let iz = min(u32(fz), nz - 2u);
+            let u = fx - f32(ix);
+            let v = fz - f32(iz);
+            let h = (1.0 - v) * ((1.0 - u) * height_sample(b, ix, iz) + u * height_sample(b, ix + 1u, iz))
+                + v * ((1.0 - u) * height_sample(b, ix, iz + 1u) + u * height_sample(b, ix + 1u, iz + 1u));
+            out.depth = b.surface2.x + h - r.y;
+        }
+        case SURFACE_UNBOUNDED: {
+            // The CPU's trick: a horizontal plane 1 m above the bounding sphere.
+            let radius = sqrt(bitcast<f32>(radii[b.slot.x]));
+            out.depth = radius + 1.0 - r.y;
+        }
+        default: {
+            out.depth = (b.surface.w - dot(b.surface.xyz, r)) / b.surface.y;
+        }
+    }
+    return out;
+}
+
+// Fluid velocity at r (m/s): the orbital velocity of the Gerstner particle
+// above it, decaying below the mean level, or the uniform current.
+fn fluid_velocity(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec3<f32> {
+    if (b.info.x != SURFACE_GERSTNER) {
+        return b.current.xyz;
+    }
+    var v = vec3<f32>(0.0);
+    for (var i = b.info.y; i < b.info.y + b.info.z; i++) {
+        let w = waves[i];
+        let th = w.a.z * dot(w.a.xy, sp.rest) + w.b.z;
+        let s = sin(th);
+        let c = cos(th);
+        let decay = exp(w.a.z * min(r.y - b.surface.x, 0.0));
+        v.x += w.b.x * w.a.x * w.a.w * c * decay;
+        v.z += w.b.x * w.a.y * w.a.w * c * decay;
+        v.y += w.b.y * w.a.w * s * decay;
+    }
+    return v;
+}
