@@ -41,7 +41,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "{:>6} {:>7} {:>10} {:>10} {:>10} {:>10} {:>10} {:>9}",
         "step", "time s", "tide m", "sand m³", "wet m²", "rock m³", "crate m³", "ms/step"
     );
-    let mut frame = |beach: &Beach, step: usize, ms: f64| -> Result<(), Box<dyn std::error::Error>> {
+    let frame = |beach: &Beach, step: usize, ms: f64| -> Result<(), Box<dyn std::error::Error>> {
         for b in &beach.bodies {
             let path = out.join(format!("{}_{step:05}.png", b.name));
             write_liquid_png(

@@ -29,7 +29,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     ];
     let atlases = [&board, &cube, &cube];
     let names = ["board", "sponge", "block"];
-    let mut bodies = vec![
+    let mut bodies = [
         Wetting::new(&board, Material::wood(), Liquid::water())?,
         Wetting::new(&cube, Material::cotton(), Liquid::water())?,
         Wetting::new(&cube, Material::wood(), Liquid::water())?,

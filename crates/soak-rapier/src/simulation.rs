@@ -83,8 +83,9 @@ pub struct SavedSimulation {
     pub scene_path: std::path::PathBuf,
     /// The scene file's text.
     pub scene_text: String,
-    /// The Rapier world.
-    pub world: PhysicsWorld,
+    /// The Rapier world in rapier's own serde form, postcard-encoded
+    /// (`PhysicsWorld` is serialisable but not `Clone`).
+    pub world: Vec<u8>,
     /// The force generator's state.
     pub generator: crate::generator::GeneratorState,
     /// Each liquid body's state, in order.
@@ -461,17 +462,17 @@ impl Simulation {
     }
 
     /// Saves everything needed to resume this run exactly (see [`Simulation::resume`]).
-    pub fn save(&self, scene: &LoadedScene) -> SavedSimulation {
-        SavedSimulation {
+    pub fn save(&self, scene: &LoadedScene) -> Result<SavedSimulation, SoakError> {
+        Ok(SavedSimulation {
             scene_path: scene.path.clone(),
             scene_text: scene.text.clone(),
-            world: self.world.clone(),
+            world: postcard::to_stdvec(&self.world).map_err(|e| SoakError::State(e.to_string()))?,
             generator: self.soak.state(),
             liquids: self.liquids.iter().map(|l| l.flooding().state()).collect(),
             punched: self.holes.iter().map(|h| h.2).collect(),
             steps: self.steps,
             non_finite: self.non_finite.clone(),
-        }
+        })
     }
 
     /// Rebuilds a run from a save: the scene is built again (meshes baked
@@ -489,7 +490,7 @@ impl Simulation {
         if saved.liquids.len() != sim.liquids.len() || saved.punched.len() != sim.holes.len() {
             return Err(bad("the save does not match the scene's liquid bodies".into()));
         }
-        sim.world = saved.world.clone();
+        sim.world = postcard::from_bytes(&saved.world).map_err(|e| bad(format!("the Rapier world: {e}")))?;
         sim.soak
             .restore_state(&saved.generator)
             .map_err(|e| bad(e.to_string()))?;

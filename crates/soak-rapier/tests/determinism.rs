@@ -16,13 +16,14 @@ fn data(name: &str) -> PathBuf {
 /// Folds every body's pose, velocity, mass and liquid into `h`, bit for bit.
 fn fold(sim: &Simulation, h: &mut impl Hasher) {
     for r in sim.report() {
+        let liquid = r.liquid_inside.unwrap_or(-1.0);
         let floats = r
             .position
             .iter()
             .chain(&r.rotation)
             .chain(&r.linear_velocity)
             .chain(&r.angular_velocity)
-            .chain([&r.mass, &r.submerged_fraction, &r.liquid_inside.unwrap_or(-1.0)]);
+            .chain([&r.mass, &r.submerged_fraction, &liquid]);
         for x in floats {
             x.to_bits().hash(h);
         }
@@ -73,7 +74,7 @@ fn a_run_saved_at_step_500_and_resumed_equals_the_uninterrupted_run() {
 
         let mut first = Simulation::from_scene(&s).unwrap();
         run(&mut first, 500);
-        let bytes = first.save(&s).to_bytes().unwrap();
+        let bytes = first.save(&s).unwrap().to_bytes().unwrap();
         drop(first);
         let saved = SavedSimulation::from_bytes(&bytes).unwrap();
         let mut resumed = Simulation::resume(&saved).unwrap();
@@ -89,9 +90,12 @@ fn a_damaged_save_is_an_error_not_a_panic() {
     let s = scene("scenes/three_boxes.toml");
     let mut sim = Simulation::from_scene(&s).unwrap();
     run(&mut sim, 10);
-    let bytes = sim.save(&s).to_bytes().unwrap();
+    let bytes = sim.save(&s).unwrap().to_bytes().unwrap();
     for cut in [0, 1, bytes.len() / 3, bytes.len() - 1] {
-        assert!(SavedSimulation::from_bytes(&bytes[..cut]).is_err(), "cut at {cut}");
+        assert!(
+            SavedSimulation::from_bytes(&bytes[..cut]).is_err(),
+            "cut at {cut}"
+        );
     }
     // A save from another scene does not fit this one's liquid bodies.
     let boat = scene("scenes/sinking_boat.toml");

@@ -1,6 +1,6 @@
 //! Cost of one wetting step for a 1024² atlas (a 1 m cube half under calm
-//! water) with a 64³ field, CPU and GPU, effect by effect: absorption only,
-//! + evaporation, + diffusion (conservative, and the thesis' scheme).
+//! water) with a 64³ field, CPU and GPU, effect by effect: absorption only, then
+//! with evaporation, then with diffusion (conservative, and the thesis' scheme).
 //! Without diffusion no field exists: its cost is gone, not skipped.
 //!
 //! The material's saturation is set high (10 m) so absorption never

@@ -151,7 +151,7 @@ impl Diffusion {
     /// (m) with at most `count_max` defined neighbours per voxel.
     pub fn plan(&self, dt: f64, voxel_size: f64, count_max: u32) -> SubstepPlan {
         let total = self.coefficient * dt / (3.0 * voxel_size * voxel_size);
-        if !(total > 0.0) || count_max == 0 {
+        if total.is_nan() || total <= 0.0 || count_max == 0 {
             return SubstepPlan::default();
         }
         let c = count_max as f64;

@@ -173,7 +173,7 @@ impl EnvironmentTrack {
         let Some(first) = self.keys.first() else {
             return Environment::default();
         };
-        if !(t > first.0) {
+        if t.is_nan() || t <= first.0 {
             return first.1;
         }
         let k = self.keys.partition_point(|(tk, _)| *tk <= t);

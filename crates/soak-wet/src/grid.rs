@@ -127,7 +127,7 @@ impl VoxelGrid {
         for k in 0..3 {
             let extent = max[k] - min[k];
             let n = ((extent / voxel_size) * (1.0 - 1e-12)).ceil().max(1.0);
-            if !(n < 1e9) {
+            if n.is_nan() || n >= 1e9 {
                 return Err(WetError::FieldTooLarge {
                     dims: [u64::MAX; 3],
                     voxels: u64::MAX,

@@ -428,7 +428,7 @@ impl Wetting {
             .map(|(x, a)| x.iter().zip(a).map(|(x, &a)| a as f64 * bump(x)).sum())
             .collect();
         let weight: f64 = partials.iter().sum();
-        if !(weight > 0.0) || splash.volume == 0.0 {
+        if weight.is_nan() || weight <= 0.0 || splash.volume == 0.0 {
             return Ok(0.0);
         }
         let per = splash.volume / weight;

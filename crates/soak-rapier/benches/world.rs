@@ -1,0 +1,91 @@
+//! Step time of a Rapier world with N floating spheres (N = 1, 10, 100,
+//! 1000; builtin sphere at 128²): Rapier alone, Rapier with the force
+//! generator, and with every body registered but its effects switched off
+//! (which should cost nothing measurable).
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use rapier3d::prelude::*;
+use soak_bake::{Atlas, BakeOptions, builtin};
+use soak_hydro::{Drag, MassModel, Water};
+use soak_rapier::{BodyDesc, Effects, ForceGenerator};
+
+/// How the bodies are driven.
+#[derive(Clone, Copy)]
+enum Variant {
+    /// Rapier's own mass from a density-500 ball collider, no generator.
+    Rapier,
+    /// Registered with buoyancy and drag.
+    Soak,
+    /// Registered with no effects.
+    EffectsOff,
+}
+
+fn world(n: usize, atlas: &Atlas, variant: Variant) -> (PhysicsWorld, Option<ForceGenerator>) {
+    let mut world = PhysicsWorld::new();
+    world.integration_parameters.dt = 1.0 / 60.0;
+    let mut soak = ForceGenerator::new(Water::calm(0.0));
+    let side = (n as f64).cbrt().ceil() as usize;
+    for i in 0..n {
+        let (x, z) = ((i % side) as f32 * 2.0, ((i / side) % side) as f32 * 2.0);
+        let y = (i / (side * side)) as f32 * 2.0 - 0.1;
+        let handle = world
+            .bodies
+            .insert(RigidBodyBuilder::dynamic().translation(Vector::new(x, y, z)));
+        let density = if matches!(variant, Variant::Rapier) {
+            500.0
+        } else {
+            0.0
+        };
+        let collider = ColliderBuilder::ball(0.5).density(density);
+        world
+            .colliders
+            .insert_with_parent(collider, handle, &mut world.bodies);
+        let effects = match variant {
+            Variant::Rapier => continue,
+            Variant::Soak => Effects::buoyancy().with_drag(Drag::default()),
+            Variant::EffectsOff => Effects::default(),
+        };
+        let desc = BodyDesc {
+            name: format!("sphere {i}"),
+            atlas: atlas.clone(),
+            mass_model: MassModel::Solid { density: 500.0 },
+            effects,
+        };
+        soak.register(&mut world.bodies, &world.colliders, handle, desc)
+            .unwrap();
+    }
+    let soak = (!matches!(variant, Variant::Rapier)).then_some(soak);
+    (world, soak)
+}
+
+fn step(c: &mut Criterion) {
+    let atlas = Atlas::bake(&builtin::sphere(0.5, 32, 16), BakeOptions::square(128)).unwrap();
+    let mut g = c.benchmark_group("world_step");
+    g.sample_size(10);
+    for n in [1usize, 10, 100, 1000] {
+        for (label, variant) in [
+            ("rapier", Variant::Rapier),
+            ("soak", Variant::Soak),
+            ("effects_off", Variant::EffectsOff),
+        ] {
+            let (mut w, mut soak) = world(n, &atlas, variant);
+            // Settle the start-up transient before timing.
+            for _ in 0..30 {
+                match &mut soak {
+                    Some(s) => s.step(&mut w).unwrap(),
+                    None => w.step(),
+                }
+            }
+            g.bench_with_input(BenchmarkId::new(label, n), &n, |b, _| {
+                b.iter(|| match &mut soak {
+                    Some(s) => s.step(&mut w).unwrap(),
+                    None => w.step(),
+                })
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, step);
+criterion_main!(benches);
