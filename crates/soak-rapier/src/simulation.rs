@@ -99,14 +99,17 @@ pub struct SavedSimulation {
 }
 
 impl SavedSimulation {
-    /// Compact binary form (exact: floats round-trip bit for bit).
+    /// The saved state as bytes: self-describing JSON (the state holds
+    /// internally tagged enums, which a non-self-describing format cannot
+    /// read back), with floats written so that they read back bit for bit.
     pub fn to_bytes(&self) -> Result<Vec<u8>, SoakError> {
-        postcard::to_stdvec(self).map_err(|e| SoakError::State(e.to_string()))
+        serde_json::to_vec(self).map_err(|e| SoakError::State(e.to_string()))
     }
 
-    /// Reads the binary form.
+    /// Reads what [`SavedSimulation::to_bytes`] wrote; damaged or truncated
+    /// input is a [`SoakError::State`], never a panic.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, SoakError> {
-        postcard::from_bytes(bytes).map_err(|e| SoakError::State(e.to_string()))
+        serde_json::from_slice(bytes).map_err(|e| SoakError::State(e.to_string()))
     }
 }
 
@@ -375,6 +378,11 @@ impl Simulation {
     /// Simulated time, s.
     pub fn time(&self) -> f64 {
         self.soak.time()
+    }
+
+    /// Steps taken so far (a resumed run counts the saved run's steps).
+    pub fn steps_taken(&self) -> u64 {
+        self.steps
     }
 
     /// Number of steps for the scene's duration.

@@ -78,7 +78,7 @@ fn a_run_saved_at_step_500_and_resumed_equals_the_uninterrupted_run() {
         drop(first);
         let saved = SavedSimulation::from_bytes(&bytes).unwrap();
         let mut resumed = Simulation::resume(&saved).unwrap();
-        assert_eq!(resumed.total_steps(), 500);
+        assert_eq!(resumed.steps_taken(), 500);
         assert_eq!(run(&mut resumed, 500), tail, "{name}: the resumed run diverged");
         let (a, b) = (straight.report(), resumed.report());
         assert_eq!(format!("{a:?}"), format!("{b:?}"));
