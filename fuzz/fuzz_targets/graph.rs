@@ -67,6 +67,9 @@ fuzz_target!(|data: &[u8]| {
             );
         }
         let err = flow.conservation_error();
-        assert!(err.is_finite() && err < 1e-9, "conservation error {err:e} after step {k}");
+        assert!(
+            err.is_finite() && err < 1e-9,
+            "conservation error {err:e} after step {k}"
+        );
     }
 });

@@ -77,7 +77,10 @@ fuzz_target!(|data: &[u8]| {
     physical &= s.water.density.is_none_or(|d| (0.1..=1e5).contains(&d));
     physical &= within(&s.water.current.unwrap_or_default(), 100.0);
     physical &= within(&[s.water.level.unwrap_or(0.0)], 1e3);
-    physical &= s.water.spacing.is_none_or(|sp| sp.iter().all(|v| (1e-2..=1e3).contains(v)));
+    physical &= s
+        .water
+        .spacing
+        .is_none_or(|sp| sp.iter().all(|v| (1e-2..=1e3).contains(v)));
     physical &= s.water.origin.is_none_or(|o| within(&o, 1e4));
     for b in &mut s.bodies {
         if !b.mesh.starts_with("builtin:") {
@@ -110,7 +113,9 @@ fuzz_target!(|data: &[u8]| {
             && within(&b.linear_velocity, 100.0)
             && within(&b.angular_velocity, 100.0)
             && b.drag.is_none_or(|d| d.coefficient <= 1e3 && d.linear <= 1e4)
-            && b.permeability.iter().all(|h| h.kappa <= 1e-3 && within(&h.centre, 1e3));
+            && b.permeability
+                .iter()
+                .all(|h| h.kappa <= 1e-3 && within(&h.centre, 1e3));
     }
     let mut sim = match Simulation::from_scene(&loaded) {
         Ok(sim) => sim,
@@ -128,8 +133,17 @@ fuzz_target!(|data: &[u8]| {
     }
     if physical {
         for r in sim.report() {
-            let finite = r.position.iter().chain(&r.linear_velocity).chain(&r.angular_velocity).all(|v| v.is_finite());
-            assert!(finite && !r.non_finite, "body `{}` went non-finite: {r:?}", r.name);
+            let finite = r
+                .position
+                .iter()
+                .chain(&r.linear_velocity)
+                .chain(&r.angular_velocity)
+                .all(|v| v.is_finite());
+            assert!(
+                finite && !r.non_finite,
+                "body `{}` went non-finite: {r:?}",
+                r.name
+            );
         }
     }
 });

@@ -35,12 +35,17 @@ fuzz_target!(|data: &[u8]| {
     };
 
     // Initial liquid texture.
-    let mut wet = Wetting::new(atlas, Material::cotton(), Liquid::water()).expect("cotton and water are valid");
+    let mut wet =
+        Wetting::new(atlas, Material::cotton(), Liquid::water()).expect("cotton and water are valid");
     let sat = wet.material().saturation;
     match wet.set_liquid_from_image(atlas, &image, sat) {
         Ok(()) => {
             assert_eq!(wet.liquid().len(), atlas.len());
-            assert!(wet.liquid().iter().all(|h| h.is_finite() && (0.0..=sat).contains(h)));
+            assert!(
+                wet.liquid()
+                    .iter()
+                    .all(|h| h.is_finite() && (0.0..=sat).contains(h))
+            );
             assert!(wet.total_liquid(atlas).is_finite());
             let tex = soak_wet::liquid_texture(atlas, wet.liquid()).expect("one value per texel");
             assert!(tex.iter().all(|v| v.is_nan() || (v.is_finite() && *v >= 0.0)));

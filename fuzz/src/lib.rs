@@ -43,10 +43,7 @@ pub fn bake_pipeline(mesh: &Mesh, resolution: u32) {
             match soak_bake::unwrap(mesh, UnwrapOptions::default()) {
                 Ok((unwrapped, report)) => {
                     assert_eq!(unwrapped.triangles.len(), mesh.triangles.len());
-                    assert!(
-                        report.coverage.is_finite(),
-                        "unwrap report {report:?}"
-                    );
+                    assert!(report.coverage.is_finite(), "unwrap report {report:?}");
                     match validate::validate(&unwrapped) {
                         Ok(()) => bake(&unwrapped, resolution),
                         Err(e) => assert!(!strict(), "unwrap gave invalid UVs: {e}"),
@@ -85,7 +82,10 @@ pub fn check_atlas(atlas: &Atlas) {
 pub fn small_atlas() -> &'static Atlas {
     static ATLAS: OnceLock<Atlas> = OnceLock::new();
     ATLAS.get_or_init(|| {
-        Atlas::bake(&soak_bake::builtin::cuboid(2.0, 1.0, 1.0), BakeOptions::square(32))
-            .expect("the builtin box bakes")
+        Atlas::bake(
+            &soak_bake::builtin::cuboid(2.0, 1.0, 1.0),
+            BakeOptions::square(32),
+        )
+        .expect("the builtin box bakes")
     })
 }
