@@ -184,7 +184,7 @@ pub fn load_gltf_bytes(bytes: &[u8], path: &Path, base: Option<&Path>) -> Result
         path: path.to_path_buf(),
         reason,
     };
-    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| gerr(e.to_string()))?;
+    let gltf = parse_gltf(bytes, path)?;
     let buffers = gltf::import_buffers(&gltf.document, base, gltf.blob.clone())
         .map_err(|e| gerr(format!("cannot load buffers: {e}")))?;
     let doc = &gltf.document;
@@ -221,6 +221,40 @@ pub fn load_gltf_bytes(bytes: &[u8], path: &Path, base: Option<&Path>) -> Result
     }
     let uvs = out.all_uvs.then_some(out.uvs);
     Ok(Mesh::new(name_of(path), out.positions, uvs, out.triangles))
+}
+
+/// `gltf::Gltf::from_slice`, minus its panic: glTF's validation indexes the
+/// accessor array with each primitive's POSITION accessor unchecked, so an
+/// index past the end is caught here first, naming the mesh and primitive.
+fn parse_gltf(bytes: &[u8], path: &Path) -> Result<gltf::Gltf, LoadError> {
+    let gerr = |reason: String| LoadError::Gltf {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| gerr(e.to_string()))?;
+    let json = document.into_json();
+    let accessors = json.accessors.len();
+    let position = gltf::json::validation::Checked::Valid(gltf::json::mesh::Semantic::Positions);
+    for (mesh, m) in json.meshes.iter().enumerate() {
+        for (primitive, p) in m.primitives.iter().enumerate() {
+            if let Some(index) = p.attributes.get(&position)
+                && index.value() >= accessors
+            {
+                return Err(LoadError::GltfPrimitive {
+                    path: path.to_path_buf(),
+                    mesh,
+                    primitive,
+                    reason: format!(
+                        "POSITION refers to accessor {}, but there are only {accessors} accessors",
+                        index.value()
+                    ),
+                });
+            }
+        }
+    }
+    let document = gltf::Document::from_json(json).map_err(|e| gerr(e.to_string()))?;
+    Ok(gltf::Gltf { document, blob })
 }
 
 #[derive(Default)]

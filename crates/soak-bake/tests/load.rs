@@ -137,3 +137,27 @@ fn builtin_names_and_their_errors() {
         assert!(e.to_string().contains(bad), "{bad}: {e}");
     }
 }
+
+/// Found by fuzzing (the gltf target): glTF's own validation indexed the
+/// accessor array with the POSITION accessor unchecked and panicked.
+#[test]
+fn gltf_with_position_accessor_past_the_end_is_an_error() {
+    let e = load_mesh(&data("bad/gltf_position_accessor_past_the_end.gltf")).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        matches!(
+            e,
+            LoadError::GltfPrimitive {
+                mesh: 0,
+                primitive: 0,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(
+        msg.contains("gltf_position_accessor_past_the_end.gltf")
+            && msg.contains("POSITION refers to accessor 0"),
+        "{msg}"
+    );
+}
