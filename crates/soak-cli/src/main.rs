@@ -9,6 +9,7 @@ mod hydro;
 mod plot;
 mod segment;
 mod simulate;
+mod stress;
 
 use clap::{Parser, Subcommand};
 
@@ -34,6 +35,8 @@ enum Command {
     Accuracy(accuracy::Args),
     /// Segment a closed mesh into its liquid graph: print nodes and edges, draw them on the mesh.
     Segment(segment::Args),
+    /// Stability matrix: meshes × densities × time steps × scales × waters × effects; non-zero exit on a failing cell.
+    Stress(stress::Args),
 }
 
 fn main() -> std::process::ExitCode {
@@ -54,5 +57,6 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Simulate(args) => simulate::run(&args),
         Command::Accuracy(args) => accuracy::run(&args),
         Command::Segment(args) => segment::run(&args),
+        Command::Stress(args) => stress::run(&args),
     }
 }

@@ -1,0 +1,78 @@
+//! `soak stress --quick`: every cell of the reduced stability matrix stays
+//! finite, and passes its energy, liquid and settling checks, except the
+//! cells listed in `KNOWN_ENERGY_FAILURES` (see below and docs/stress.md).
+
+use std::process::Command;
+
+/// Cells that fail the energy check (and with it the settling check)
+/// because of the force generator, not the checks: a body whose heave
+/// period is far shorter than the Rapier step (1 mm, ρ = 0.01, dt = 1/10 s:
+/// the step is 11 natural times) gets its buoyancy held constant for the
+/// whole step and is flung out of the water at ~50 m/s. The fix, implicit
+/// restoring buoyancy, belongs in `soak-rapier`'s generator
+/// (docs/stress.md, "Known failures"). These cells must still be finite
+/// and pass the liquid check; when the generator is fixed they pass and
+/// this test says which to remove from the list.
+const KNOWN_ENERGY_FAILURES: &[&str] = &[
+    "sphere/1e-3m/0.01/1/10/plane/buoyancy",
+    "sphere/1e-3m/0.01/1/10/sea/+drag",
+    "sphere/1e-3m/0.01/1/10/cliff/+ingress",
+    "box/1e-3m/0.01/1/10/plane/+wetting",
+    "cylinder/1e-3m/0.01/1/10/plane/buoyancy",
+    "cylinder/1e-3m/0.01/1/10/sea/+drag",
+    "cylinder/1e-3m/0.01/1/10/cliff/+ingress",
+    "capsule/1e-3m/0.01/1/10/plane/+wetting",
+    "torus/1e-3m/0.01/1/10/plane/buoyancy",
+    "torus/1e-3m/0.01/1/10/sea/+drag",
+    "torus/1e-3m/0.01/1/10/cliff/+ingress",
+    "boat/1e-3m/0.01/1/10/plane/+wetting",
+    "sliver/1e-3m/0.01/1/10/plane/buoyancy",
+    "sliver/1e-3m/0.01/1/10/sea/+drag",
+    "sliver/1e-3m/0.01/1/10/cliff/+ingress",
+];
+
+#[test]
+fn quick_matrix_passes() {
+    let out = Command::new(env!("CARGO_BIN_EXE_soak"))
+        .args(["stress", "--quick", "--json"])
+        .output()
+        .expect("run soak stress");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let cells: Vec<serde_json::Value> = serde_json::from_str(&stdout).unwrap_or_else(|e| {
+        panic!(
+            "soak stress printed no JSON ({e}); stderr:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    assert!(cells.len() >= 84, "the quick matrix has {} cells", cells.len());
+    let mut unexpected = Vec::new();
+    let mut fixed = Vec::new();
+    for c in &cells {
+        let name = c["cell"].as_str().unwrap();
+        let pass = c["pass"].as_bool().unwrap();
+        assert!(
+            c["finite"].as_bool().unwrap(),
+            "{name}: a non-finite value reached Rapier"
+        );
+        let known = KNOWN_ENERGY_FAILURES.contains(&name);
+        match (pass, known) {
+            (false, false) => unexpected.push(format!("{name}: {}", c["failures"])),
+            (true, true) => fixed.push(name.to_string()),
+            (false, true) => {
+                let liquid = c["liquid_ratio"].as_f64().unwrap_or(0.0);
+                assert!(liquid <= 1.0, "{name}: liquid check failed: {}", c["liquid_note"]);
+            }
+            (true, false) => {}
+        }
+    }
+    assert!(unexpected.is_empty(), "failing cells:\n{}", unexpected.join("\n"));
+    assert!(
+        fixed.is_empty(),
+        "these cells pass now: remove them from KNOWN_ENERGY_FAILURES: {fixed:?}"
+    );
+    // The exit status says whether any cell failed.
+    assert_eq!(
+        out.status.success(),
+        cells.iter().all(|c| c["pass"].as_bool().unwrap())
+    );
+}
