@@ -671,7 +671,8 @@ impl Renderer {
                 pass.set_vertex_buffer(0, o.vertices.slice(..));
                 pass.draw(0..o.count, 0..1);
             }
-            if let Some((vb, ib, n, bind)) = &water {
+            // Nothing of the water may be in view (a camera under it, looking down).
+            if let Some((vb, ib, n, bind)) = water.as_ref().filter(|w| w.2 > 0) {
                 pass.set_pipeline(&p.water);
                 pass.set_bind_group(1, bind, &[]);
                 pass.set_vertex_buffer(0, vb.slice(..));

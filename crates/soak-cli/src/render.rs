@@ -1,0 +1,359 @@
+//! `soak render`: frames of a scene file, shaded with the wet-surface optics
+//! of `soak-shade` on an offscreen wgpu renderer.
+//!
+//! The scene is simulated up to the requested step and drawn: every body's
+//! mesh at its pose with its liquid texture (when the body is wet), the
+//! water surface, the sun and the sky; debug views show the liquid in
+//! pseudo-colour, the triangles as segments, or the normals, and `--forces`
+//! draws weight (red, at the centre of mass) and buoyancy (green, at the
+//! centre of buoyancy) as in the thesis' Fig. 7.3.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use nalgebra::{Isometry3, Point3, Vector3};
+use soak_bake::{Mesh, UnwrapOptions};
+use soak_hydro::Gerstner;
+use soak_rapier::scene::{LoadedScene, WaterKind};
+use soak_rapier::{Simulation, convert};
+use soak_shade::render::{
+    Albedo, Arrow, Camera, DebugView, DirectionalLight, RenderObject, RenderScene, RenderWater, Renderer,
+    adapter_label, headless_device, procedural,
+};
+use soak_shade::{Gamma, Liquid, WetMaterial};
+
+/// What the frames show.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum View {
+    /// The shaded scene.
+    #[default]
+    Shaded,
+    /// Liquid saturation in pseudo-colour (blue dry, red saturated).
+    Liquid,
+    /// Each triangle in its own colour.
+    Segments,
+    /// World-space normals as colours.
+    Normals,
+}
+
+impl From<View> for DebugView {
+    fn from(v: View) -> Self {
+        match v {
+            View::Shaded => DebugView::Shaded,
+            View::Liquid => DebugView::Liquid,
+            View::Segments => DebugView::Segments,
+            View::Normals => DebugView::Normals,
+        }
+    }
+}
+
+/// `soak render SCENE.toml [--frame N] [--every K]`
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Scene file (TOML).
+    pub scene: PathBuf,
+    /// Step to render (0 is the initial state); default: the scene's last step.
+    #[arg(long)]
+    pub frame: Option<u64>,
+    /// Also write every K-th step before `--frame` as a numbered sequence
+    /// (`frame_000000.png`, ...).
+    #[arg(long)]
+    pub every: Option<u64>,
+    /// Image width, pixels.
+    #[arg(long, default_value_t = 640)]
+    pub width: u32,
+    /// Image height, pixels.
+    #[arg(long, default_value_t = 360)]
+    pub height: u32,
+    /// What the image shows.
+    #[arg(long, value_enum, default_value_t = View::Shaded)]
+    pub view: View,
+    /// Draw weight and buoyancy as arrows.
+    #[arg(long)]
+    pub forces: bool,
+    /// Camera position `x,y,z` in m (default: framing the bodies).
+    #[arg(long, value_parser = parse_point)]
+    pub eye: Option<Point3<f64>>,
+    /// Point the camera looks at, `x,y,z` in m (default: the bodies' centre).
+    #[arg(long, value_parser = parse_point)]
+    pub target: Option<Point3<f64>>,
+    /// Output directory.
+    #[arg(long, default_value = "out/render")]
+    pub out: PathBuf,
+}
+
+fn parse_point(s: &str) -> Result<Point3<f64>, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|t| t.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("`{s}`: {e} (expected x,y,z in metres)"))?;
+    match v[..] {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(Point3::new(x, y, z)),
+        _ => Err(format!("`{s}`: expected three finite numbers x,y,z in metres")),
+    }
+}
+
+/// Frame options shared by `soak render` and `soak demo`.
+#[derive(Clone, Debug)]
+pub struct FrameOptions {
+    /// Width, height in pixels.
+    pub size: (u32, u32),
+    /// Debug view.
+    pub view: View,
+    /// Force arrows.
+    pub forces: bool,
+    /// Camera eye and target; `None` frames the bodies.
+    pub eye: Option<Point3<f64>>,
+    /// See [`FrameOptions::eye`].
+    pub target: Option<Point3<f64>>,
+}
+
+/// Draws a [`Simulation`] built from a scene file.
+pub struct SceneRenderer {
+    renderer: Renderer,
+    meshes: Vec<Arc<Mesh>>,
+    albedos: Vec<Albedo>,
+    sea: Option<Gerstner>,
+    level: Option<f64>,
+    options: FrameOptions,
+    radius: Vec<f64>,
+    adapter: String,
+}
+
+impl SceneRenderer {
+    /// Loads the scene's meshes (as the simulation did) and opens a headless device.
+    pub fn new(loaded: &LoadedScene, options: FrameOptions) -> Result<Self> {
+        let (device, queue, info) = headless_device().context("no GPU adapter for rendering")?;
+        let renderer = Renderer::new(&device, &queue, options.size.0, options.size.1)?;
+        let mut meshes = Vec::new();
+        let mut albedos = Vec::new();
+        let mut radius = Vec::new();
+        for (i, b) in loaded.scene.bodies.iter().enumerate() {
+            let source = if b.mesh.starts_with("builtin:") {
+                b.mesh.clone()
+            } else {
+                loaded.resolve(&b.mesh).to_string_lossy().into_owned()
+            };
+            let mut mesh = soak_bake::load_mesh(&source).with_context(|| format!("body `{}`", b.name))?;
+            if b.unwrap {
+                mesh = soak_bake::unwrap(&mesh, UnwrapOptions::default())?.0;
+            }
+            let r = mesh
+                .positions
+                .iter()
+                .map(|p| p.coords.norm())
+                .fold(0.0_f64, f64::max);
+            radius.push(r);
+            albedos.push(albedo_for(&b.name, &b.mesh, i, b.fixed));
+            meshes.push(Arc::new(mesh));
+        }
+        let w = &loaded.scene.water;
+        let g = Vector3::from(loaded.scene.gravity).norm().max(1e-9);
+        let (sea, level) = match w.kind {
+            WaterKind::Plane => (None, Some(w.level.unwrap_or(0.0))),
+            WaterKind::Gerstner => (
+                Some(Gerstner::new(
+                    w.level.unwrap_or(0.0),
+                    w.waves.clone().unwrap_or_default(),
+                    g,
+                )?),
+                None,
+            ),
+            // A height field is drawn as its mean level; air has no surface.
+            WaterKind::HeightField => (None, w.level.or(Some(0.0))),
+            WaterKind::Air => (None, None),
+        };
+        Ok(Self {
+            renderer,
+            meshes,
+            albedos,
+            sea,
+            level,
+            options,
+            radius,
+            adapter: adapter_label(&info),
+        })
+    }
+
+    /// The adapter's name (a software adapter's timings are CPU timings).
+    pub fn adapter(&self) -> &str {
+        &self.adapter
+    }
+
+    /// The frame for the simulation's current state.
+    pub fn frame(&mut self, sim: &Simulation) -> Result<image::RgbaImage> {
+        let t = sim.time();
+        let mut objects = Vec::new();
+        let mut arrows = Vec::new();
+        let mut lo = Point3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
+        let mut hi = -lo;
+        let mut weight_scale = 0.0_f64;
+        for (i, b) in sim.bodies.iter().enumerate() {
+            let Some(rb) = sim.world.bodies.get(b.handle) else {
+                continue;
+            };
+            let pose: Isometry3<f64> = convert::pose(rb.position());
+            let r = self.radius[i];
+            // Fixed terrain does not decide the framing.
+            if b.id.is_some() || sim.bodies.len() == 1 {
+                let c = pose.translation.vector;
+                lo = lo.inf(&Point3::from(c.add_scalar(-r)));
+                hi = hi.sup(&Point3::from(c.add_scalar(r)));
+            }
+            let object = RenderObject::new(self.meshes[i].clone(), pose)
+                .with_name(b.name.clone())
+                .with_albedo(self.albedos[i].clone())
+                .with_material(WetMaterial {
+                    liquid: Liquid::water(),
+                    gamma: Gamma::Arctan { roughness: 8.0 },
+                });
+            objects.push(object);
+            if let (true, Some(id)) = (self.options.forces, b.id)
+                && let Some(body) = sim.soak.body(id)
+            {
+                let mass = body.mass_properties();
+                let g = sim.soak.water().gravity;
+                let weight = mass.mass * g;
+                weight_scale = weight_scale.max(weight);
+                let com = pose * mass.center_of_mass;
+                arrows.push((com, Vector3::new(0.0, -weight, 0.0), *body.forces(), r));
+            }
+        }
+        if !lo.x.is_finite() {
+            lo = Point3::new(-1.0, -1.0, -1.0);
+            hi = Point3::new(1.0, 1.0, 1.0);
+        }
+        let centre = nalgebra::center(&lo, &hi);
+        let size = (hi - lo).norm().max(0.1);
+        let target = self.options.target.unwrap_or(centre);
+        let eye = self.options.eye.unwrap_or_else(|| {
+            let mut eye = target + Vector3::new(0.62, 0.42, 1.0).normalize() * (1.6 * size + 1.0);
+            // Keep the eye above the water: a sunken body is seen through it.
+            if let Some(level) = self.level.or(self.sea.as_ref().map(|s| s.level)) {
+                eye.y = eye.y.max(level + 0.3 * size + 0.5);
+            }
+            eye
+        });
+        let mut scene = RenderScene::new(Camera::perspective(eye, target, 40.0));
+        scene.light = DirectionalLight::from_angles(38.0, 60.0, [2.7, 2.5, 2.3]);
+        scene.water = match (&self.sea, self.level) {
+            (Some(sea), _) => Some(RenderWater::gerstner(sea.clone(), t)),
+            (None, Some(level)) => Some(RenderWater::plane(level)),
+            (None, None) => None,
+        };
+        scene.objects = objects;
+        scene.view = self.options.view.into();
+        if weight_scale > 0.0 {
+            let metres_per_newton = 0.6 * size / weight_scale;
+            for (com, weight, forces, r) in arrows {
+                let radius = (0.015 * size).max(0.004 * r);
+                scene
+                    .arrows
+                    .push(Arrow::weight(com, weight, metres_per_newton).with_radius(radius));
+                if forces.submerged_volume > 0.0 {
+                    scene.arrows.push(
+                        Arrow::buoyancy(
+                            forces.center_of_buoyancy,
+                            forces.buoyancy.force,
+                            metres_per_newton,
+                        )
+                        .with_radius(radius),
+                    );
+                }
+            }
+        }
+        Ok(self.renderer.render(&scene)?)
+    }
+}
+
+/// A look for a body: wood for boats and crates, sand for terrain, bright
+/// colours for the rest.
+fn albedo_for(name: &str, mesh: &str, index: usize, fixed: bool) -> Albedo {
+    let n = format!("{name} {mesh}").to_lowercase();
+    if n.contains("boat") || n.contains("crate") || n.contains("hull") || n.contains("wood") {
+        Albedo::texture(procedural::wood_planks(
+            512,
+            512,
+            14,
+            [0.62, 0.40, 0.22],
+            7 + index as u64,
+        ))
+    } else if fixed || n.contains("beach") || n.contains("sand") || n.contains("terrain") {
+        Albedo::texture(procedural::speckled(
+            512,
+            512,
+            [0.76, 0.66, 0.47],
+            0.08,
+            24.0,
+            11 + index as u64,
+        ))
+    } else {
+        const PALETTE: [[f64; 3]; 5] = [
+            [0.75, 0.18, 0.08],
+            [0.85, 0.62, 0.10],
+            [0.20, 0.45, 0.75],
+            [0.35, 0.62, 0.25],
+            [0.70, 0.70, 0.68],
+        ];
+        Albedo::Constant(PALETTE[index % PALETTE.len()])
+    }
+}
+
+fn frame_path(out: &Path, step: u64) -> PathBuf {
+    out.join(format!("frame_{step:06}.png"))
+}
+
+/// `soak render`.
+pub fn run(args: &Args) -> Result<()> {
+    let loaded = LoadedScene::from_file(&args.scene)?;
+    let mut sim = Simulation::from_scene(&loaded)?;
+    let last = args.frame.unwrap_or_else(|| sim.total_steps());
+    if args.every == Some(0) {
+        bail!("--every must be at least 1 (steps between frames)");
+    }
+    if args.width == 0 || args.height == 0 || args.width > 8192 || args.height > 8192 {
+        bail!("--width and --height must be within 1..=8192 pixels");
+    }
+    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let mut renderer = SceneRenderer::new(
+        &loaded,
+        FrameOptions {
+            size: (args.width, args.height),
+            view: args.view,
+            forces: args.forces,
+            eye: args.eye,
+            target: args.target,
+        },
+    )?;
+    let mut written = 0;
+    let mut render_time = 0.0;
+    for step in 0..=last {
+        if step > 0 {
+            sim.step()?;
+        }
+        let wanted = step == last || args.every.is_some_and(|k| step.is_multiple_of(k));
+        if wanted {
+            let start = Instant::now();
+            let image = renderer.frame(&sim)?;
+            render_time += start.elapsed().as_secs_f64();
+            let path = frame_path(&args.out, step);
+            image
+                .save(&path)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            written += 1;
+        }
+    }
+    println!(
+        "wrote {written} frame(s) of {}×{} to {} (last: step {last}, t = {:.3} s); {:.0} ms per frame on {}",
+        args.width,
+        args.height,
+        args.out.display(),
+        sim.time(),
+        1e3 * render_time / f64::from(written.max(1)),
+        renderer.adapter()
+    );
+    Ok(())
+}
