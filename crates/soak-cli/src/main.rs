@@ -7,6 +7,7 @@ mod demo;
 mod gpu;
 mod hydro;
 mod plot;
+mod render;
 mod segment;
 mod simulate;
 mod stress;
@@ -37,6 +38,8 @@ enum Command {
     Segment(segment::Args),
     /// Stability matrix: meshes × densities × time steps × scales × waters × effects; non-zero exit on a failing cell.
     Stress(stress::Args),
+    /// Render frames of a scene file (PNG): wet surfaces, water, debug views, force arrows.
+    Render(render::Args),
 }
 
 fn main() -> std::process::ExitCode {
@@ -58,5 +61,6 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Accuracy(args) => accuracy::run(&args),
         Command::Segment(args) => segment::run(&args),
         Command::Stress(args) => stress::run(&args),
+        Command::Render(args) => render::run(&args),
     }
 }
