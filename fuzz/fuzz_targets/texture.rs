@@ -3,12 +3,13 @@
 //! `Wetting::set_liquid_from_image`), the wetting permeability map and the
 //! liquid graph's permeability (`soak_graph::Permeability::from_image`).
 //!
-//! `LiquidImage::open` reads a path; this target decodes from memory the way
-//! it does (`image` → `to_luma32f`), under limits that keep an execution
-//! cheap (1024² pixels, 64 MiB).
+//! Bytes go through `LiquidImage::decode` (what `LiquidImage::open` does with
+//! a file's bytes); images over 1024² are skipped before decoding to keep an
+//! execution cheap.
 #![no_main]
 
 use std::io::Cursor;
+use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
 use soak_graph::Permeability;
@@ -16,22 +17,19 @@ use soak_wet::{Liquid, LiquidImage, Material, Wetting};
 
 fuzz_target!(|data: &[u8]| {
     let atlas = soak_fuzz::small_atlas();
-    let Ok(mut reader) = image::ImageReader::new(Cursor::new(data)).with_guessed_format() else {
+    // Keep an execution cheap: skip images over 1024² before decoding them.
+    let Ok(reader) = image::ImageReader::new(Cursor::new(data)).with_guessed_format() else {
         return;
     };
-    let mut limits = image::Limits::default();
-    limits.max_image_width = Some(1024);
-    limits.max_image_height = Some(1024);
-    limits.max_alloc = Some(64 << 20);
-    reader.limits(limits);
-    let Ok(decoded) = reader.decode() else {
+    if reader.into_dimensions().is_ok_and(|(w, h)| w > 1024 || h > 1024) {
         return;
-    };
-    let luma = decoded.to_luma32f();
-    let image = LiquidImage {
-        width: luma.width(),
-        height: luma.height(),
-        values: luma.into_raw(),
+    }
+    let image = match LiquidImage::decode(data, Some(Path::new("fuzz.png"))) {
+        Ok(image) => image,
+        Err(e) => {
+            assert!(e.to_string().contains("fuzz.png"), "{e}");
+            return;
+        }
     };
 
     // Initial liquid texture.

@@ -167,15 +167,47 @@ pub struct LiquidImage {
     pub values: Vec<f32>,
 }
 
+/// Widest and tallest image [`LiquidImage::decode`] reads, pixels.
+pub const MAX_IMAGE_SIDE: u32 = 16_384;
+/// Most memory one decode may allocate for pixels, bytes.
+pub const MAX_IMAGE_BYTES: u64 = 1 << 30;
+/// Largest OpenEXR block (a tile or a group of scan lines, all channels)
+/// [`LiquidImage::decode`] accepts, bytes. The OpenEXR reader allocates a
+/// block's worth of memory from the header alone, before reading pixels.
+pub const MAX_EXR_BLOCK_BYTES: u64 = 64 << 20;
+
 impl LiquidImage {
     /// Reads an image file (PNG or OpenEXR) as luminance in [0, 1]
-    /// (colour images are converted to luma).
+    /// (colour images are converted to luma). See [`LiquidImage::decode`].
     pub fn open(path: &Path) -> Result<Self, WetError> {
-        let img = image::open(path).map_err(|e| WetError::Image {
+        let bytes = std::fs::read(path).map_err(|e| WetError::Image {
             path: Some(path.to_path_buf()),
             reason: e.to_string(),
         })?;
-        let luma = img.to_luma32f();
+        Self::decode(&bytes, Some(path))
+    }
+
+    /// Decodes PNG or OpenEXR bytes as luminance (colour images are
+    /// converted to luma); `path` names the file in errors. Images over
+    /// [`MAX_IMAGE_SIDE`] pixels a side or [`MAX_IMAGE_BYTES`] of pixels, and
+    /// OpenEXR files whose blocks exceed [`MAX_EXR_BLOCK_BYTES`], are errors.
+    pub fn decode(bytes: &[u8], path: Option<&Path>) -> Result<Self, WetError> {
+        let err = |reason: String| WetError::Image {
+            path: path.map(Path::to_path_buf),
+            reason,
+        };
+        let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|e| err(e.to_string()))?;
+        if reader.format() == Some(image::ImageFormat::OpenExr) {
+            check_exr_blocks(bytes).map_err(err)?;
+        }
+        let mut limits = image::Limits::default();
+        limits.max_image_width = Some(MAX_IMAGE_SIDE);
+        limits.max_image_height = Some(MAX_IMAGE_SIDE);
+        limits.max_alloc = Some(MAX_IMAGE_BYTES);
+        reader.limits(limits);
+        let luma = reader.decode().map_err(|e| err(e.to_string()))?.to_luma32f();
         Ok(Self {
             width: luma.width(),
             height: luma.height(),
@@ -217,6 +249,35 @@ impl LiquidImage {
             .map(|v| (v as f64 * scale).clamp(0.0, saturation))
             .collect())
     }
+}
+
+/// Rejects OpenEXR headers whose blocks would make the reader allocate more
+/// than [`MAX_EXR_BLOCK_BYTES`] (a tiny file can declare 65,600 × 71 million
+/// pixel tiles), naming the layer and the block.
+fn check_exr_blocks(bytes: &[u8]) -> Result<(), String> {
+    use exr::meta::BlockDescription;
+    let meta = exr::meta::MetaData::read_from_buffered(bytes, false).map_err(|e| e.to_string())?;
+    for (layer, header) in meta.headers.iter().enumerate() {
+        let (what, w, h) = match header.blocks {
+            BlockDescription::Tiles(tiles) => ("tile", tiles.tile_size.0, tiles.tile_size.1),
+            BlockDescription::ScanLines => (
+                "scan-line block",
+                header.layer_size.0,
+                header.compression.scan_lines_per_block(),
+            ),
+        };
+        let size = (w as u64)
+            .checked_mul(h as u64)
+            .and_then(|px| px.checked_mul(header.channels.bytes_per_pixel as u64));
+        if size.is_none_or(|b| b > MAX_EXR_BLOCK_BYTES) {
+            return Err(format!(
+                "OpenEXR layer {layer}: a {what} of {w}x{h} pixels and {} bytes per pixel exceeds {} MiB",
+                header.channels.bytes_per_pixel,
+                MAX_EXR_BLOCK_BYTES >> 20
+            ));
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -158,3 +158,37 @@ fn shared_fields_check_their_box_and_members() {
         .unwrap();
     assert!(r.diffusion.outside > 0 && r.diffusion.outside < a.len());
 }
+
+/// Found by fuzzing (the texture target): a 611-byte OpenEXR file whose
+/// header declares 65,600 × 71 million pixel tiles made the reader allocate
+/// 1.9 GB and take seconds before failing. It is now refused from the header.
+#[test]
+fn exr_with_a_huge_tile_is_an_error_naming_the_file() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/bad/liquid_exr_huge_tile.exr");
+    let e = LiquidImage::open(&path).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        matches!(e, soak_wet::WetError::Image { path: Some(_), .. }),
+        "{e:?}"
+    );
+    assert!(
+        msg.contains("liquid_exr_huge_tile.exr") && msg.contains("OpenEXR layer 0: a tile of"),
+        "{msg}"
+    );
+    let bytes = std::fs::read(&path).unwrap();
+    assert!(LiquidImage::decode(&bytes, None).is_err());
+}
+
+#[test]
+fn liquid_image_decodes_png_bytes() {
+    let mut png = Vec::new();
+    image::GrayImage::from_fn(4, 2, |x, _| image::Luma([(x * 85) as u8]))
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    let img = LiquidImage::decode(&png, None).unwrap();
+    assert_eq!((img.width, img.height, img.values.len()), (4, 2, 8));
+    assert!((img.values[3] - 1.0).abs() < 1e-6 && img.values[0] == 0.0);
+    let e = LiquidImage::decode(b"not an image", Some(std::path::Path::new("x.png"))).unwrap_err();
+    assert!(e.to_string().contains("x.png"), "{e}");
+}
