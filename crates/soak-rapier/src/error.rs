@@ -53,6 +53,14 @@ pub enum SoakError {
     /// The GPU backend failed (device, upload or evaluation).
     #[error("gpu: {0}")]
     Gpu(String),
+    /// A body's wetting (or the environment) was refused or failed to advance.
+    #[error("body `{name}`: wetting: {source}")]
+    Wet {
+        /// The soak body's name (`(environment)` for the environment).
+        name: String,
+        /// The underlying error.
+        source: soak_wet::WetError,
+    },
     /// Baking or refreshing the atlas failed.
     #[error("body `{name}`: {source}")]
     Bake {

@@ -1,4 +1,7 @@
-//! The force generator: buoyancy and drag for rapier3d bodies, every step.
+//! The force generator: buoyancy and drag for rapier3d bodies, every step,
+//! and (opt-in, per body) surface wetting: the liquid texture of
+//! [`soak_wet::Wetting`], absorbing through the submerged texels,
+//! evaporating and diffusing with each step.
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::{
@@ -10,6 +13,7 @@ use soak_hydro::{
     BodyState, BuoyancyMode, Drag, HydroForces, HydroOptions, MassModel, MassProperties, TiledAtlas, Water,
     Wrench,
 };
+use soak_wet::{Environment, StepReport, Wetting};
 
 use crate::convert;
 use crate::error::SoakError;
@@ -100,6 +104,16 @@ pub struct SoakBody {
     forces: HydroForces,
     applied: Wrench,
     dry_skips: u64,
+    /// `None` unless wetting was asked for: a dry body holds no liquid
+    /// texture, no field and no report.
+    wet: Option<Wet>,
+}
+
+/// A body's wetting and what its last step did.
+#[derive(Clone, Debug)]
+struct Wet {
+    wetting: Wetting,
+    last: StepReport,
 }
 
 impl SoakBody {
@@ -143,11 +157,25 @@ impl SoakBody {
     pub fn dry_skips(&self) -> u64 {
         self.dry_skips
     }
+    /// Its wetting state, if wetting is on (see [`ForceGenerator::set_wetting`]).
+    pub fn wetting(&self) -> Option<&Wetting> {
+        self.wet.as_ref().map(|w| &w.wetting)
+    }
+    /// Its liquid texture, if wetting is on: `h_i` per texel in atlas
+    /// order, volume per area, m³/m² = m, in `[0, saturation]`.
+    pub fn liquid(&self) -> Option<&[f64]> {
+        self.wet.as_ref().map(|w| w.wetting.liquid())
+    }
+    /// What the last wetting step did (absorbed, evaporated, m³;
+    /// submerged texels; diffusion substeps), if wetting is on.
+    pub fn wet_report(&self) -> Option<&StepReport> {
+        self.wet.as_ref().map(|w| &w.last)
+    }
 }
 
 /// What a body's run changes, for saving: its mass model and extra mass,
-/// the last forces and the firewall's memory of them.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// the last forces, and its wetting (liquid texture, ledger and settings).
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct BodyRunState {
     /// The mass model now.
     pub mass_model: MassModel,
@@ -159,6 +187,44 @@ pub struct BodyRunState {
     pub applied: Wrench,
     /// Dry steps skipped so far.
     pub dry_skips: u64,
+    /// The body's wetting, if it has any: the liquid texture (m per texel),
+    /// the ledger of absorbed and evaporated volumes (m³) and the material,
+    /// liquid and diffusion settings. The diffusion field's binning is not
+    /// saved: it is rebuilt from the atlas, to the same bits.
+    #[serde(default)]
+    pub wetting: Option<Wetting>,
+    /// What its last wetting step did.
+    #[serde(default)]
+    pub wet_report: Option<StepReport>,
+}
+
+impl PartialEq for BodyRunState {
+    fn eq(&self, other: &Self) -> bool {
+        let same_wetting = match (&self.wetting, &other.wetting) {
+            (None, None) => true,
+            (Some(a), Some(b)) => same_wetting(a, b),
+            _ => false,
+        };
+        self.mass_model == other.mass_model
+            && self.extra_mass == other.extra_mass
+            && self.forces == other.forces
+            && self.applied == other.applied
+            && self.dry_skips == other.dry_skips
+            && self.wet_report == other.wet_report
+            && same_wetting
+    }
+}
+
+/// Whether two wetting states hold the same settings, liquid and ledger
+/// (their rebuilt-on-demand field caches aside).
+fn same_wetting(a: &Wetting, b: &Wetting) -> bool {
+    a.material() == b.material()
+        && a.liquid_params() == b.liquid_params()
+        && a.response() == b.response()
+        && a.diffusion() == b.diffusion()
+        && a.permeability_map() == b.permeability_map()
+        && a.liquid() == b.liquid()
+        && a.ledger() == b.ledger()
 }
 
 /// The evolving state of a [`ForceGenerator`] (not its atlases or water,
@@ -171,6 +237,9 @@ pub struct GeneratorState {
     pub steps: u64,
     /// Per body, in registration order.
     pub bodies: Vec<BodyRunState>,
+    /// The weather wet bodies dry in.
+    #[serde(default)]
+    pub environment: Environment,
 }
 
 /// Applies buoyancy and drag to registered rapier3d bodies before each step.
@@ -179,6 +248,12 @@ pub struct GeneratorState {
 /// each body's mass properties in line with its mass model. User forces in
 /// Rapier persist across steps, so every step resets the body's forces and
 /// torques before adding the new ones.
+///
+/// Bodies may also get wet ([`ForceGenerator::set_wetting`]): each step
+/// their liquid texture absorbs water through the submerged texels, dries
+/// in the generator's [`Environment`] and diffuses, all over the step's
+/// `dt`. Wetting does not change the body's mass or forces. A body without
+/// wetting holds no wetting state at all and costs nothing for it.
 ///
 /// # Example
 /// ```
@@ -212,6 +287,7 @@ pub struct ForceGenerator {
     time: f64,
     steps: u64,
     firewall: Firewall,
+    environment: Environment,
     #[cfg(feature = "gpu")]
     gpu: Option<crate::gpu::GpuBackend>,
 }
@@ -226,6 +302,7 @@ impl ForceGenerator {
             time: 0.0,
             steps: 0,
             firewall: Firewall::default(),
+            environment: Environment::default(),
             #[cfg(feature = "gpu")]
             gpu: None,
         }
@@ -272,6 +349,67 @@ impl ForceGenerator {
         self.water = water;
     }
 
+    /// The weather wet bodies dry in (temperature in K, relative humidity
+    /// as a fraction, wind in m/s, rain); [`Environment::default`] (20 °C,
+    /// 50 %, 2 m/s, no rain) until set.
+    pub fn environment(&self) -> &Environment {
+        &self.environment
+    }
+
+    /// Replaces the weather (validated); it applies from the next step.
+    pub fn set_environment(&mut self, environment: Environment) -> Result<(), SoakError> {
+        environment.validate().map_err(|source| SoakError::Wet {
+            name: "(environment)".into(),
+            source,
+        })?;
+        self.environment = environment;
+        Ok(())
+    }
+
+    /// Turns wetting on for a body with `Some(state)` (made for the body's
+    /// atlas, e.g. `Wetting::new(body.atlas(), Material::wood(),
+    /// Liquid::water())`, and keeping the liquid it already holds), or off
+    /// with `None`, which drops the state and everything it allocated.
+    pub fn set_wetting(&mut self, id: SoakId, wetting: Option<Wetting>) -> Result<(), SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        if let Some(w) = &wetting
+            && w.texels() != b.atlas.len()
+        {
+            return Err(SoakError::Wet {
+                name: b.name.clone(),
+                source: soak_wet::WetError::AtlasMismatch {
+                    state: w.texels(),
+                    atlas: b.atlas.len(),
+                },
+            });
+        }
+        b.wet = wetting.map(|wetting| Wet {
+            wetting,
+            last: StepReport::default(),
+        });
+        Ok(())
+    }
+
+    /// A body's wetting state, if it has one.
+    pub fn wetting(&self, id: SoakId) -> Option<&Wetting> {
+        self.bodies.get(id.0).and_then(SoakBody::wetting)
+    }
+
+    /// A body's wetting state, to splash, paint or change its settings
+    /// (with the body's atlas: [`SoakBody::atlas`]).
+    pub fn wetting_mut(&mut self, id: SoakId) -> Option<&mut Wetting> {
+        self.bodies
+            .get_mut(id.0)
+            .and_then(|b| b.wet.as_mut().map(|w| &mut w.wetting))
+    }
+
+    /// A body's liquid texture, if it has wetting: `h_i` per texel in atlas
+    /// order, m³/m² = m. [`soak_wet::liquid_texture`] lays it out as an
+    /// image, [`soak_wet::write_liquid_png`] writes it in pseudo-colour.
+    pub fn liquid_texture(&self, id: SoakId) -> Option<&[f64]> {
+        self.bodies.get(id.0).and_then(SoakBody::liquid)
+    }
+
     /// Simulated time, s (advanced by [`ForceGenerator::step`] and [`ForceGenerator::advance`]).
     pub fn time(&self) -> f64 {
         self.time
@@ -306,8 +444,11 @@ impl ForceGenerator {
                     forces: b.forces,
                     applied: b.applied,
                     dry_skips: b.dry_skips,
+                    wetting: b.wet.as_ref().map(|w| w.wetting.clone()),
+                    wet_report: b.wet.as_ref().map(|w| w.last),
                 })
                 .collect(),
+            environment: self.environment,
         }
     }
 
@@ -322,6 +463,19 @@ impl ForceGenerator {
                 self.bodies.len()
             )));
         }
+        for (b, s) in self.bodies.iter().zip(&state.bodies) {
+            if let Some(w) = &s.wetting
+                && w.texels() != b.atlas.len()
+            {
+                return Err(SoakError::State(format!(
+                    "body `{}`: the saved liquid texture has {} texels, the atlas {}",
+                    b.name,
+                    w.texels(),
+                    b.atlas.len()
+                )));
+            }
+        }
+        self.environment = state.environment;
         for (b, s) in self.bodies.iter_mut().zip(&state.bodies) {
             let model_mass = s
                 .mass_model
@@ -337,6 +491,10 @@ impl ForceGenerator {
             b.forces = s.forces;
             b.applied = s.applied;
             b.dry_skips = s.dry_skips;
+            b.wet = s.wetting.clone().map(|wetting| Wet {
+                wetting,
+                last: s.wet_report.unwrap_or_default(),
+            });
         }
         self.time = state.time;
         self.steps = state.steps;
@@ -399,6 +557,7 @@ impl ForceGenerator {
             forces: HydroForces::default(),
             applied: Wrench::default(),
             dry_skips: 0,
+            wet: None,
         });
         Ok(SoakId(self.bodies.len() - 1))
     }
@@ -489,6 +648,10 @@ impl ForceGenerator {
         if b.tiled.is_some() {
             b.tiled = Some(TiledAtlas::new(&atlas));
         }
+        if let Some(w) = &mut b.wet {
+            // The texels moved in object space: rebin the diffusion field.
+            w.wetting.refresh_field();
+        }
         #[cfg(feature = "gpu")]
         if let Some(gpu) = &mut self.gpu {
             gpu.deform(id.0, positions)?;
@@ -501,7 +664,8 @@ impl ForceGenerator {
 
     /// Evaluates every body's effects and applies them as forces and torques
     /// (resetting the previous step's), for the Rapier step that `params`
-    /// describe. Does not advance time; [`ForceGenerator::step`] does both.
+    /// describe. Does not advance time nor wet bodies ([`ForceGenerator::wet`]);
+    /// [`ForceGenerator::step`] does all three.
     ///
     /// Rapier holds an external force constant over its `s` solver substeps,
     /// which makes any position-dependent force (a spring, buoyancy) gain
@@ -633,6 +797,45 @@ impl ForceGenerator {
         }
     }
 
+    /// Advances the liquid texture of every wet body by `dt` (s) at the
+    /// generator's time, with the body's pose as Rapier has it now and the
+    /// generator's water and environment: absorption through the submerged
+    /// texels, evaporation from the others, then the body's own diffusion
+    /// (see [`Wetting::step`]). Bodies without wetting are not visited
+    /// beyond a check. [`ForceGenerator::step`] calls it before stepping
+    /// the world; call it yourself (once per step, before
+    /// [`ForceGenerator::advance`]) when driving Rapier yourself.
+    ///
+    /// A body whose pose is not finite is skipped and the firewall records
+    /// it; invalid wetting settings are an error.
+    pub fn wet(&mut self, bodies: &RigidBodySet, dt: f64) -> Result<(), SoakError> {
+        let (t, step) = (self.time, self.steps);
+        for b in &mut self.bodies {
+            let Some(wet) = &mut b.wet else {
+                continue;
+            };
+            let Some(rb) = bodies.get(b.handle) else {
+                continue;
+            };
+            let pose = convert::pose(rb.position());
+            let finite = pose.translation.vector.iter().all(|c| c.is_finite())
+                && pose.rotation.coords.iter().all(|c| c.is_finite());
+            if !finite {
+                self.firewall
+                    .reject(step, &b.name, "wetting pose", format!("non-finite {pose:?}"));
+                continue;
+            }
+            wet.last = wet
+                .wetting
+                .step(&b.atlas, &pose, &self.water, &self.environment, t, dt)
+                .map_err(|source| SoakError::Wet {
+                    name: b.name.clone(),
+                    source,
+                })?;
+        }
+        Ok(())
+    }
+
     /// Advances the generator's clock (for moving waves) by `dt` seconds.
     pub fn advance(&mut self, dt: f64) {
         self.time += dt;
@@ -645,13 +848,15 @@ impl ForceGenerator {
         self.water.gravity = convert::vector(world.gravity).norm();
     }
 
-    /// Applies the fluid forces, steps the world once and advances time. The
-    /// fluid's gravity follows the world's.
+    /// Applies the fluid forces, wets the wet bodies over the step
+    /// ([`ForceGenerator::wet`]), steps the world once and advances time.
+    /// The fluid's gravity follows the world's.
     pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<(), SoakError> {
         self.sync_gravity(world);
         let dt = world.integration_parameters.dt as f64;
         let params = world.integration_parameters;
         self.apply(&mut world.bodies, &params);
+        self.wet(&world.bodies, dt)?;
         world.step();
         self.advance(dt);
         Ok(())

@@ -17,6 +17,8 @@ pub use generator::{
 };
 pub use scene::{LoadedScene, Scene};
 pub use simulation::{BodyReport, Sample, SavedSimulation, Simulation};
+/// Surface wetting (the liquid texture of [`ForceGenerator::set_wetting`]).
+pub use soak_wet;
 
 /// The types most users need.
 pub mod prelude {

@@ -19,6 +19,18 @@
 //! position = [0.0, 0.5, 0.0]
 //! rotation_deg = [0.0, 0.0, 0.0]
 //! drag = { coefficient = 0.5, linear = 5.0 }
+//! # Surface wetting, opt-in per body (see `WettingSpec`):
+//! wetting = { material = "wood", diffusion = 2e-5, mode = "conservative", initial = 0.0 }
+//!
+//! [environment]           # the weather wet bodies dry in (all keys optional)
+//! temperature_c = 20.0    # air temperature, °C
+//! relative_humidity = 0.5 # a fraction in [0, 1]
+//! wind_speed = 2.0        # m/s
+//! rain_mm_per_hour = 0.0  # rain everywhere, mm/h
+//!
+//! [output]
+//! every = 1               # record every N steps
+//! liquid_png_every = 60   # `soak simulate`: liquid textures as PNG every N steps
 //! ```
 //!
 //! Unknown keys, wrong types and out-of-range values are errors that name
@@ -28,6 +40,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use soak_hydro::{BuoyancyMode, Drag, GerstnerWave};
+use soak_wet::{DiffusionMode, Environment, Liquid, Material, Rain};
 
 use crate::error::SceneError;
 use crate::generator::Backend;
@@ -69,6 +82,8 @@ pub struct Scene {
     /// The bodies.
     #[serde(default)]
     pub bodies: Vec<BodySpec>,
+    /// The weather wet bodies dry in; [`Environment::default`] when absent.
+    pub environment: Option<EnvironmentSpec>,
     /// What to record.
     #[serde(default)]
     pub output: OutputSpec,
@@ -186,6 +201,200 @@ pub struct BodySpec {
     /// Permeable regions (holes) of the wall; needs `graph`.
     #[serde(default)]
     pub permeability: Vec<HoleSpec>,
+    /// Surface wetting: the body's liquid texture soaks up the water it is
+    /// dipped in, dries and diffuses. Off when absent (and then nothing is
+    /// allocated for it).
+    pub wetting: Option<WettingSpec>,
+}
+
+/// A body's surface wetting.
+///
+/// ```toml
+/// wetting = { material = "wood", diffusion = 2e-5, mode = "conservative", initial = 0.0 }
+/// wetting = { material = { permeability = 1e-12, thickness = 0.005, saturation = 0.001 },
+///             liquid = { viscosity = 1e-3, evaporation_rate = 1e8 }, initial = "wet.png" }
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WettingSpec {
+    /// The surface material: a preset name (`sand`, `wood`, `rock`,
+    /// `cotton`, see [`Material`]) or its parameters.
+    pub material: MaterialSpec,
+    /// The liquid: `water` (the default), `ethanol`, or its parameters.
+    #[serde(default)]
+    pub liquid: LiquidSpec,
+    /// Diffusion coefficient D, m²/s; absent for no diffusion (no voxel
+    /// field at all), 0 for a field that does not spread.
+    pub diffusion: Option<f64>,
+    /// Diffusion scheme, `conservative` (the default: total liquid is
+    /// conserved) or `thesis` (the thesis' Shepard scheme); needs `diffusion`.
+    pub mode: Option<DiffusionMode>,
+    /// Voxel edge of the body's diffusion field, m; automatic from the mean
+    /// texel size when absent. Needs `diffusion`.
+    pub voxel_size: Option<f64>,
+    /// The liquid at the start: a fill fraction of saturation in [0, 1]
+    /// (0, dry, by default), or an image (PNG or EXR, relative to the scene)
+    /// laid over the UV square whose luminance 1 is saturation.
+    #[serde(default)]
+    pub initial: InitialLiquid,
+}
+
+/// A surface material: a preset or its parameters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum MaterialSpec {
+    /// `sand`, `wood`, `rock` or `cotton`.
+    Preset(String),
+    /// The parameters.
+    Custom(MaterialParams),
+}
+
+/// A material's parameters (thesis Table 5.1).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialParams {
+    /// Intrinsic permeability C_M, m² (≥ 0).
+    pub permeability: f64,
+    /// Thickness of the porous layer, m (> 0).
+    pub thickness: f64,
+    /// Saturation: the most liquid per area, m³/m² = m (> 0).
+    pub saturation: f64,
+}
+
+impl MaterialSpec {
+    /// The material, or `None` for an unknown preset name.
+    pub fn material(&self) -> Option<Material> {
+        match self {
+            MaterialSpec::Preset(name) => match name.as_str() {
+                "sand" => Some(Material::sand()),
+                "wood" => Some(Material::wood()),
+                "rock" => Some(Material::rock()),
+                "cotton" => Some(Material::cotton()),
+                _ => None,
+            },
+            MaterialSpec::Custom(p) => Some(Material {
+                permeability: p.permeability,
+                thickness: p.thickness,
+                saturation: p.saturation,
+            }),
+        }
+    }
+}
+
+/// A liquid: a preset or its parameters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum LiquidSpec {
+    /// `water` or `ethanol`.
+    Preset(String),
+    /// The parameters.
+    Custom(LiquidParams),
+}
+
+impl Default for LiquidSpec {
+    fn default() -> Self {
+        LiquidSpec::Preset("water".into())
+    }
+}
+
+/// A liquid's parameters (thesis Table 5.1).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LiquidParams {
+    /// Dynamic viscosity μ, Pa·s (> 0).
+    pub viscosity: f64,
+    /// Evaporation rate k_L, 1/(m·s) (≥ 0): the surface dries at
+    /// `f_env k_L C_M` m/s. Water's is 1e4; a larger value makes a
+    /// time-lapse.
+    pub evaporation_rate: f64,
+}
+
+impl LiquidSpec {
+    /// The liquid, or `None` for an unknown preset name.
+    pub fn liquid(&self) -> Option<Liquid> {
+        match self {
+            LiquidSpec::Preset(name) => match name.as_str() {
+                "water" => Some(Liquid::water()),
+                "ethanol" => Some(Liquid::ethanol()),
+                _ => None,
+            },
+            LiquidSpec::Custom(p) => Some(Liquid {
+                viscosity: p.viscosity,
+                evaporation_rate: p.evaporation_rate,
+            }),
+        }
+    }
+}
+
+/// The liquid a wet body starts with.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum InitialLiquid {
+    /// Every texel at this fraction of saturation, in [0, 1].
+    Fill(f64),
+    /// An image file relative to the scene (luminance 1 = saturation).
+    Image(String),
+}
+
+impl Default for InitialLiquid {
+    fn default() -> Self {
+        InitialLiquid::Fill(0.0)
+    }
+}
+
+fn default_temperature_c() -> f64 {
+    20.0
+}
+fn default_humidity() -> f64 {
+    0.5
+}
+fn default_wind() -> f64 {
+    2.0
+}
+
+/// The weather wet bodies dry in, the same for all of them.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvironmentSpec {
+    /// Air temperature, °C (default 20).
+    #[serde(default = "default_temperature_c")]
+    pub temperature_c: f64,
+    /// Relative humidity, a fraction in [0, 1] (default 0.5); at 1 nothing dries.
+    #[serde(default = "default_humidity")]
+    pub relative_humidity: f64,
+    /// Wind speed, m/s (default 2).
+    #[serde(default = "default_wind")]
+    pub wind_speed: f64,
+    /// Rain falling everywhere on upward-facing dry texels, mm/h (default 0).
+    #[serde(default)]
+    pub rain_mm_per_hour: f64,
+}
+
+impl Default for EnvironmentSpec {
+    fn default() -> Self {
+        Self {
+            temperature_c: default_temperature_c(),
+            relative_humidity: default_humidity(),
+            wind_speed: default_wind(),
+            rain_mm_per_hour: 0.0,
+        }
+    }
+}
+
+impl EnvironmentSpec {
+    /// The environment in soak-wet's units (temperature in K).
+    pub fn environment(&self) -> Environment {
+        Environment {
+            temperature: self.temperature_c + 273.15,
+            relative_humidity: self.relative_humidity,
+            wind_speed: self.wind_speed,
+            rain: if self.rain_mm_per_hour > 0.0 {
+                Rain::mm_per_hour(self.rain_mm_per_hour)
+            } else {
+                Rain::none()
+            },
+        }
+    }
 }
 
 /// Where a body's liquid graph comes from.
@@ -241,11 +450,18 @@ pub struct OutputSpec {
     /// Record every N steps.
     #[serde(default = "default_every")]
     pub every: usize,
+    /// `soak simulate` writes each wet body's liquid texture as a
+    /// pseudo-colour PNG every N steps (dark blue dry, dark red saturated);
+    /// none when absent. `--liquid-png-every` overrides it.
+    pub liquid_png_every: Option<usize>,
 }
 
 impl Default for OutputSpec {
     fn default() -> Self {
-        Self { every: 1 }
+        Self {
+            every: 1,
+            liquid_png_every: None,
+        }
     }
 }
 
@@ -338,6 +554,38 @@ impl LoadedScene {
         finite("gravity", &s.gravity)?;
         if s.output.every == 0 {
             return Err(self.invalid("output.every", "must be at least 1"));
+        }
+        if s.output.liquid_png_every == Some(0) {
+            return Err(self.invalid("output.liquid_png_every", "must be at least 1"));
+        }
+        if let Some(e) = &s.environment {
+            if !(e.temperature_c.is_finite() && e.temperature_c > -273.15) {
+                return Err(self.invalid(
+                    "environment.temperature_c",
+                    format!(
+                        "must be a temperature above absolute zero in °C, not {}",
+                        e.temperature_c
+                    ),
+                ));
+            }
+            if !(0.0..=1.0).contains(&e.relative_humidity) {
+                return Err(self.invalid(
+                    "environment.relative_humidity",
+                    format!("must be a fraction in [0, 1], not {}", e.relative_humidity),
+                ));
+            }
+            if !(e.wind_speed.is_finite() && e.wind_speed >= 0.0) {
+                return Err(self.invalid(
+                    "environment.wind_speed",
+                    format!("must be ≥ 0 m/s, not {}", e.wind_speed),
+                ));
+            }
+            if !(e.rain_mm_per_hour.is_finite() && e.rain_mm_per_hour >= 0.0) {
+                return Err(self.invalid(
+                    "environment.rain_mm_per_hour",
+                    format!("must be ≥ 0 mm/h, not {}", e.rain_mm_per_hour),
+                ));
+            }
         }
         let w = &s.water;
         let kind = w.kind;
@@ -438,6 +686,9 @@ impl LoadedScene {
                     return Err(self.invalid(&hk("at"), format!("must be a time ≥ 0 s, not {}", h.at)));
                 }
             }
+            if let Some(w) = &b.wetting {
+                self.validate_wetting(i, b, w)?;
+            }
             if let Some(d) = b.drag {
                 if !(d.coefficient.is_finite() && d.coefficient >= 0.0) {
                     return Err(self.invalid(
@@ -449,6 +700,82 @@ impl LoadedScene {
                     return Err(self.invalid(&key("drag.linear"), format!("must be ≥ 0, not {}", d.linear)));
                 }
             }
+        }
+        Ok(())
+    }
+}
+
+impl LoadedScene {
+    fn validate_wetting(&self, i: usize, b: &BodySpec, w: &WettingSpec) -> Result<(), SceneError> {
+        let key = |k: &str| format!("bodies[{i}].wetting{k}");
+        if b.fixed {
+            return Err(self.invalid(
+                &key(""),
+                "does not apply to a fixed body (only bodies soak drives get wet)",
+            ));
+        }
+        let check = |k: &str, v: f64, ok: bool, what: &str| -> Result<(), SceneError> {
+            if v.is_finite() && ok {
+                Ok(())
+            } else {
+                Err(self.invalid(&key(k), format!("must be {what}, not {v}")))
+            }
+        };
+        match &w.material {
+            MaterialSpec::Preset(name) if w.material.material().is_none() => {
+                return Err(self.invalid(
+                    &key(".material"),
+                    format!("`{name}` is not a material (sand, wood, rock, cotton, or a table)"),
+                ));
+            }
+            MaterialSpec::Custom(p) => {
+                check(
+                    ".material.permeability",
+                    p.permeability,
+                    p.permeability >= 0.0,
+                    "≥ 0 m²",
+                )?;
+                check(".material.thickness", p.thickness, p.thickness > 0.0, "> 0 m")?;
+                check(".material.saturation", p.saturation, p.saturation > 0.0, "> 0 m")?;
+            }
+            MaterialSpec::Preset(_) => {}
+        }
+        match &w.liquid {
+            LiquidSpec::Preset(name) if w.liquid.liquid().is_none() => {
+                return Err(self.invalid(
+                    &key(".liquid"),
+                    format!("`{name}` is not a liquid (water, ethanol, or a table)"),
+                ));
+            }
+            LiquidSpec::Custom(p) => {
+                check(".liquid.viscosity", p.viscosity, p.viscosity > 0.0, "> 0 Pa·s")?;
+                check(
+                    ".liquid.evaporation_rate",
+                    p.evaporation_rate,
+                    p.evaporation_rate >= 0.0,
+                    "≥ 0 1/(m·s)",
+                )?;
+            }
+            LiquidSpec::Preset(_) => {}
+        }
+        if let Some(d) = w.diffusion {
+            check(".diffusion", d, d >= 0.0, "a diffusion coefficient ≥ 0 m²/s")?;
+        }
+        for (k, present) in [("mode", w.mode.is_some()), ("voxel_size", w.voxel_size.is_some())] {
+            if present && w.diffusion.is_none() {
+                return Err(self.invalid(&key(&format!(".{k}")), "needs `diffusion`"));
+            }
+        }
+        if let Some(v) = w.voxel_size {
+            check(".voxel_size", v, v > 0.0, "> 0 m")?;
+        }
+        if let InitialLiquid::Fill(f) = w.initial {
+            check(
+                ".initial",
+                f,
+                (0.0..=1.0).contains(&f),
+                "a fill fraction in [0, 1] or an image path",
+            )?;
         }
         Ok(())
     }

@@ -9,7 +9,7 @@ use soak_hydro::{Gerstner, HeightField, MassModel, Plane, Unbounded, Water};
 use crate::convert;
 use crate::error::{SceneError, SoakError};
 use crate::generator::{BodyDesc, Effects, ForceGenerator, SoakId};
-use crate::scene::{ColliderSpec, LoadedScene, MassSpec, WaterKind};
+use crate::scene::{ColliderSpec, InitialLiquid, LoadedScene, MassSpec, WaterKind, WettingSpec};
 
 /// One body of a running scene.
 #[derive(Clone, Debug)]
@@ -47,6 +47,9 @@ pub struct Sample {
     pub mass: f64,
     /// Liquid inside (liquid graph), m³.
     pub liquid_inside: f64,
+    /// Liquid soaked into the surface (the wetting liquid texture,
+    /// `Σ a_i h_i`), m³; 0 without wetting.
+    pub surface_liquid: f64,
 }
 
 /// The final state of a body, as `soak simulate --json` prints it.
@@ -70,12 +73,15 @@ pub struct BodyReport {
     pub mass: f64,
     /// Liquid inside (bodies with a liquid graph), m³.
     pub liquid_inside: Option<f64>,
+    /// Liquid soaked into the surface (bodies with wetting), m³.
+    pub surface_liquid: Option<f64>,
     /// Whether any state or force went non-finite during the run.
     pub non_finite: bool,
 }
 
 /// Everything a running scene owns, for saving and resuming: the scene
-/// itself, the Rapier world, the generator's and the liquids' evolving state.
+/// itself, the Rapier world, the generator's (with each wet body's liquid
+/// texture and the environment) and the liquids' evolving state.
 /// A run resumed from it continues bit for bit as the uninterrupted run.
 #[derive(Clone, Serialize, serde::Deserialize)]
 pub struct SavedSimulation {
@@ -239,6 +245,10 @@ impl Simulation {
         world.gravity = convert::to_vector(&Vector3::from(scene.gravity));
         world.integration_parameters.dt = scene.dt as f32;
         let mut soak = ForceGenerator::new(water_of(loaded)?).with_backend(scene.backend);
+        if let Some(env) = &scene.environment {
+            soak.set_environment(env.environment())
+                .map_err(|e| loaded.invalid("environment", e.to_string()))?;
+        }
         if scene.backend == crate::generator::Backend::Gpu {
             soak = with_gpu(soak).map_err(|message| SceneError::Invalid {
                 path: loaded.path.clone(),
@@ -325,6 +335,12 @@ impl Simulation {
                         .map_err(|e| body_err(e.to_string()))?,
                 )
             };
+            if let (Some(spec), Some(id)) = (&b.wetting, id) {
+                let atlas = soak.body(id).expect("just registered").atlas();
+                let wetting = wetting_of(loaded, i, spec, atlas)?;
+                soak.set_wetting(id, Some(wetting))
+                    .map_err(|e| loaded.invalid(&format!("bodies[{i}].wetting"), e.to_string()))?;
+            }
             if let (Some(spec), Some(id)) = (&b.graph, id) {
                 let atlas = soak.body(id).expect("just registered").atlas().clone();
                 let flooding = flooding(loaded, i, &mesh, &atlas, spec).map_err(body_err)?;
@@ -457,8 +473,57 @@ impl Simulation {
                 submerged_volume: forces.submerged_volume,
                 mass: rb.mass() as f64,
                 liquid_inside: self.liquid_of(b.id).unwrap_or(0.0),
+                surface_liquid: self.surface_liquid_of(b.id).unwrap_or(0.0),
             });
         }
+    }
+
+    /// Liquid in the body's surface (its wetting liquid texture), m³.
+    fn surface_liquid_of(&self, id: Option<SoakId>) -> Option<f64> {
+        let b = self.soak.body(id?)?;
+        Some(b.wetting()?.total_liquid(b.atlas()))
+    }
+
+    /// Writes the liquid texture of every wet body as a pseudo-colour PNG
+    /// (thesis Fig. 7.14, right column: dark blue dry through cyan and
+    /// yellow to dark red at saturation; uncovered atlas texels dark grey)
+    /// into `dir` (created if needed), one file per body named
+    /// `{body}_liquid_{step:06}.png` with the steps taken so far. Returns
+    /// the files written (none without wet bodies).
+    pub fn write_liquid_pngs(&self, dir: &std::path::Path) -> Result<Vec<std::path::PathBuf>, SoakError> {
+        let mut written = Vec::new();
+        for b in &self.bodies {
+            let Some(sb) = b.id.and_then(|id| self.soak.body(id)) else {
+                continue;
+            };
+            let Some(w) = sb.wetting() else {
+                continue;
+            };
+            if written.is_empty() {
+                std::fs::create_dir_all(dir)
+                    .map_err(|e| SoakError::State(format!("cannot create {}: {e}", dir.display())))?;
+            }
+            let safe: String = b
+                .name
+                .chars()
+                .map(|c| {
+                    if c.is_alphanumeric() || c == '-' || c == '_' {
+                        c
+                    } else {
+                        '_'
+                    }
+                })
+                .collect();
+            let path = dir.join(format!("{safe}_liquid_{:06}.png", self.steps));
+            soak_wet::write_liquid_png(sb.atlas(), w.liquid(), w.material().saturation, &path).map_err(
+                |source| SoakError::Wet {
+                    name: b.name.clone(),
+                    source,
+                },
+            )?;
+            written.push(path);
+        }
+        Ok(written)
     }
 
     fn liquid_of(&self, id: Option<SoakId>) -> Option<f64> {
@@ -544,11 +609,59 @@ impl Simulation {
                     submerged_fraction: fraction,
                     mass: rb.mass() as f64,
                     liquid_inside: self.liquid_of(b.id),
+                    surface_liquid: self.surface_liquid_of(b.id),
                     non_finite: self.non_finite[i] || non_finite,
                 }
             })
             .collect()
     }
+}
+
+/// The wetting state a body's `wetting` key asks for, over its atlas.
+fn wetting_of(
+    loaded: &LoadedScene,
+    i: usize,
+    spec: &WettingSpec,
+    atlas: &Atlas,
+) -> Result<soak_wet::Wetting, SceneError> {
+    let key = |k: &str| format!("bodies[{i}].wetting{k}");
+    let material = spec
+        .material
+        .material()
+        .ok_or_else(|| loaded.invalid(&key(".material"), "is not a known material"))?;
+    let liquid = spec
+        .liquid
+        .liquid()
+        .ok_or_else(|| loaded.invalid(&key(".liquid"), "is not a known liquid"))?;
+    let mut wetting = soak_wet::Wetting::new(atlas, material, liquid)
+        .map_err(|e| loaded.invalid(&key(""), e.to_string()))?;
+    if let Some(d) = spec.diffusion {
+        let mut diffusion = soak_wet::Diffusion::new(d).with_mode(spec.mode.unwrap_or_default());
+        if let Some(v) = spec.voxel_size {
+            diffusion = diffusion.with_resolution(soak_wet::FieldResolution::VoxelSize(v));
+        }
+        wetting
+            .set_diffusion(Some(diffusion))
+            .map_err(|e| loaded.invalid(&key(".diffusion"), e.to_string()))?;
+    }
+    match &spec.initial {
+        InitialLiquid::Fill(f) => {
+            if *f > 0.0 {
+                wetting
+                    .fill(atlas, *f)
+                    .map_err(|e| loaded.invalid(&key(".initial"), e.to_string()))?;
+            }
+        }
+        InitialLiquid::Image(file) => {
+            let path = loaded.resolve(file);
+            let image = soak_wet::LiquidImage::open(&path)
+                .map_err(|e| loaded.invalid(&key(".initial"), format!("`{}`: {e}", path.display())))?;
+            wetting
+                .set_liquid_from_image(atlas, &image, material.saturation)
+                .map_err(|e| loaded.invalid(&key(".initial"), format!("`{}`: {e}", path.display())))?;
+        }
+    }
+    Ok(wetting)
 }
 
 /// The liquid graph a body's `graph` key asks for, behind its atlas' wall.

@@ -13,8 +13,16 @@ fn data(name: &str) -> PathBuf {
         .collect()
 }
 
-/// Folds every body's pose, velocity, mass and liquid into `h`, bit for bit.
+/// Folds every body's pose, velocity, mass, liquid inside and liquid
+/// texture (wet bodies) into `h`, bit for bit.
 fn fold(sim: &Simulation, h: &mut impl Hasher) {
+    for b in sim.soak.bodies() {
+        if let Some(texture) = b.liquid() {
+            for x in texture {
+                x.to_bits().hash(h);
+            }
+        }
+    }
     for r in sim.report() {
         let liquid = r.liquid_inside.unwrap_or(-1.0);
         let floats = r
@@ -54,7 +62,11 @@ fn scene(name: &str) -> LoadedScene {
 
 #[test]
 fn a_thousand_steps_are_bit_identical_across_runs_and_thread_counts() {
-    for name in ["scenes/buoy_on_waves.toml", "scenes/sinking_boat.toml"] {
+    for name in [
+        "scenes/buoy_on_waves.toml",
+        "scenes/sinking_boat.toml",
+        "scenes/wet_crate.toml",
+    ] {
         let s = scene(name);
         let hashes: Vec<u64> = [1, 2, 2, 4]
             .into_iter()
@@ -66,7 +78,11 @@ fn a_thousand_steps_are_bit_identical_across_runs_and_thread_counts() {
 
 #[test]
 fn a_run_saved_at_step_500_and_resumed_equals_the_uninterrupted_run() {
-    for name in ["scenes/sinking_boat.toml", "scenes/three_boxes.toml"] {
+    for name in [
+        "scenes/sinking_boat.toml",
+        "scenes/three_boxes.toml",
+        "scenes/wet_crate.toml",
+    ] {
         let s = scene(name);
         let mut straight = Simulation::from_scene(&s).unwrap();
         run(&mut straight, 500);
@@ -82,6 +98,7 @@ fn a_run_saved_at_step_500_and_resumed_equals_the_uninterrupted_run() {
         assert_eq!(run(&mut resumed, 500), tail, "{name}: the resumed run diverged");
         let (a, b) = (straight.report(), resumed.report());
         assert_eq!(format!("{a:?}"), format!("{b:?}"));
+        assert_eq!(straight.soak.state(), resumed.soak.state(), "{name}");
     }
 }
 
