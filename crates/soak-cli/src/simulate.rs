@@ -23,6 +23,14 @@ pub struct Args {
     /// Override the scene's backend: `cpu` (tiled), `per-texel` or `gpu`.
     #[arg(long, value_enum)]
     backend: Option<SimBackend>,
+    /// Write each wet body's liquid texture as a pseudo-colour PNG (dark
+    /// blue dry to dark red saturated) at the start and every N steps
+    /// (overrides the scene's `output.liquid_png_every`).
+    #[arg(long, value_name = "N")]
+    liquid_png_every: Option<usize>,
+    /// Directory for the liquid PNGs (`BODY_liquid_STEP.png`).
+    #[arg(long, default_value = "out/simulate")]
+    out: PathBuf,
 }
 
 /// Where `soak simulate` evaluates the texel sums.
@@ -52,8 +60,16 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
             SimBackend::Gpu => Backend::Gpu,
         };
     }
+    if let Some(n) = args.liquid_png_every {
+        anyhow::ensure!(n >= 1, "--liquid-png-every must be at least 1");
+    }
+    let png_every = args.liquid_png_every.or(loaded.scene.output.liquid_png_every);
     let mut sim = Simulation::from_scene(&loaded)?;
     sim.record(args.csv.is_some());
+    let mut pngs = 0;
+    if png_every.is_some() {
+        pngs += sim.write_liquid_pngs(&args.out)?.len();
+    }
     let total = sim.total_steps();
     let bar = if std::io::stderr().is_terminal() {
         let bar = indicatif::ProgressBar::new(total);
@@ -66,13 +82,19 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     } else {
         None
     };
-    sim.run(|k| {
+    for k in 1..=total {
+        sim.step()?;
         if let Some(b) = &bar
             && k % 16 == 0
         {
             b.set_position(k);
         }
-    })?;
+        if let Some(n) = png_every
+            && k % n as u64 == 0
+        {
+            pngs += sim.write_liquid_pngs(&args.out)?.len();
+        }
+    }
     if let Some(b) = bar {
         b.finish_and_clear();
     }
@@ -91,7 +113,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         );
         for r in &report {
             println!(
-                "  {:<16} at ({:>8.3}, {:>8.3}, {:>8.3}) m, tilt ({:>7.2}, {:>7.2}, {:>7.2})°, {:>5.1} % submerged, {:.2} kg{}{}",
+                "  {:<16} at ({:>8.3}, {:>8.3}, {:>8.3}) m, tilt ({:>7.2}, {:>7.2}, {:>7.2})°, {:>5.1} % submerged, {:.2} kg{}{}{}",
                 r.name,
                 r.position[0],
                 r.position[1],
@@ -104,11 +126,17 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
                 r.liquid_inside
                     .map(|l| format!(", {l:.3} m³ of water inside"))
                     .unwrap_or_default(),
+                r.surface_liquid
+                    .map(|l| format!(", {:.3} L soaked into the surface", 1e3 * l))
+                    .unwrap_or_default(),
                 if r.non_finite { "  NON-FINITE" } else { "" }
             );
         }
         if let Some(path) = &args.csv {
             println!("time series in {}", path.display());
+        }
+        if pngs > 0 {
+            println!("{pngs} liquid textures in {}", args.out.display());
         }
     }
     if sim.soak.firewall().count() > 0 {
@@ -130,7 +158,8 @@ pub fn write_csv(path: &std::path::Path, sim: &Simulation) -> anyhow::Result<()>
     writeln!(
         w,
         "t_s,body,x_m,y_m,z_m,qx,qy,qz,qw,vx_m_s,vy_m_s,vz_m_s,wx_rad_s,wy_rad_s,wz_rad_s,\
-         buoyancy_x_n,buoyancy_y_n,buoyancy_z_n,drag_x_n,drag_y_n,drag_z_n,submerged_volume_m3,mass_kg,liquid_inside_m3"
+         buoyancy_x_n,buoyancy_y_n,buoyancy_z_n,drag_x_n,drag_y_n,drag_z_n,submerged_volume_m3,mass_kg,liquid_inside_m3,\
+         surface_liquid_m3"
     )?;
     for s in sim.samples() {
         write_row(&mut w, &sim.bodies[s.body].name, s)?;
@@ -143,7 +172,7 @@ fn write_row(w: &mut impl Write, name: &str, s: &Sample) -> std::io::Result<()> 
     let f = |v: &[f64]| v.iter().map(|x| format!("{x:.6}")).collect::<Vec<_>>().join(",");
     writeln!(
         w,
-        "{:.5},{},{},{},{},{},{},{},{:.6},{:.4},{:.6}",
+        "{:.5},{},{},{},{},{},{},{},{:.6},{:.4},{:.6},{:.9}",
         s.t,
         name,
         f(&s.position),
@@ -154,6 +183,7 @@ fn write_row(w: &mut impl Write, name: &str, s: &Sample) -> std::io::Result<()> 
         f(&s.drag),
         s.submerged_volume,
         s.mass,
-        s.liquid_inside
+        s.liquid_inside,
+        s.surface_liquid
     )
 }
