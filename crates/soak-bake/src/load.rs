@@ -257,6 +257,68 @@ fn parse_gltf(bytes: &[u8], path: &Path) -> Result<gltf::Gltf, LoadError> {
     Ok(gltf::Gltf { document, blob })
 }
 
+/// Checks what glTF's accessor reader assumes without checking (it panics,
+/// or reads the wrong bytes, otherwise): the element type, at least one
+/// element, no sparse storage, a stride no smaller than an element, and an
+/// extent inside the buffer view and the view inside its buffer.
+fn check_accessor(
+    acc: &gltf::Accessor<'_>,
+    dims: gltf::accessor::Dimensions,
+    types: &[gltf::accessor::DataType],
+    buffers: &[gltf::buffer::Data],
+) -> Result<(), String> {
+    let index = acc.index();
+    if acc.dimensions() != dims || !types.contains(&acc.data_type()) {
+        return Err(format!(
+            "accessor {index} holds {:?} of {:?}, expected {dims:?} of one of {types:?}",
+            acc.dimensions(),
+            acc.data_type()
+        ));
+    }
+    if acc.count() == 0 {
+        return Err(format!("accessor {index} has no elements"));
+    }
+    if acc.sparse().is_some() {
+        return Err(format!("accessor {index} is sparse, which soak does not read"));
+    }
+    let Some(view) = acc.view() else {
+        return Err(format!("accessor {index} has no buffer view"));
+    };
+    let buffer = view.buffer().index();
+    let Some(data) = buffers.get(buffer) else {
+        return Err(format!("accessor {index} refers to missing buffer {buffer}"));
+    };
+    if view
+        .offset()
+        .checked_add(view.length())
+        .is_none_or(|end| end > data.0.len())
+    {
+        return Err(format!(
+            "accessor {index}: buffer view {} ({} bytes at {}) extends past buffer {buffer} ({} bytes)",
+            view.index(),
+            view.length(),
+            view.offset(),
+            data.0.len()
+        ));
+    }
+    let size = acc.size();
+    let stride = view.stride().unwrap_or(size);
+    let end = stride
+        .checked_mul(acc.count() - 1)
+        .and_then(|x| x.checked_add(size))
+        .and_then(|x| x.checked_add(acc.offset()));
+    if stride < size || end.is_none_or(|end| end > view.length()) {
+        return Err(format!(
+            "accessor {index} ({} elements of {size} bytes, stride {stride}, offset {}) does not fit buffer view {} ({} bytes)",
+            acc.count(),
+            acc.offset(),
+            view.index(),
+            view.length()
+        ));
+    }
+    Ok(())
+}
+
 #[derive(Default)]
 struct GltfOut {
     positions: Vec<Point3<f64>>,
@@ -292,6 +354,35 @@ fn read_gltf_mesh(
                 && buffers.get(view.buffer().index()).is_none()
             {
                 return Err(perr(pi, format!("attribute {sem:?} refers to a missing buffer")));
+            }
+        }
+        {
+            use gltf::accessor::{DataType, Dimensions};
+            let checks = [
+                (
+                    "POSITION",
+                    prim.get(&gltf::Semantic::Positions),
+                    Dimensions::Vec3,
+                    &[DataType::F32][..],
+                ),
+                (
+                    "TEXCOORD_0",
+                    prim.get(&gltf::Semantic::TexCoords(0)),
+                    Dimensions::Vec2,
+                    &[DataType::F32, DataType::U8, DataType::U16][..],
+                ),
+                (
+                    "indices",
+                    prim.indices(),
+                    Dimensions::Scalar,
+                    &[DataType::U8, DataType::U16, DataType::U32][..],
+                ),
+            ];
+            for (what, acc, dims, types) in checks {
+                if let Some(acc) = acc {
+                    check_accessor(&acc, dims, types, buffers)
+                        .map_err(|r| perr(pi, format!("{what} {r}")))?;
+                }
             }
         }
         let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));

@@ -161,3 +161,58 @@ fn gltf_with_position_accessor_past_the_end_is_an_error() {
         "{msg}"
     );
 }
+
+/// Found by fuzzing (the gltf target): glTF's accessor reader asserts that
+/// an accessor's element size matches the type read from it, so TEXCOORD_0
+/// pointing at a VEC3 accessor panicked (and read the wrong bytes in release).
+#[test]
+fn gltf_with_vec3_texture_coordinates_is_an_error() {
+    let e = load_mesh(&data("bad/gltf_texcoord_accessor_vec3.gltf")).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        matches!(
+            e,
+            LoadError::GltfPrimitive {
+                mesh: 0,
+                primitive: 0,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(
+        msg.contains("gltf_texcoord_accessor_vec3.gltf") && msg.contains("TEXCOORD_0 accessor 0 holds Vec3"),
+        "{msg}"
+    );
+}
+
+/// The other assumptions of glTF's accessor reader, checked before reading:
+/// at least one element, and an extent inside the buffer view.
+#[test]
+fn gltf_accessors_that_do_not_fit_their_view_are_errors() {
+    let text = std::fs::read_to_string(data("bad/gltf_texcoord_accessor_vec3.gltf")).unwrap();
+    let fixed = text.replace(",\"TEXCOORD_0\":0", "");
+    let path = std::path::Path::new("t.gltf");
+    assert!(soak_bake::load::load_gltf_bytes(fixed.as_bytes(), path, None).is_ok());
+    for (from, to, expect) in [
+        (
+            "\"count\":3",
+            "\"count\":4",
+            "does not fit buffer view 0 (36 bytes)",
+        ),
+        ("\"count\":3", "\"count\":0", "has no elements"),
+        (
+            "\"count\":3",
+            "\"count\":3,\"byteOffset\":4",
+            "does not fit buffer view 0",
+        ),
+    ] {
+        let bad = fixed.replace(from, to);
+        let e = soak_bake::load::load_gltf_bytes(bad.as_bytes(), path, None).unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.contains("t.gltf") && msg.contains("POSITION accessor 0") && msg.contains(expect),
+            "{to}: {msg}"
+        );
+    }
+}
