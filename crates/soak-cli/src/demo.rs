@@ -22,6 +22,9 @@ pub struct Args {
     /// Shorter runs (for a quick look or a smoke test).
     #[arg(long)]
     quick: bool,
+    /// Skip the rendered stills (buoy, sinking boat, wet beach, stain).
+    #[arg(long)]
+    no_stills: bool,
 }
 
 /// A time series: named columns of equal length.
@@ -631,8 +634,13 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         let line = case(seconds * s, &args.out).with_context(|| format!("demo case `{name}`"))?;
         println!("{line}  ({:.1} s)", t0.elapsed().as_secs_f64());
     }
+    if !args.no_stills {
+        for line in crate::stills::render_stills(&args.out, args.quick).context("rendering the stills")? {
+            println!("{line}");
+        }
+    }
     println!(
-        "plots and CSV in {} ({:.1} s in all)",
+        "plots, CSV and stills in {} ({:.1} s in all)",
         args.out.display(),
         start.elapsed().as_secs_f64()
     );

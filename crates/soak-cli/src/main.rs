@@ -10,6 +10,7 @@ mod plot;
 mod render;
 mod segment;
 mod simulate;
+mod stills;
 mod stress;
 
 use clap::{Parser, Subcommand};

@@ -20,7 +20,7 @@ use soak_rapier::scene::{LoadedScene, WaterKind};
 use soak_rapier::{Simulation, convert};
 use soak_shade::render::{
     Albedo, Arrow, Camera, DebugView, DirectionalLight, RenderObject, RenderScene, RenderWater, Renderer,
-    adapter_label, headless_device, procedural,
+    adapter_label, headless_device, liquid_image_from_texels, procedural,
 };
 use soak_shade::{Gamma, Liquid, WetMaterial};
 
@@ -203,13 +203,32 @@ impl SceneRenderer {
                 lo = lo.inf(&Point3::from(c.add_scalar(-r)));
                 hi = hi.sup(&Point3::from(c.add_scalar(r)));
             }
-            let object = RenderObject::new(self.meshes[i].clone(), pose)
+            let mut object = RenderObject::new(self.meshes[i].clone(), pose)
                 .with_name(b.name.clone())
                 .with_albedo(self.albedos[i].clone())
                 .with_material(WetMaterial {
                     liquid: Liquid::water(),
                     gamma: Gamma::Arctan { roughness: 8.0 },
                 });
+            // A wet body shows its liquid texture (saturation h / h_max).
+            if let Some(id) = b.id
+                && let (Some(body), Some(wetting)) = (sim.soak.body(id), sim.soak.wetting(id))
+            {
+                let atlas = body.atlas();
+                let saturation = wetting.material().saturation;
+                let values: Vec<f32> = wetting
+                    .liquid()
+                    .iter()
+                    .map(|h| (h / saturation).clamp(0.0, 1.0) as f32)
+                    .collect();
+                object = object.with_liquid(liquid_image_from_texels(
+                    atlas.width(),
+                    atlas.height(),
+                    atlas.texels(),
+                    &values,
+                    3,
+                ));
+            }
             objects.push(object);
             if let (true, Some(id)) = (self.options.forces, b.id)
                 && let Some(body) = sim.soak.body(id)
@@ -230,7 +249,7 @@ impl SceneRenderer {
         let size = (hi - lo).norm().max(0.1);
         let target = self.options.target.unwrap_or(centre);
         let eye = self.options.eye.unwrap_or_else(|| {
-            let mut eye = target + Vector3::new(0.62, 0.42, 1.0).normalize() * (1.6 * size + 1.0);
+            let mut eye = target + Vector3::new(0.62, 0.34, 1.0).normalize() * (0.9 * size + 0.5);
             // Keep the eye above the water: a sunken body is seen through it.
             if let Some(level) = self.level.or(self.sea.as_ref().map(|s| s.level)) {
                 eye.y = eye.y.max(level + 0.3 * size + 0.5);

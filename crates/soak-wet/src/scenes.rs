@@ -154,7 +154,8 @@ pub struct TidalSea {
 }
 
 impl TidalSea {
-    fn tide(&self, t: f64) -> f64 {
+    /// The tide's offset of the mean level at time `t` (s), m.
+    pub fn tide(&self, t: f64) -> f64 {
         self.tide_amplitude * (TAU * t / self.tide_period).cos()
     }
 }
@@ -227,6 +228,8 @@ impl BeachOptions {
 pub struct SceneBody {
     /// A name for files and reports.
     pub name: &'static str,
+    /// The mesh (object frame, m), for drawing.
+    pub mesh: std::sync::Arc<Mesh>,
     /// The texel atlas.
     pub atlas: Atlas,
     /// Object → world, m.
@@ -253,6 +256,8 @@ pub struct Beach {
     pub bodies: Vec<SceneBody>,
     /// The sea.
     pub water: std::sync::Arc<Water>,
+    /// The same sea as data (swell and tide), for drawing.
+    pub sea: TidalSea,
     /// The weather over time.
     pub weather: EnvironmentTrack,
     /// The field the three bodies share.
@@ -307,7 +312,8 @@ impl Beach {
             UnitQuaternion::from_euler_angles(0.1, 0.7, -0.05),
         );
 
-        let crate_atlas = bake(&builtin::cuboid(1.0, 1.0, 1.0), options.object_resolution)?;
+        let crate_mesh = builtin::cuboid(1.0, 1.0, 1.0);
+        let crate_atlas = bake(&crate_mesh, options.object_resolution)?;
         let crate_ = Wetting::new(
             &crate_atlas,
             Material {
@@ -371,24 +377,28 @@ impl Beach {
             bodies: vec![
                 SceneBody {
                     name: "sand",
+                    mesh: std::sync::Arc::new(terrain),
                     atlas: sand_atlas,
                     pose: Isometry3::identity(),
                     wetting: sand,
                 },
                 SceneBody {
                     name: "rock",
+                    mesh: std::sync::Arc::new(rock_mesh),
                     atlas: rock_atlas,
                     pose: rock_pose,
                     wetting: rock,
                 },
                 SceneBody {
                     name: "crate",
+                    mesh: std::sync::Arc::new(crate_mesh),
                     atlas: crate_atlas,
                     pose: crate_pose,
                     wetting: crate_,
                 },
             ],
-            water: std::sync::Arc::new(Water::new(sea)),
+            water: std::sync::Arc::new(Water::new(sea.clone())),
+            sea,
             weather,
             field,
             time: 0.0,
