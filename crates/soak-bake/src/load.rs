@@ -231,6 +231,19 @@ fn parse_gltf(bytes: &[u8], path: &Path) -> Result<gltf::Gltf, LoadError> {
         path: path.to_path_buf(),
         reason,
     };
+    // glTF's GLB reader subtracts the 12-byte header from the declared
+    // length unchecked.
+    if let Some(declared) = bytes
+        .strip_prefix(b"glTF")
+        .and_then(|rest| rest.get(4..8))
+        .and_then(|b| <[u8; 4]>::try_from(b).ok())
+        .map(u32::from_le_bytes)
+        && declared < 12
+    {
+        return Err(gerr(format!(
+            "GLB header declares a length of {declared} bytes, less than the 12-byte header"
+        )));
+    }
     let gltf::Gltf { document, blob } =
         gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| gerr(e.to_string()))?;
     let json = document.into_json();

@@ -216,3 +216,18 @@ fn gltf_accessors_that_do_not_fit_their_view_are_errors() {
         );
     }
 }
+
+/// Found by fuzzing (the gltf target): glTF's GLB reader subtracted the
+/// 12-byte header from the declared length unchecked, so a length under 12
+/// overflowed (a panic in debug builds).
+#[test]
+fn glb_with_a_length_shorter_than_its_header_is_an_error() {
+    let bytes = b"glTF\x02\x00\x00\x00\x04\x00\x00\x00\x00\x00\x00\x00JSON";
+    let e = soak_bake::load::load_gltf_bytes(bytes, std::path::Path::new("short.glb"), None).unwrap_err();
+    let msg = e.to_string();
+    assert!(matches!(e, LoadError::Gltf { .. }), "{e:?}");
+    assert!(
+        msg.contains("short.glb") && msg.contains("declares a length of 4 bytes"),
+        "{msg}"
+    );
+}
