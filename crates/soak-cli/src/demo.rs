@@ -25,6 +25,9 @@ pub struct Args {
     /// Skip the rendered stills (buoy, sinking boat, wet beach, stain).
     #[arg(long)]
     no_stills: bool,
+    /// Only the rendered stills, not the plotted cases.
+    #[arg(long, conflicts_with = "no_stills")]
+    stills_only: bool,
 }
 
 /// A time series: named columns of equal length.
@@ -629,7 +632,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         ("balloon", balloon, 30.0),
         ("sinking_boats", sinking_boats, 150.0),
     ];
-    for (name, case, seconds) in cases {
+    for (name, case, seconds) in cases.into_iter().filter(|_| !args.stills_only) {
         let t0 = Instant::now();
         let line = case(seconds * s, &args.out).with_context(|| format!("demo case `{name}`"))?;
         println!("{line}  ({:.1} s)", t0.elapsed().as_secs_f64());

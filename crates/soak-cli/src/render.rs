@@ -266,7 +266,7 @@ impl SceneRenderer {
         scene.objects = objects;
         scene.view = self.options.view.into();
         if weight_scale > 0.0 {
-            let metres_per_newton = 0.6 * size / weight_scale;
+            let metres_per_newton = 0.3 * size / weight_scale;
             for (com, weight, forces, r) in arrows {
                 let radius = (0.015 * size).max(0.004 * r);
                 scene
