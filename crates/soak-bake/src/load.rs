@@ -266,8 +266,43 @@ fn parse_gltf(bytes: &[u8], path: &Path) -> Result<gltf::Gltf, LoadError> {
             }
         }
     }
+    // glTF's buffer import percent-decodes a relative URI and unwraps the
+    // result as UTF-8.
+    for (i, buffer) in json.buffers.iter().enumerate() {
+        if let Some(uri) = &buffer.uri
+            && !uri.contains(':')
+            && std::str::from_utf8(&percent_decode(uri.as_bytes())).is_err()
+        {
+            return Err(gerr(format!(
+                "buffer {i}: URI `{uri}` does not percent-decode to UTF-8"
+            )));
+        }
+    }
     let document = gltf::Document::from_json(json).map_err(|e| gerr(e.to_string()))?;
     Ok(gltf::Gltf { document, blob })
+}
+
+/// `%XX` escapes decoded to bytes; a `%` not followed by two hex digits
+/// stays as it is (as glTF's URI decoding does).
+fn percent_decode(bytes: &[u8]) -> Vec<u8> {
+    let hex = |b: u8| (b as char).to_digit(16);
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%'
+            && let (Some(h), Some(l)) = (
+                bytes.get(i + 1).copied().and_then(hex),
+                bytes.get(i + 2).copied().and_then(hex),
+            )
+        {
+            out.push((h * 16 + l) as u8);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    out
 }
 
 /// Checks what glTF's accessor reader assumes without checking (it panics,

@@ -231,3 +231,22 @@ fn glb_with_a_length_shorter_than_its_header_is_an_error() {
         "{msg}"
     );
 }
+
+/// Found by fuzzing (the gltf target): glTF's buffer import percent-decodes
+/// a relative buffer URI and unwrapped the result as UTF-8, so `%AD`
+/// panicked.
+#[test]
+fn gltf_with_a_buffer_uri_that_is_not_utf8_is_an_error() {
+    let text = br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"a%AD.bin"}]}"#;
+    let e = soak_bake::load::load_gltf_bytes(text, std::path::Path::new("uri.gltf"), None).unwrap_err();
+    let msg = e.to_string();
+    assert!(matches!(e, LoadError::Gltf { .. }), "{e:?}");
+    assert!(
+        msg.contains("uri.gltf") && msg.contains("buffer 0: URI `a%AD.bin` does not percent-decode to UTF-8"),
+        "{msg}"
+    );
+    // Valid escapes still name the file they refer to.
+    let ok = br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"a%20b.bin"}]}"#;
+    let e = soak_bake::load::load_gltf_bytes(ok, std::path::Path::new("uri.gltf"), None).unwrap_err();
+    assert!(!e.to_string().contains("UTF-8"), "{e}");
+}
