@@ -39,8 +39,9 @@ cargo run --quiet --locked -p soak-bake --example fuzz_seeds -- "$seeds/generate
 mkdir -p "$seeds"/{obj,gltf,scene,texture,graph}
 cp "$seeds"/generated/obj/* data/*.obj data/bad/*.obj "$seeds/obj/"
 cp "$seeds"/generated/gltf/* data/*.gltf data/*.glb "$seeds/gltf/"
-cp data/bad/*.gltf "$seeds/gltf/" 2>/dev/null || true
 cp "$seeds"/generated/texture/* "$seeds/texture/"
+for f in data/bad/*.gltf data/bad/*.glb; do [ -e "$f" ] && cp "$f" "$seeds/gltf/"; done
+for f in data/bad/*.png data/bad/*.exr; do [ -e "$f" ] && cp "$f" "$seeds/texture/"; done
 cp data/scenes/*.toml data/bad/scene_*.toml "$seeds/scene/"
 cp data/graphs/* data/bad/graph_* "$seeds/graph/"
 
