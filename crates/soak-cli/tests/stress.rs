@@ -4,30 +4,24 @@
 
 use std::process::Command;
 
-/// Cells that fail the energy check (and with it the settling check)
-/// because of the force generator, not the checks: a body whose heave
-/// period is far shorter than the Rapier step (1 mm, ρ = 0.01, dt = 1/10 s:
-/// the step is 11 natural times) gets its buoyancy held constant for the
-/// whole step and is flung out of the water at ~50 m/s. The fix, implicit
-/// restoring buoyancy, belongs in `soak-rapier`'s generator
-/// (docs/stress.md, "Known failures"). These cells must still be finite
-/// and pass the liquid check; when the generator is fixed they pass and
-/// this test says which to remove from the list.
+/// Cells that fail the energy check (and with it, for some, the settling
+/// check) at the stiffest corner of the matrix: 1 mm bodies at ρ = 0.01 and
+/// dt = 1/10 s, 11 natural times per step. The generator integrates the
+/// restoring buoyancy implicitly there (heave, pitch and roll), which keeps
+/// these bodies afloat with buoyancy alone; what is left fails by a little
+/// (the cylinder, within about 20 % of its allowance) or comes with ingress,
+/// whose hull takes in a large share of its capacity in one step, not yet
+/// diagnosed (docs/stress.md, "Known failures"). These cells must still be
+/// finite and pass the liquid check; when one starts to pass, this test says
+/// to remove it from the list.
 const KNOWN_ENERGY_FAILURES: &[&str] = &[
-    "sphere/1e-3m/0.01/1/10/plane/buoyancy",
-    "sphere/1e-3m/0.01/1/10/sea/+drag",
     "sphere/1e-3m/0.01/1/10/cliff/+ingress",
     "box/1e-3m/0.01/1/10/plane/+wetting",
     "cylinder/1e-3m/0.01/1/10/plane/buoyancy",
-    "cylinder/1e-3m/0.01/1/10/sea/+drag",
     "cylinder/1e-3m/0.01/1/10/cliff/+ingress",
     "capsule/1e-3m/0.01/1/10/plane/+wetting",
-    "torus/1e-3m/0.01/1/10/plane/buoyancy",
-    "torus/1e-3m/0.01/1/10/sea/+drag",
     "torus/1e-3m/0.01/1/10/cliff/+ingress",
     "boat/1e-3m/0.01/1/10/plane/+wetting",
-    "sliver/1e-3m/0.01/1/10/plane/buoyancy",
-    "sliver/1e-3m/0.01/1/10/sea/+drag",
     "sliver/1e-3m/0.01/1/10/cliff/+ingress",
 ];
 

@@ -3,7 +3,7 @@
 //! [`soak_wet::Wetting`], absorbing through the submerged texels,
 //! evaporating and diffusing with each step.
 
-use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Matrix3, Point3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::{
     ColliderSet, IntegrationParameters, PhysicsWorld, RigidBody, RigidBodyHandle, RigidBodySet,
 };
@@ -701,10 +701,22 @@ impl ForceGenerator {
                 linear_velocity: v,
                 angular_velocity: w,
             };
-            // Above the highest crest: no texel work at all.
+            // Above the highest crest: no texel work at all. A body stiff
+            // for the step (see `implicit_heave`) is skipped only if it
+            // cannot reach the water within the step, falling at g.
             let centre = state.pose * b.atlas.origin();
+            let radius = b.atlas.bounding_radius();
+            let reach = if implicit_weight(&self.water, radius, rb.mass() as f64, dt, substeps)
+                >= IMPLICIT_NEGLIGIBLE
+            {
+                let c = (substeps + 1.0) / (2.0 * substeps);
+                (1.0 - lookahead / dt) * dt * (-v.y).max(0.0)
+                    + c * dt * dt * self.water.gravity * rb.gravity_scale().abs() as f64
+            } else {
+                0.0
+            };
             if let Some((_, highest)) = bounds
-                && centre.y - b.atlas.bounding_radius() > highest
+                && centre.y - radius - reach > highest
             {
                 b.dry_skips += 1;
                 b.forces = HydroForces {
@@ -752,7 +764,7 @@ impl ForceGenerator {
         }
 
         // 3. The firewall, then Rapier.
-        for ((k, _, _), result) in work.iter().zip(results) {
+        for ((k, state, options), result) in work.iter().zip(results) {
             let b = &mut self.bodies[*k];
             let Some(rb) = bodies.get_mut(b.handle) else {
                 continue;
@@ -783,7 +795,7 @@ impl ForceGenerator {
                 );
                 wrench = wrench + last_part(&b.forces.buoyancy);
             } else {
-                wrench = wrench + bw;
+                wrench = wrench + implicit_heave(b, rb, &self.water, state, options, t, substeps, limit, bw);
             }
             if forces.drag.is_finite() {
                 wrench = wrench + forces.drag;
@@ -860,6 +872,186 @@ impl ForceGenerator {
         world.step();
         self.advance(dt);
         Ok(())
+    }
+}
+
+/// Below this weight `θ` of the implicit part of the heave step (see
+/// [`implicit_heave`]) the step is left explicit, and the evaluations the
+/// implicit solve needs are saved: it would change the net vertical force
+/// by about `θ` of itself.
+const IMPLICIT_NEGLIGIBLE: f64 = 1e-3;
+
+/// `θ = w⁴/(1 + w⁴)`, `w = c ρ_w g π r² dt²/m`: how implicit the heave step
+/// is (see [`implicit_heave`]).
+fn implicit_weight(water: &Water, radius: f64, m: f64, dt: f64, substeps: f64) -> f64 {
+    let c = (substeps + 1.0) / (2.0 * substeps);
+    let w = c * water.density * water.gravity * std::f64::consts::PI * radius * radius * dt * dt / m;
+    let w4 = (w * w) * (w * w);
+    w4 / (1.0 + w4)
+}
+
+/// The buoyancy with its restoring part integrated implicitly in heave,
+/// where the body is stiff for the step.
+///
+/// Rapier holds the force constant over the step, so a buoyancy whose heave
+/// period is shorter than the step (a light millimetre body at dt = 1/10 s)
+/// is applied far beyond the pose it was evaluated at and flings the body
+/// out of the water, or lets it fall for a whole step before the water
+/// answers. Rapier's symplectic Euler over `s` substeps `h = dt/s` with a
+/// constant acceleration `a` moves the centre of mass to
+///
+/// `y' = y + dt v + c dt² a`, `c = (s + 1)/(2s)`.
+///
+/// Backward Euler on that step evaluates the vertical force at `y'` itself:
+/// `a = F_y(y')/m − g`. Linearised, `F_y(y) ≈ F₀ − k (y − y₀)` with
+/// `k = ρ_w g A_wp` and `y₀ = y + β dt v` the predicted pose the generator
+/// evaluates at, that is
+///
+/// `F − m g = ((F₀ − m g) − k (1 − β) dt v) / (1 + c k dt²/m)`,
+///
+/// stable for any `dt` (the heave mode lands on its equilibrium in one step
+/// when `k dt²/m ≫ 1`). But it damps heave (damping ratio about `ω dt / 2`),
+/// which the explicit lookahead step does not do, and buoyancy is far from
+/// linear over a stiff step (a body dropping out of the air and under the
+/// surface within one step). So the generator blends and solves the
+/// nonlinear equation instead: the vertical force is evaluated at
+///
+/// `y_e = y₀ + θ ((1 − β) dt v + c dt² a)`, `a = F_y(y_e)/m − g`,
+///
+/// with `θ = w⁴/(1 + w⁴)` and `w = c ρ_w g π r² dt²/m` (`r` the bounding
+/// radius, so `π r²` bounds the water-plane area and `w` bounds
+/// `c k dt²/m`). `θ = 0` is the explicit lookahead step, `θ = 1` backward
+/// Euler; for `w ≪ 1` the change is of order `w⁴` (no visible damping nor
+/// frequency shift at ordinary steps), and for `w ≫ 1` the step is fully
+/// implicit. `F_y` decreases with depth, so the residual
+/// `y_e − y₀ − θ ((1 − β) dt v + c dt² (F_y(y_e)/m − g))` increases with
+/// `y_e`; `F_y ∈ [0, F_max]` brackets its root, which a safeguarded secant
+/// (Illinois) finds in a few evaluations. The wrench applied is the
+/// buoyancy evaluated at `y_e` (force and torque).
+#[allow(clippy::too_many_arguments)]
+fn implicit_heave(
+    b: &SoakBody,
+    rb: &RigidBody,
+    water: &Water,
+    state: &BodyState,
+    options: &HydroOptions,
+    t: f64,
+    substeps: f64,
+    limit: f64,
+    buoyancy: Wrench,
+) -> Wrench {
+    let dt = options.dt;
+    let m = rb.mass() as f64;
+    let radius = b.atlas.bounding_radius();
+    if !(dt > 0.0 && m > 0.0 && radius > 0.0 && limit.is_finite()) || options.buoyancy == BuoyancyMode::Off {
+        return buoyancy;
+    }
+    let c = (substeps + 1.0) / (2.0 * substeps);
+    let beta = (substeps - 1.0) / (2.0 * substeps);
+    let theta = implicit_weight(water, radius, m, dt, substeps);
+    if theta.is_nan() || theta < IMPLICIT_NEGLIGIBLE {
+        return buoyancy;
+    }
+    let g = water.gravity * rb.gravity_scale() as f64;
+    let v = state.linear_velocity.y;
+    let options = HydroOptions {
+        drag: None,
+        ..*options
+    };
+    let com = b.mass.center_of_mass;
+    let posed = |dy: f64, turn: Vector3<f64>| {
+        let rotation = UnitQuaternion::from_scaled_axis(turn) * state.pose.rotation;
+        let centre = state.pose * com + Vector3::new(0.0, dy, 0.0);
+        Isometry3::from_parts(
+            Translation3::from(centre.coords - rotation * com.coords),
+            rotation,
+        )
+    };
+    let at_pose = |pose: Isometry3<f64>| {
+        let shifted = BodyState { pose, ..*state };
+        let r = match &b.tiled {
+            Some(tiled) => tiled.evaluate(&b.atlas, water, &shifted, &b.mass, t, &options),
+            None => soak_hydro::evaluate(&b.atlas, water, &shifted, &b.mass, t, &options),
+        };
+        r.ok()
+            .map(|f| f.buoyancy)
+            .filter(|w| w.is_finite() && (0.0..=limit).contains(&w.force.y))
+    };
+    let at = |dy: f64| at_pose(posed(dy, Vector3::zeros()));
+    // The shift the step would make with vertical buoyancy f.
+    let target = |f: f64| theta * ((1.0 - beta) * dt * v + c * dt * dt * (f / m - g));
+    let residual = |dy: f64, f: f64| dy - target(f);
+    // Bracket: no buoyancy (residual ≤ 0) and the most there can be (≥ 0).
+    let (mut lo, mut hi) = (target(0.0), target(limit));
+    let (mut r_lo, mut r_hi) = (f64::NAN, f64::NAN);
+    let tolerance = 1e-6 * radius;
+    let mut best = buoyancy;
+    let mut solved_dy = None;
+    let mut best_residual = residual(0.0, buoyancy.force.y).abs();
+    let mut side = 0i8;
+    for _ in 0..64 {
+        let dy = if r_lo.is_finite() && r_hi.is_finite() && r_hi > r_lo {
+            lo - r_lo * (hi - lo) / (r_hi - r_lo)
+        } else {
+            0.5 * (lo + hi)
+        };
+        let Some(wrench) = at(dy) else {
+            return buoyancy;
+        };
+        let r = residual(dy, wrench.force.y);
+        if r.abs() < best_residual {
+            best = wrench;
+            solved_dy = Some(dy);
+            best_residual = r.abs();
+        }
+        if r.abs() <= tolerance || (hi - lo).abs() <= tolerance {
+            break;
+        }
+        // Illinois: halve the stale end's residual when one side repeats.
+        if r < 0.0 {
+            lo = dy;
+            r_lo = r;
+            if side == -1 && r_hi.is_finite() {
+                r_hi *= 0.5;
+            }
+            side = -1;
+        } else {
+            hi = dy;
+            r_hi = r;
+            if side == 1 && r_lo.is_finite() {
+                r_lo *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    // Pitch and roll, linearised about the solved heave: the torque's
+    // stiffness `K` from central differences of small turns about the
+    // horizontal axes through the centre of mass, and the same blend,
+    // `τ = τ₀ − θ K ((1 − β) dt ω + c dt² α)` with `α = I⁻¹ τ`, that is
+    // `α = (I + θ c dt² K)⁻¹ (τ₀ − θ (1 − β) dt K ω)`, `τ = I α`.
+    let Some(solved) = solved_dy else {
+        return best;
+    };
+    let turn = 0.01;
+    let mut k = Matrix3::zeros();
+    for axis in [0, 2] {
+        let mut e = Vector3::zeros();
+        e[axis] = turn;
+        let (Some(plus), Some(minus)) = (at_pose(posed(solved, e)), at_pose(posed(solved, -e))) else {
+            return best;
+        };
+        k.set_column(axis, &(-(plus.torque - minus.torque) / (2.0 * turn)));
+    }
+    let rot = state.pose.rotation.to_rotation_matrix().into_inner();
+    let inertia = rot * b.mass.inertia * rot.transpose();
+    let rhs = best.torque - theta * (1.0 - beta) * dt * (k * state.angular_velocity);
+    let system = inertia + theta * c * dt * dt * k;
+    match system.lu().solve(&rhs) {
+        Some(alpha) if alpha.iter().all(|a| a.is_finite()) => Wrench {
+            force: best.force,
+            torque: inertia * alpha,
+        },
+        _ => best,
     }
 }
 
