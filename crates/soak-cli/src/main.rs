@@ -12,6 +12,7 @@ mod segment;
 mod simulate;
 mod stills;
 mod stress;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 
@@ -41,6 +42,8 @@ enum Command {
     Stress(stress::Args),
     /// Render frames of a scene file (PNG): wet surfaces, water, debug views, force arrows.
     Render(render::Args),
+    /// Render the material sweep of the thesis' Fig. 6.3: materials × liquids, dry to saturated.
+    Sweep(sweep::Args),
 }
 
 fn main() -> std::process::ExitCode {
@@ -63,5 +66,6 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Segment(args) => segment::run(&args),
         Command::Stress(args) => stress::run(&args),
         Command::Render(args) => render::run(&args),
+        Command::Sweep(args) => sweep::run(&args),
     }
 }

@@ -33,7 +33,7 @@ use plotters_backend::{
 };
 
 /// DejaVu Sans (Bitstream Vera licence, see `assets/DejaVuSans-LICENSE.txt`).
-const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+pub(crate) const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 /// The family name text styles carry; every family is drawn in [`FONT`].
 const FAMILY: &str = "sans-serif";
 

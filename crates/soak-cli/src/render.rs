@@ -4,7 +4,9 @@
 //! The scene is simulated up to the requested step and drawn: every body's
 //! mesh at its pose with its liquid texture (when the body is wet), the
 //! water surface, the sun and the sky; debug views show the liquid in
-//! pseudo-colour, the triangles as segments, or the normals, and `--forces`
+//! pseudo-colour, the compartments of a body's liquid graph (each triangle
+//! coloured by its nearest node, the graph's pipes drawn between nodes; each
+//! triangle apart for a body without one), or the normals, and `--forces`
 //! draws weight (red, at the centre of mass) and buoyancy (green, at the
 //! centre of buoyancy) as in the thesis' Fig. 7.3.
 
@@ -32,7 +34,7 @@ pub enum View {
     Shaded,
     /// Liquid saturation in pseudo-colour (blue dry, red saturated).
     Liquid,
-    /// Each triangle in its own colour.
+    /// Compartments of the liquid graph (nearest node per triangle) with its pipes; each triangle apart for a body without a graph.
     Segments,
     /// World-space normals as colours.
     Normals,
@@ -120,6 +122,8 @@ pub struct SceneRenderer {
     level: Option<f64>,
     options: FrameOptions,
     radius: Vec<f64>,
+    /// Per body, the liquid-graph node nearest each triangle (segments view).
+    segments: Vec<Option<Arc<Vec<u32>>>>,
     adapter: String,
 }
 
@@ -173,6 +177,7 @@ impl SceneRenderer {
             sea,
             level,
             options,
+            segments: vec![None; loaded.scene.bodies.len()],
             radius,
             adapter: adapter_label(&info),
         })
@@ -188,6 +193,7 @@ impl SceneRenderer {
         let t = sim.time();
         let mut objects = Vec::new();
         let mut arrows = Vec::new();
+        let mut pipes = Vec::new();
         let mut lo = Point3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
         let mut hi = -lo;
         let mut weight_scale = 0.0_f64;
@@ -229,6 +235,23 @@ impl SceneRenderer {
                     3,
                 ));
             }
+            // The segments view colours a body with a liquid graph by
+            // compartment (the node nearest each triangle) and draws the
+            // graph's pipes between the nodes.
+            if self.options.view == View::Segments
+                && let Some(id) = b.id
+                && let Some(flooding) = sim.liquids().iter().find(|l| l.id() == id).map(|l| l.flooding())
+            {
+                let graph = flooding.graph();
+                let nodes: Vec<Point3<f64>> = graph.nodes().map(|n| n.position).collect();
+                let segments = self.segments[i]
+                    .get_or_insert_with(|| Arc::new(nearest_node_per_triangle(&self.meshes[i], &nodes)));
+                object.segments = Some(segments.clone());
+                for (a, c, _) in graph.edges() {
+                    let (pa, pc) = (pose * nodes[a], pose * nodes[c]);
+                    pipes.push(Arrow::new(pa, pc - pa, [0.95, 0.95, 0.95]).with_radius(0.02 * r));
+                }
+            }
             objects.push(object);
             if let (true, Some(id)) = (self.options.forces, b.id)
                 && let Some(body) = sim.soak.body(id)
@@ -265,6 +288,7 @@ impl SceneRenderer {
         };
         scene.objects = objects;
         scene.view = self.options.view.into();
+        scene.arrows.extend(pipes);
         if weight_scale > 0.0 {
             let metres_per_newton = 0.3 * size / weight_scale;
             for (com, weight, forces, r) in arrows {
@@ -286,6 +310,28 @@ impl SceneRenderer {
         }
         Ok(self.renderer.render(&scene)?)
     }
+}
+
+/// For each triangle of `mesh`, the index of the node nearest its centroid
+/// (object space): the compartments of a liquid graph drawn on its mesh.
+fn nearest_node_per_triangle(mesh: &Mesh, nodes: &[Point3<f64>]) -> Vec<u32> {
+    mesh.triangles
+        .iter()
+        .map(|t| {
+            let c = Point3::from(
+                (mesh.positions[t[0] as usize].coords
+                    + mesh.positions[t[1] as usize].coords
+                    + mesh.positions[t[2] as usize].coords)
+                    / 3.0,
+            );
+            nodes
+                .iter()
+                .enumerate()
+                .map(|(k, n)| (k, (n - c).norm_squared()))
+                .min_by(|x, y| x.1.total_cmp(&y.1))
+                .map_or(0, |(k, _)| k as u32)
+        })
+        .collect()
 }
 
 /// A look for a body: wood for boats and crates, sand for terrain, bright
@@ -375,4 +421,26 @@ pub fn run(args: &Args) -> Result<()> {
         renderer.adapter()
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_triangle_goes_to_the_node_nearest_its_centroid() {
+        let mesh = soak_bake::builtin::parse("builtin:box:2x1x1").expect("builtin");
+        let nodes = [Point3::new(-0.5, 0.0, 0.0), Point3::new(0.5, 0.0, 0.0)];
+        let segments = nearest_node_per_triangle(&mesh, &nodes);
+        assert_eq!(segments.len(), mesh.triangles.len());
+        for (t, &s) in mesh.triangles.iter().zip(&segments) {
+            let x: f64 = t.iter().map(|&v| mesh.positions[v as usize].x).sum::<f64>() / 3.0;
+            if x.abs() > 1e-9 {
+                assert_eq!(s, u32::from(x > 0.0), "triangle with centroid x = {x}");
+            }
+        }
+        // Both ends of the box are there.
+        assert!(segments.contains(&0) && segments.contains(&1));
+        assert!(nearest_node_per_triangle(&mesh, &[]).iter().all(|&s| s == 0));
+    }
 }

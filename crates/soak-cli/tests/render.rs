@@ -20,8 +20,14 @@ fn out_dir(name: &str) -> PathBuf {
 /// Runs `soak render` with `args`; `None` (with a notice) when there is no
 /// adapter outside CI.
 fn render(args: &[&str]) -> Option<std::process::Output> {
+    soak("render", args)
+}
+
+/// Runs `soak COMMAND` with `args`; `None` (with a notice) when there is no
+/// adapter outside CI.
+fn soak(command: &str, args: &[&str]) -> Option<std::process::Output> {
     let out = Command::new(env!("CARGO_BIN_EXE_soak"))
-        .arg("render")
+        .arg(command)
         .args(args)
         .output()
         .expect("runs soak");
@@ -73,6 +79,78 @@ fn a_frame_sequence_of_the_wet_crate_shows_wet_and_dry_planks() {
     let blue = last.pixels().filter(|p| p[2] > 150 && p[0] < 90).count();
     assert!(red >= 20, "{red} wet (red) pixels");
     assert!(blue >= 20, "{blue} dry (blue) pixels");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_segments_view_draws_the_sinking_boat_by_compartment() {
+    let dir = out_dir("segments");
+    let scene = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../data/scenes/sinking_boat.toml");
+    let Some(out) = render(&[
+        scene.to_str().unwrap(),
+        "--frame",
+        "0",
+        "--width",
+        "160",
+        "--height",
+        "90",
+        "--view",
+        "segments",
+        "--out",
+        dir.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let image = image::open(dir.join("frame_000000.png")).unwrap().to_rgb8();
+    assert_eq!(image.dimensions(), (160, 90));
+    // The graph's pipes are drawn in near-white over the hull.
+    let white = image.pixels().filter(|p| p.0.iter().all(|&c| c > 200)).count();
+    assert!(white >= 5, "{white} pipe (white) pixels");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_material_sweep_is_rendered_darker_where_wet() {
+    let dir = out_dir("sweep");
+    let path = dir.join("sweep.png");
+    let Some(out) = soak("sweep", &["--cell", "48", "--out", path.to_str().unwrap()]) else {
+        return;
+    };
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("wetness states"), "{stdout}");
+    // "… (W×H: R materials × C wetness states) …"
+    let count = |after: &str| -> u32 {
+        let tail = stdout.split(after).nth(1).unwrap_or_else(|| panic!("{stdout}"));
+        tail.split_whitespace().next().unwrap().parse().unwrap()
+    };
+    let (rows, cols) = (count(": "), count("materials × "));
+    let image = image::open(&path).unwrap().to_rgb8();
+    let (w, h) = image.dimensions();
+    let cell = 48;
+    assert!(w >= cols * cell && h >= rows * cell, "{w}×{h}");
+    // Labels sit left and above; the spheres fill the rest, one per cell.
+    let (left, top) = (w - cols * cell, h - rows * cell);
+    let mean_luminance = |r: u32, c: u32| {
+        let (cx, cy) = (left + c * cell + cell / 2, top + r * cell + cell / 2);
+        let mut sum = 0.0;
+        let mut n = 0.0;
+        for y in cy - cell / 4..cy + cell / 4 {
+            for x in cx - cell / 4..cx + cell / 4 {
+                let p = image.get_pixel(x, y);
+                sum += 0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2]);
+                n += 1.0;
+            }
+        }
+        sum / n
+    };
+    // Every material under clear water (the first rows) is darker saturated
+    // (last column) than dry (first column).
+    for r in 0..3.min(rows) {
+        let (dry, wet) = (mean_luminance(r, 0), mean_luminance(r, cols - 1));
+        assert!(wet < 0.9 * dry, "row {r}: dry {dry:.1}, saturated {wet:.1}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 
