@@ -414,6 +414,32 @@ pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
     )
 }
 
+/// Adds the submerged texels of `range` under planar water, `d(x) = α + β·x`
+/// in object coordinates relative to the atlas origin, `g` the world's up in
+/// object axes (object-frame sums). The slices are walked together, with no
+/// per-texel bounds checks.
+#[inline]
+pub(crate) fn add_planar_range(
+    s: &mut BuoyancySums,
+    atlas: &Atlas,
+    range: std::ops::Range<usize>,
+    alpha: f64,
+    beta: &Vector3<f64>,
+    g: &Vector3<f64>,
+) {
+    let xs = &atlas.local_positions()[range.clone()];
+    let avs = &atlas.area_vectors()[range.clone()];
+    let areas = &atlas.areas()[range];
+    for ((x, a), &area) in xs.iter().zip(avs).zip(areas) {
+        let x = Vector3::new(f64::from(x[0]), f64::from(x[1]), f64::from(x[2]));
+        let d = alpha + beta.dot(&x);
+        if d > 0.0 {
+            let a = Vector3::new(f64::from(a[0]), f64::from(a[1]), f64::from(a[2]));
+            s.add_local(&x, &a, g.dot(&a), f64::from(area), d);
+        }
+    }
+}
+
 /// Buoyancy and drag on a body, summing over every texel (rayon, f64,
 /// deterministic for any thread count).
 ///
@@ -451,13 +477,7 @@ pub fn evaluate(
         // and rotate once.
         Some((alpha, beta, g)) => chunked_sum(atlas.len(), BuoyancySums::default(), |range| {
             let mut s = BuoyancySums::default();
-            for i in range {
-                let (x, a) = texel(atlas, i);
-                let d = alpha + beta.dot(&x);
-                if d > 0.0 {
-                    s.add_local(&x, &a, g.dot(&a), atlas.areas()[i] as f64, d);
-                }
-            }
+            add_planar_range(&mut s, atlas, range, alpha, &beta, &g);
             s
         })
         .rotated(&frame.rot),

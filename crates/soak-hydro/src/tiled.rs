@@ -14,7 +14,8 @@ use soak_bake::Atlas;
 
 use crate::error::HydroError;
 use crate::hydrostatics::{
-    BodyState, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, evaluate, finish, texel,
+    BodyState, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, add_planar_range, evaluate, finish,
+    texel,
 };
 use crate::mass::MassProperties;
 use crate::water::Water;
@@ -39,9 +40,19 @@ pub struct TileMoments {
 }
 
 /// An atlas with per-tile moments, for fast hydrostatics under planar water.
+///
+/// Two levels: the atlas' tiles (`tile_size`² texels), and groups of
+/// [`TiledAtlas::GROUP`]² neighbouring tiles with the sums of their moments.
+/// A group wholly under or above water is settled by one test; only the
+/// tiles of groups the waterline cuts are looked at one by one.
 #[derive(Clone, Debug)]
 pub struct TiledAtlas {
+    /// Tile moments, ordered group by group.
     tiles: Vec<TileMoments>,
+    /// Group moments (their `range` is the group's range in `tiles`).
+    groups: Vec<TileMoments>,
+    /// Texels per group.
+    group_texels: Vec<u64>,
 }
 
 /// How many tiles of each kind the last evaluation met.
@@ -91,11 +102,64 @@ impl TiledAtlas {
                     .fold(0.0, f64::max);
                 m
             })
-            .collect();
-        Self { tiles }
+            .collect::<Vec<_>>();
+        // Group the tiles by the block of GROUP × GROUP tiles their first
+        // texel lies in (tiles are in row-major block order already).
+        let ts = atlas.tile_size().max(1);
+        let group_of = |m: &TileMoments| {
+            let [x, y] = atlas.texels().get(m.range.0 as usize).copied().unwrap_or([0, 0]);
+            let span = ts * Self::GROUP;
+            (u32::from(y) / span, u32::from(x) / span)
+        };
+        let mut tiles = tiles;
+        tiles.sort_by_key(|m| (group_of(m), m.range.0));
+        let mut groups = Vec::new();
+        let mut group_texels = Vec::new();
+        let mut start = 0;
+        while start < tiles.len() {
+            let key = group_of(&tiles[start]);
+            let end = start + tiles[start..].iter().take_while(|m| group_of(m) == key).count();
+            let members = &tiles[start..end];
+            let mut g = TileMoments {
+                s0: Vector3::zeros(),
+                s1: Matrix3::zeros(),
+                s2: [Matrix3::zeros(); 3],
+                area: 0.0,
+                centre: Vector3::zeros(),
+                radius: 0.0,
+                range: (start as u32, end as u32),
+            };
+            let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
+            for m in members {
+                g.s0 += m.s0;
+                g.s1 += m.s1;
+                for j in 0..3 {
+                    g.s2[j] += m.s2[j];
+                }
+                g.area += m.area;
+                lo = lo.inf(&m.centre.add_scalar(-m.radius));
+                hi = hi.sup(&m.centre.add_scalar(m.radius));
+            }
+            g.centre = (lo + hi) * 0.5;
+            g.radius = members
+                .iter()
+                .map(|m| (m.centre - g.centre).norm() + m.radius)
+                .fold(0.0, f64::max);
+            groups.push(g);
+            group_texels.push(members.iter().map(|m| u64::from(m.range.1 - m.range.0)).sum());
+            start = end;
+        }
+        Self {
+            tiles,
+            groups,
+            group_texels,
+        }
     }
 
-    /// The tiles' moments.
+    /// Tiles per side of a group: a group is `GROUP`² tiles.
+    pub const GROUP: u32 = 4;
+
+    /// The tiles' moments, ordered group by group.
     pub fn tiles(&self) -> &[TileMoments] {
         &self.tiles
     }
@@ -139,46 +203,83 @@ impl TiledAtlas {
         let bn = beta.norm();
         let g = rot.transpose() * Vector3::y();
 
-        const TILE_CHUNK: usize = 64;
-        let n_chunks = self.tiles.len().div_ceil(TILE_CHUNK);
+        // A tile (or group) lies wholly under water when its bounding
+        // sphere does, wholly above when the sphere does.
+        let classify = |m: &TileMoments| {
+            let dc = alpha + beta.dot(&m.centre);
+            let reach = bn * m.radius;
+            if dc + reach <= 0.0 {
+                Side::Dry
+            } else if dc - reach > 0.0 {
+                Side::Submerged
+            } else {
+                Side::Cut
+            }
+        };
+        const GROUP_CHUNK: usize = 8;
+        let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
         let parts: Vec<(BuoyancySums, Option<DragSums>, TileCounts)> = (0..n_chunks)
             .into_par_iter()
             .map(|c| {
                 let mut drag = options.drag.map(|_| DragSums::default());
                 let mut counts = TileCounts::default();
                 let mut local = BuoyancySums::default(); // object frame
-                for tile in &self.tiles[c * TILE_CHUNK..((c + 1) * TILE_CHUNK).min(self.tiles.len())] {
-                    let dc = alpha + beta.dot(&tile.centre);
-                    let reach = bn * tile.radius;
-                    let (start, end) = (tile.range.0 as usize, tile.range.1 as usize);
-                    if dc + reach <= 0.0 {
-                        counts.dry += 1;
-                        continue;
+                let add_drag = |start: usize, end: usize, ds: &mut DragSums| {
+                    let Some(coefficients) = options.drag.as_ref() else {
+                        return;
+                    };
+                    for i in start..end {
+                        let (x, a) = texel(atlas, i);
+                        let d = alpha + beta.dot(&x);
+                        if d > 0.0 {
+                            let p = frame.ow + rot * x;
+                            let rc = p - frame.com;
+                            let u = water.surface.velocity(&nalgebra::Point3::from(p), t);
+                            let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
+                            ds.add_texel(coefficients, water.density, &rc, &(rot * a), &v, &u);
+                        }
                     }
-                    if dc - reach > 0.0 {
-                        counts.submerged += 1;
-                        add_closed_form(&mut local, tile, alpha, &beta, &g);
-                    } else {
-                        counts.cut += 1;
-                        for i in start..end {
-                            let (x, a) = texel(atlas, i);
-                            let d = alpha + beta.dot(&x);
-                            if d > 0.0 {
-                                local.add_local(&x, &a, g.dot(&a), atlas.areas()[i] as f64, d);
+                };
+                let range = c * GROUP_CHUNK..((c + 1) * GROUP_CHUNK).min(self.groups.len());
+                for (group, &texels) in self.groups[range.clone()].iter().zip(&self.group_texels[range]) {
+                    let members = &self.tiles[group.range.0 as usize..group.range.1 as usize];
+                    match classify(group) {
+                        Side::Dry => {
+                            counts.dry += members.len();
+                            continue;
+                        }
+                        Side::Submerged => {
+                            counts.submerged += members.len();
+                            add_closed_form(&mut local, group, texels, alpha, &beta, &g);
+                        }
+                        Side::Cut => {
+                            for tile in members {
+                                let (start, end) = (tile.range.0 as usize, tile.range.1 as usize);
+                                match classify(tile) {
+                                    Side::Dry => counts.dry += 1,
+                                    Side::Submerged => {
+                                        counts.submerged += 1;
+                                        add_closed_form(
+                                            &mut local,
+                                            tile,
+                                            (end - start) as u64,
+                                            alpha,
+                                            &beta,
+                                            &g,
+                                        );
+                                    }
+                                    Side::Cut => {
+                                        counts.cut += 1;
+                                        add_planar_range(&mut local, atlas, start..end, alpha, &beta, &g);
+                                    }
+                                }
                             }
                         }
                     }
-                    if let (Some(ds), Some(drag)) = (drag.as_mut(), options.drag.as_ref()) {
-                        for i in start..end {
-                            let (x, a) = texel(atlas, i);
-                            let d = alpha + beta.dot(&x);
-                            if d > 0.0 {
-                                let p = frame.ow + rot * x;
-                                let rc = p - frame.com;
-                                let u = water.surface.velocity(&nalgebra::Point3::from(p), t);
-                                let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
-                                ds.add_texel(drag, water.density, &rc, &(rot * a), &v, &u);
-                            }
+                    // Drag is per texel wherever the group is wet.
+                    if let Some(ds) = drag.as_mut() {
+                        for tile in members {
+                            add_drag(tile.range.0 as usize, tile.range.1 as usize, ds);
                         }
                     }
                 }
@@ -204,9 +305,24 @@ impl TiledAtlas {
     }
 }
 
-/// Adds a wholly submerged tile to object-frame sums (`wr`, `f`, `rxf` in
-/// object axes; rotated by the caller).
-fn add_closed_form(s: &mut BuoyancySums, m: &TileMoments, alpha: f64, beta: &Vector3<f64>, g: &Vector3<f64>) {
+/// Where a tile or group lies against the water plane.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Side {
+    Dry,
+    Submerged,
+    Cut,
+}
+
+/// Adds a wholly submerged tile (or group) of `texels` samples to
+/// object-frame sums (`wr`, `f`, `rxf` in object axes; rotated by the caller).
+fn add_closed_form(
+    s: &mut BuoyancySums,
+    m: &TileMoments,
+    texels: u64,
+    alpha: f64,
+    beta: &Vector3<f64>,
+    g: &Vector3<f64>,
+) {
     // Σ A d = α S0 + S1 β
     let ad = alpha * m.s0 + m.s1 * beta;
     // T1 = Σ (g·A) x = S1ᵀ g ; T2 = Σ (g·A) x xᵀ = Σ_j g_j S2_j
@@ -230,5 +346,5 @@ fn add_closed_form(s: &mut BuoyancySums, m: &TileMoments, alpha: f64, beta: &Vec
     let cross2 = Vector3::new(b2[1] - b1[2], b0[2] - b2[0], b1[0] - b0[1]);
     s.rxf += -(alpha * cross1 + cross2);
     s.area += m.area;
-    s.count += (m.range.1 - m.range.0) as usize;
+    s.count += texels as usize;
 }
