@@ -35,6 +35,8 @@ pub struct TileMoments {
     pub centre: Vector3<f64>,
     /// Bounding-sphere radius, m.
     pub radius: f64,
+    /// Half the sides of the bounding box about `centre` (object axes), m.
+    pub half_extent: Vector3<f64>,
     /// Texel range in the atlas.
     pub range: (u32, u32),
 }
@@ -81,6 +83,7 @@ impl TiledAtlas {
                     area: 0.0,
                     centre: Vector3::zeros(),
                     radius: 0.0,
+                    half_extent: Vector3::zeros(),
                     range: (t.start, t.end),
                 };
                 let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
@@ -97,6 +100,7 @@ impl TiledAtlas {
                     m.area += atlas.areas()[i] as f64;
                 }
                 m.centre = (lo + hi) * 0.5;
+                m.half_extent = (hi - lo) * 0.5;
                 m.radius = r
                     .map(|i| (texel(atlas, i).0 - m.centre).norm())
                     .fold(0.0, f64::max);
@@ -127,6 +131,7 @@ impl TiledAtlas {
                 area: 0.0,
                 centre: Vector3::zeros(),
                 radius: 0.0,
+                half_extent: Vector3::zeros(),
                 range: (start as u32, end as u32),
             };
             let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
@@ -137,10 +142,11 @@ impl TiledAtlas {
                     g.s2[j] += m.s2[j];
                 }
                 g.area += m.area;
-                lo = lo.inf(&m.centre.add_scalar(-m.radius));
-                hi = hi.sup(&m.centre.add_scalar(m.radius));
+                lo = lo.inf(&(m.centre - m.half_extent));
+                hi = hi.sup(&(m.centre + m.half_extent));
             }
             g.centre = (lo + hi) * 0.5;
+            g.half_extent = (hi - lo) * 0.5;
             g.radius = members
                 .iter()
                 .map(|m| (m.centre - g.centre).norm() + m.radius)
@@ -204,10 +210,12 @@ impl TiledAtlas {
         let g = rot.transpose() * Vector3::y();
 
         // A tile (or group) lies wholly under water when its bounding
-        // sphere does, wholly above when the sphere does.
+        // sphere or box does, wholly above when either does: the depth
+        // varies over it by at most the smaller of |β| r and |β|·h.
+        let beta_abs = beta.abs();
         let classify = |m: &TileMoments| {
             let dc = alpha + beta.dot(&m.centre);
-            let reach = bn * m.radius;
+            let reach = (bn * m.radius).min(beta_abs.dot(&m.half_extent));
             if dc + reach <= 0.0 {
                 Side::Dry
             } else if dc - reach > 0.0 {
