@@ -848,6 +848,31 @@ impl ForceGenerator {
         Ok(())
     }
 
+    /// Drops `splash` on every wet body, each at its pose as Rapier has it
+    /// now; returns the volume that stuck (m³, summed over the bodies; the
+    /// rest ran off saturated texels or landed on no body). Bodies without
+    /// wetting are not touched.
+    ///
+    /// # Errors
+    /// An invalid splash, or a wet body whose pose is not finite.
+    pub fn splash(&mut self, bodies: &RigidBodySet, splash: &soak_wet::Splash) -> Result<f64, SoakError> {
+        let mut stuck = 0.0;
+        for b in &mut self.bodies {
+            let (Some(wet), Some(rb)) = (&mut b.wet, bodies.get(b.handle)) else {
+                continue;
+            };
+            let pose = convert::pose(rb.position());
+            stuck += wet
+                .wetting
+                .splash(&b.atlas, &pose, splash)
+                .map_err(|source| SoakError::Wet {
+                    name: b.name.clone(),
+                    source,
+                })?;
+        }
+        Ok(stuck)
+    }
+
     /// Advances the generator's clock (for moving waves) by `dt` seconds.
     pub fn advance(&mut self, dt: f64) {
         self.time += dt;

@@ -27,6 +27,15 @@
 //! relative_humidity = 0.5 # a fraction in [0, 1]
 //! wind_speed = 2.0        # m/s
 //! rain_mm_per_hour = 0.0  # rain everywhere, mm/h
+//! # The weather may change: keys at times (s), linear in between, held after
+//! # the last; a key's absent values are the previous key's (or the ones above).
+//! keys = [{ at = 60.0, temperature_c = 30.0, relative_humidity = 0.2 }]
+//!
+//! [[splash]]              # liquid landing on the wet bodies near a point, once
+//! at = 2.0                # s
+//! center = [0.0, 1.0, 0.0]  # world position, m
+//! radius = 0.3            # m
+//! volume = 5e-4           # m³ shared by the texels within the radius
 //!
 //! [output]
 //! every = 1               # record every N steps
@@ -40,7 +49,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use soak_hydro::{BuoyancyMode, Drag, GerstnerWave};
-use soak_wet::{DiffusionMode, Environment, Liquid, Material, Rain};
+use soak_wet::{DiffusionMode, Environment, EnvironmentTrack, Liquid, Material, Rain, Splash};
 
 use crate::error::SceneError;
 use crate::generator::Backend;
@@ -84,6 +93,9 @@ pub struct Scene {
     pub bodies: Vec<BodySpec>,
     /// The weather wet bodies dry in; [`Environment::default`] when absent.
     pub environment: Option<EnvironmentSpec>,
+    /// Splashes landing on the wet bodies during the run.
+    #[serde(default)]
+    pub splash: Vec<SplashSpec>,
     /// What to record.
     #[serde(default)]
     pub output: OutputSpec,
@@ -353,7 +365,7 @@ fn default_wind() -> f64 {
 }
 
 /// The weather wet bodies dry in, the same for all of them.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EnvironmentSpec {
     /// Air temperature, °C (default 20).
@@ -368,6 +380,28 @@ pub struct EnvironmentSpec {
     /// Rain falling everywhere on upward-facing dry texels, mm/h (default 0).
     #[serde(default)]
     pub rain_mm_per_hour: f64,
+    /// Later weather: keys at increasing times after the start, linearly
+    /// interpolated between them and held after the last (default none: the
+    /// weather above all along).
+    #[serde(default)]
+    pub keys: Vec<EnvironmentKeySpec>,
+}
+
+/// The weather at a time `at` (s); absent values are the previous key's
+/// (the base environment's for the first key).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvironmentKeySpec {
+    /// Time of the key, s (> 0, increasing from key to key).
+    pub at: f64,
+    /// Air temperature, °C.
+    pub temperature_c: Option<f64>,
+    /// Relative humidity, a fraction in [0, 1].
+    pub relative_humidity: Option<f64>,
+    /// Wind speed, m/s.
+    pub wind_speed: Option<f64>,
+    /// Rain, mm/h.
+    pub rain_mm_per_hour: Option<f64>,
 }
 
 impl Default for EnvironmentSpec {
@@ -377,22 +411,111 @@ impl Default for EnvironmentSpec {
             relative_humidity: default_humidity(),
             wind_speed: default_wind(),
             rain_mm_per_hour: 0.0,
+            keys: Vec::new(),
         }
     }
 }
 
 impl EnvironmentSpec {
-    /// The environment in soak-wet's units (temperature in K).
+    /// The environment at the start, in soak-wet's units (temperature in K).
     pub fn environment(&self) -> Environment {
+        Self::convert(
+            self.temperature_c,
+            self.relative_humidity,
+            self.wind_speed,
+            self.rain_mm_per_hour,
+        )
+    }
+
+    /// Each key's time and full values (temperature °C, relative humidity,
+    /// wind m/s, rain mm/h), a key's absent values taken from the key before.
+    pub fn resolved_keys(&self) -> Vec<(f64, [f64; 4])> {
+        let mut current = [
+            self.temperature_c,
+            self.relative_humidity,
+            self.wind_speed,
+            self.rain_mm_per_hour,
+        ];
+        self.keys
+            .iter()
+            .map(|k| {
+                let given = [
+                    k.temperature_c,
+                    k.relative_humidity,
+                    k.wind_speed,
+                    k.rain_mm_per_hour,
+                ];
+                for (c, g) in current.iter_mut().zip(given) {
+                    if let Some(g) = g {
+                        *c = g;
+                    }
+                }
+                (k.at, current)
+            })
+            .collect()
+    }
+
+    /// The weather over time: the base environment at t = 0, then the keys;
+    /// `None` when there are no keys (the weather never changes).
+    ///
+    /// # Errors
+    /// Keys out of order or with values out of range.
+    pub fn track(&self) -> Result<Option<EnvironmentTrack>, soak_wet::WetError> {
+        if self.keys.is_empty() {
+            return Ok(None);
+        }
+        let mut keys = vec![(0.0, self.environment())];
+        keys.extend(
+            self.resolved_keys()
+                .into_iter()
+                .map(|(at, [t, h, w, r])| (at, Self::convert(t, h, w, r))),
+        );
+        EnvironmentTrack::new(keys).map(Some)
+    }
+
+    fn convert(
+        temperature_c: f64,
+        relative_humidity: f64,
+        wind_speed: f64,
+        rain_mm_per_hour: f64,
+    ) -> Environment {
         Environment {
-            temperature: self.temperature_c + 273.15,
-            relative_humidity: self.relative_humidity,
-            wind_speed: self.wind_speed,
-            rain: if self.rain_mm_per_hour > 0.0 {
-                Rain::mm_per_hour(self.rain_mm_per_hour)
+            temperature: temperature_c + 273.15,
+            relative_humidity,
+            wind_speed,
+            rain: if rain_mm_per_hour > 0.0 {
+                Rain::mm_per_hour(rain_mm_per_hour)
             } else {
                 Rain::none()
             },
+        }
+    }
+}
+
+/// Liquid landing once, at time `at`, on every wet body within `radius` of
+/// `center` (see [`soak_wet::Splash`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SplashSpec {
+    /// When it lands, s (≥ 0).
+    #[serde(default)]
+    pub at: f64,
+    /// World position, m.
+    pub center: [f64; 3],
+    /// Radius, m (> 0).
+    pub radius: f64,
+    /// Volume of liquid, m³ (≥ 0), shared by the texels within the radius
+    /// of each wet body it reaches; what a saturated texel cannot hold runs off.
+    pub volume: f64,
+}
+
+impl SplashSpec {
+    /// The splash in soak-wet's form.
+    pub fn splash(&self) -> Splash {
+        Splash {
+            center: self.center,
+            radius: self.radius,
+            volume: self.volume,
         }
     }
 }
@@ -530,6 +653,42 @@ impl LoadedScene {
             .unwrap_or_else(|| p.to_path_buf())
     }
 
+    /// Checks one set of weather values; `key` names the table they are in.
+    fn check_weather(
+        &self,
+        key: &str,
+        temperature_c: f64,
+        relative_humidity: f64,
+        wind_speed: f64,
+        rain_mm_per_hour: f64,
+    ) -> Result<(), SceneError> {
+        if !(temperature_c.is_finite() && temperature_c > -273.15) {
+            return Err(self.invalid(
+                &format!("{key}.temperature_c"),
+                format!("must be a temperature above absolute zero in °C, not {temperature_c}"),
+            ));
+        }
+        if !(0.0..=1.0).contains(&relative_humidity) {
+            return Err(self.invalid(
+                &format!("{key}.relative_humidity"),
+                format!("must be a fraction in [0, 1], not {relative_humidity}"),
+            ));
+        }
+        if !(wind_speed.is_finite() && wind_speed >= 0.0) {
+            return Err(self.invalid(
+                &format!("{key}.wind_speed"),
+                format!("must be ≥ 0 m/s, not {wind_speed}"),
+            ));
+        }
+        if !(rain_mm_per_hour.is_finite() && rain_mm_per_hour >= 0.0) {
+            return Err(self.invalid(
+                &format!("{key}.rain_mm_per_hour"),
+                format!("must be ≥ 0 mm/h, not {rain_mm_per_hour}"),
+            ));
+        }
+        Ok(())
+    }
+
     fn validate(&self) -> Result<(), SceneError> {
         let s = &self.scene;
         let positive = |key: &str, v: f64| -> Result<(), SceneError> {
@@ -559,31 +718,49 @@ impl LoadedScene {
             return Err(self.invalid("output.liquid_png_every", "must be at least 1"));
         }
         if let Some(e) = &s.environment {
-            if !(e.temperature_c.is_finite() && e.temperature_c > -273.15) {
+            self.check_weather(
+                "environment",
+                e.temperature_c,
+                e.relative_humidity,
+                e.wind_speed,
+                e.rain_mm_per_hour,
+            )?;
+            let mut last = 0.0;
+            for (i, (at, [t, h, w, r])) in e.resolved_keys().into_iter().enumerate() {
+                let key = format!("environment.keys[{i}]");
+                if !(at.is_finite() && at > last) {
+                    return Err(self.invalid(
+                        &format!("{key}.at"),
+                        format!(
+                            "must be a time in s after the start and after the previous key ({last}), not {at}"
+                        ),
+                    ));
+                }
+                last = at;
+                self.check_weather(&key, t, h, w, r)?;
+            }
+        }
+        for (i, sp) in s.splash.iter().enumerate() {
+            let key = format!("splash[{i}]");
+            if !(sp.at.is_finite() && sp.at >= 0.0) {
                 return Err(self.invalid(
-                    "environment.temperature_c",
-                    format!(
-                        "must be a temperature above absolute zero in °C, not {}",
-                        e.temperature_c
-                    ),
+                    &format!("{key}.at"),
+                    format!("must be a time ≥ 0 s, not {}", sp.at),
                 ));
             }
-            if !(0.0..=1.0).contains(&e.relative_humidity) {
+            if !sp.center.iter().all(|c| c.is_finite()) {
+                return Err(self.invalid(&format!("{key}.center"), "must be three finite numbers, m"));
+            }
+            if !(sp.radius.is_finite() && sp.radius > 0.0) {
                 return Err(self.invalid(
-                    "environment.relative_humidity",
-                    format!("must be a fraction in [0, 1], not {}", e.relative_humidity),
+                    &format!("{key}.radius"),
+                    format!("must be > 0 m, not {}", sp.radius),
                 ));
             }
-            if !(e.wind_speed.is_finite() && e.wind_speed >= 0.0) {
+            if !(sp.volume.is_finite() && sp.volume >= 0.0) {
                 return Err(self.invalid(
-                    "environment.wind_speed",
-                    format!("must be ≥ 0 m/s, not {}", e.wind_speed),
-                ));
-            }
-            if !(e.rain_mm_per_hour.is_finite() && e.rain_mm_per_hour >= 0.0) {
-                return Err(self.invalid(
-                    "environment.rain_mm_per_hour",
-                    format!("must be ≥ 0 mm/h, not {}", e.rain_mm_per_hour),
+                    &format!("{key}.volume"),
+                    format!("must be ≥ 0 m³, not {}", sp.volume),
                 ));
             }
         }

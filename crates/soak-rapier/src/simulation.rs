@@ -98,6 +98,9 @@ pub struct SavedSimulation {
     pub liquids: Vec<soak_graph::FloodingState>,
     /// Which permeable regions have opened.
     pub punched: Vec<bool>,
+    /// Which splashes have landed.
+    #[serde(default)]
+    pub splashed: Vec<bool>,
     /// Steps taken.
     pub steps: u64,
     /// Per body: whether it went non-finite.
@@ -132,6 +135,10 @@ pub struct Simulation {
     liquids: Vec<crate::liquid::LiquidBody>,
     /// (liquid index, hole, punched)
     holes: Vec<(usize, crate::scene::HoleSpec, bool)>,
+    /// (splash, landed)
+    splashes: Vec<(crate::scene::SplashSpec, bool)>,
+    /// The weather over time, when the scene changes it.
+    weather: Option<soak_wet::EnvironmentTrack>,
     record_every: usize,
     recording: bool,
     samples: Vec<Sample>,
@@ -245,9 +252,13 @@ impl Simulation {
         world.gravity = convert::to_vector(&Vector3::from(scene.gravity));
         world.integration_parameters.dt = scene.dt as f32;
         let mut soak = ForceGenerator::new(water_of(loaded)?).with_backend(scene.backend);
+        let mut weather = None;
         if let Some(env) = &scene.environment {
             soak.set_environment(env.environment())
                 .map_err(|e| loaded.invalid("environment", e.to_string()))?;
+            weather = env
+                .track()
+                .map_err(|e| loaded.invalid("environment.keys", e.to_string()))?;
         }
         if scene.backend == crate::generator::Backend::Gpu {
             soak = with_gpu(soak).map_err(|message| SceneError::Invalid {
@@ -365,6 +376,8 @@ impl Simulation {
             duration: scene.duration,
             liquids,
             holes,
+            splashes: scene.splash.iter().map(|s| (*s, false)).collect(),
+            weather,
             record_every: scene.output.every,
             recording: false,
             samples: Vec::new(),
@@ -423,6 +436,15 @@ impl Simulation {
                     .map_err(|e| SoakError::Liquid(e.to_string()))?;
                 }
                 *punched = true;
+            }
+        }
+        if let Some(track) = &self.weather {
+            self.soak.set_environment(track.at(t))?;
+        }
+        for (splash, landed) in self.splashes.iter_mut() {
+            if !*landed && t >= splash.at {
+                self.soak.splash(&self.world.bodies, &splash.splash())?;
+                *landed = true;
             }
         }
         if self.liquids.is_empty() {
@@ -543,6 +565,7 @@ impl Simulation {
             generator: self.soak.state(),
             liquids: self.liquids.iter().map(|l| l.flooding().state()).collect(),
             punched: self.holes.iter().map(|h| h.2).collect(),
+            splashed: self.splashes.iter().map(|s| s.1).collect(),
             steps: self.steps,
             non_finite: self.non_finite.clone(),
         })
@@ -560,7 +583,10 @@ impl Simulation {
             key: "(saved state)".into(),
             message,
         };
-        if saved.liquids.len() != sim.liquids.len() || saved.punched.len() != sim.holes.len() {
+        if saved.liquids.len() != sim.liquids.len()
+            || saved.punched.len() != sim.holes.len()
+            || saved.splashed.len() != sim.splashes.len()
+        {
             return Err(bad("the save does not match the scene's liquid bodies".into()));
         }
         sim.world = postcard::from_bytes(&saved.world).map_err(|e| bad(format!("the Rapier world: {e}")))?;
@@ -572,6 +598,9 @@ impl Simulation {
         }
         for (h, &p) in sim.holes.iter_mut().zip(&saved.punched) {
             h.2 = p;
+        }
+        for (s, &landed) in sim.splashes.iter_mut().zip(&saved.splashed) {
+            s.1 = landed;
         }
         sim.steps = saved.steps;
         sim.non_finite = saved.non_finite.clone();

@@ -520,3 +520,131 @@ fn a_painted_initial_liquid_image_is_loaded() {
     assert_eq!(full + dry, h.len());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A dry crate held still in the air (no gravity, water far below) under
+/// weather that changes by keys, and a splash landing on it at 0.5 s.
+const WEATHER_AND_SPLASH: &str = r#"
+dt = 0.1
+duration = 3.0
+gravity = [0.0, 0.0, 0.0]
+
+[water]
+kind = "plane"
+level = -10.0
+
+[[bodies]]
+name = "crate"
+mesh = "builtin:box:1x1x1"
+resolution = 32
+mass = { model = "solid", density = 500.0 }
+wetting = { material = "wood" }
+
+[environment]
+temperature_c = 10.0
+relative_humidity = 0.9
+keys = [{ at = 1.0, temperature_c = 30.0 }, { at = 2.0, relative_humidity = 0.1 }]
+
+[[splash]]
+at = 0.5
+center = [0.0, 0.6, 0.0]
+radius = 0.4
+volume = 1e-4
+"#;
+
+#[test]
+fn scene_weather_follows_its_keys_and_a_splash_lands_once() {
+    let scene = LoadedScene::from_str(WEATHER_AND_SPLASH, Path::new("weather.toml")).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    let id = sim.bodies[0].id.unwrap();
+    let splashed = |sim: &Simulation| sim.soak.wetting(id).unwrap().ledger().splashed;
+    let mut seen = Vec::new();
+    while sim.steps_taken() < 30 {
+        // The environment set for a step is the track's at the step's start.
+        let t = sim.soak.time();
+        sim.step().unwrap();
+        let env = *sim.soak.environment();
+        seen.push((t, env.temperature - 273.15, env.relative_humidity));
+        if t < 0.5 - 1e-9 {
+            assert_eq!(splashed(&sim), 0.0, "nothing before the splash (t = {t})");
+        }
+    }
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+    for &(t, temperature, humidity) in &seen {
+        // 10 °C → 30 °C over the first second, then held; humidity held at
+        // 0.9 until 1 s (the first key keeps it), then down to 0.1 at 2 s.
+        let want_t = 10.0 + 20.0 * t.min(1.0);
+        let want_h = 0.9 - 0.8 * (t - 1.0).clamp(0.0, 1.0);
+        assert!(close(temperature, want_t), "t = {t}: {temperature} °C, want {want_t}");
+        assert!(close(humidity, want_h), "t = {t}: humidity {humidity}, want {want_h}");
+    }
+    // The splash landed once: up to its volume stuck, no more after.
+    let s = splashed(&sim);
+    assert!(s > 0.5e-4 && s <= 1e-4 * (1.0 + 1e-12), "{s} m³ stuck");
+    let total = sim.soak.wetting(id).unwrap().total_liquid(sim.soak.body(id).unwrap().atlas());
+    let ledger = *sim.soak.wetting(id).unwrap().ledger();
+    assert!(
+        (total - ledger.net()).abs() <= 1e-12 + 1e-9 * s,
+        "held {total}, ledger {ledger:?}"
+    );
+    assert!(ledger.evaporated > 0.0, "the splash dries in the warm air");
+}
+
+#[test]
+fn a_saved_run_remembers_its_splash() {
+    let scene = LoadedScene::from_str(WEATHER_AND_SPLASH, Path::new("weather.toml")).unwrap();
+    let mut straight = Simulation::from_scene(&scene).unwrap();
+    let mut first = Simulation::from_scene(&scene).unwrap();
+    for _ in 0..8 {
+        straight.step().unwrap();
+        first.step().unwrap();
+    }
+    let bytes = first.save(&scene).unwrap().to_bytes().unwrap();
+    let saved = soak_rapier::SavedSimulation::from_bytes(&bytes).unwrap();
+    let mut resumed = Simulation::resume(&saved).unwrap();
+    for _ in 8..30 {
+        straight.step().unwrap();
+        resumed.step().unwrap();
+    }
+    let id = straight.bodies[0].id.unwrap();
+    let a = straight.soak.liquid_texture(id).unwrap();
+    let b = resumed.soak.liquid_texture(id).unwrap();
+    assert!(a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits()));
+    assert_eq!(
+        straight.soak.wetting(id).unwrap().ledger().splashed,
+        resumed.soak.wetting(id).unwrap().ledger().splashed
+    );
+}
+
+#[test]
+fn bad_weather_keys_and_splashes_are_named() {
+    for (text, key) in [
+        (
+            WEATHER_AND_SPLASH.replace("{ at = 2.0, relative", "{ at = 0.5, relative"),
+            "environment.keys[1].at",
+        ),
+        (
+            WEATHER_AND_SPLASH.replace("relative_humidity = 0.1 }", "relative_humidity = 1.5 }"),
+            "environment.keys[1].relative_humidity",
+        ),
+        (
+            WEATHER_AND_SPLASH.replace("radius = 0.4", "radius = 0.0"),
+            "splash[0].radius",
+        ),
+        (
+            WEATHER_AND_SPLASH.replace("volume = 1e-4", "volume = -1.0"),
+            "splash[0].volume",
+        ),
+        (
+            WEATHER_AND_SPLASH.replace("at = 0.5\n", "at = -1.0\n"),
+            "splash[0].at",
+        ),
+    ] {
+        match LoadedScene::from_str(&text, Path::new("weather.toml")) {
+            Err(SceneError::Invalid { key: k, line, .. }) => {
+                assert_eq!(k, key);
+                assert!(line > 1, "{key}: line {line}");
+            }
+            other => panic!("{key}: {other:?}"),
+        }
+    }
+}
