@@ -795,7 +795,10 @@ impl ForceGenerator {
                 );
                 wrench = wrench + last_part(&b.forces.buoyancy);
             } else {
-                wrench = wrench + implicit_heave(b, rb, &self.water, state, options, t, substeps, limit, bw);
+                // The drag is applied with the buoyancy: the implicit solve counts it.
+                let drag = last_part(&forces.drag);
+                wrench =
+                    wrench + implicit_heave(b, rb, &self.water, state, options, t, substeps, limit, bw, drag);
             }
             if forces.drag.is_finite() {
                 wrench = wrench + forces.drag;
@@ -964,6 +967,7 @@ fn implicit_heave(
     substeps: f64,
     limit: f64,
     buoyancy: Wrench,
+    drag: Wrench,
 ) -> Wrench {
     let dt = options.dt;
     let m = rb.mass() as f64;
@@ -1004,7 +1008,7 @@ fn implicit_heave(
     };
     let at = |dy: f64| at_pose(posed(dy, Vector3::zeros()));
     // The shift the step would make with vertical buoyancy f.
-    let target = |f: f64| theta * ((1.0 - beta) * dt * v + c * dt * dt * (f / m - g));
+    let target = |f: f64| theta * ((1.0 - beta) * dt * v + c * dt * dt * ((f + drag.force.y) / m - g));
     let residual = |dy: f64, f: f64| dy - target(f);
     // Bracket: no buoyancy (residual ≤ 0) and the most there can be (≥ 0).
     let (mut lo, mut hi) = (target(0.0), target(limit));
@@ -1069,12 +1073,14 @@ fn implicit_heave(
     }
     let rot = state.pose.rotation.to_rotation_matrix().into_inner();
     let inertia = rot * b.mass.inertia * rot.transpose();
-    let rhs = best.torque - theta * (1.0 - beta) * dt * (k * state.angular_velocity);
+    // The drag's torque acts over the step too: α counts it, the buoyancy
+    // torque applied is what is left of I α.
+    let rhs = best.torque + drag.torque - theta * (1.0 - beta) * dt * (k * state.angular_velocity);
     let system = inertia + theta * c * dt * dt * k;
     match system.lu().solve(&rhs) {
         Some(alpha) if alpha.iter().all(|a| a.is_finite()) => Wrench {
             force: best.force,
-            torque: inertia * alpha,
+            torque: inertia * alpha - drag.torque,
         },
         _ => best,
     }
