@@ -955,7 +955,10 @@ fn implicit_weight(water: &Water, radius: f64, m: f64, dt: f64, substeps: f64) -
 /// `y_e − y₀ − θ ((1 − β) dt v + c dt² (F_y(y_e)/m − g))` increases with
 /// `y_e`; `F_y ∈ [0, F_max]` brackets its root, which a safeguarded secant
 /// (Illinois) finds in a few evaluations. The wrench applied is the
-/// buoyancy evaluated at `y_e` (force and torque).
+/// buoyancy evaluated at `y_e` (force and torque). The drag applied in the
+/// same step (`drag`, already implicit in the velocity) is part of `a` and
+/// of the angular acceleration: without it, a light stiff body's drag and
+/// buoyancy each stopped the same motion and together overshot it.
 #[allow(clippy::too_many_arguments)]
 fn implicit_heave(
     b: &SoakBody,

@@ -574,13 +574,23 @@ fn scene_weather_follows_its_keys_and_a_splash_lands_once() {
         // 0.9 until 1 s (the first key keeps it), then down to 0.1 at 2 s.
         let want_t = 10.0 + 20.0 * t.min(1.0);
         let want_h = 0.9 - 0.8 * (t - 1.0).clamp(0.0, 1.0);
-        assert!(close(temperature, want_t), "t = {t}: {temperature} °C, want {want_t}");
-        assert!(close(humidity, want_h), "t = {t}: humidity {humidity}, want {want_h}");
+        assert!(
+            close(temperature, want_t),
+            "t = {t}: {temperature} °C, want {want_t}"
+        );
+        assert!(
+            close(humidity, want_h),
+            "t = {t}: humidity {humidity}, want {want_h}"
+        );
     }
     // The splash landed once: up to its volume stuck, no more after.
     let s = splashed(&sim);
     assert!(s > 0.5e-4 && s <= 1e-4 * (1.0 + 1e-12), "{s} m³ stuck");
-    let total = sim.soak.wetting(id).unwrap().total_liquid(sim.soak.body(id).unwrap().atlas());
+    let total = sim
+        .soak
+        .wetting(id)
+        .unwrap()
+        .total_liquid(sim.soak.body(id).unwrap().atlas());
     let ledger = *sim.soak.wetting(id).unwrap().ledger();
     assert!(
         (total - ledger.net()).abs() <= 1e-12 + 1e-9 * s,
