@@ -41,6 +41,22 @@ pub struct TileMoments {
     pub range: (u32, u32),
 }
 
+impl TileMoments {
+    /// No texels yet: zero sums over `range`.
+    fn empty(range: (u32, u32)) -> Self {
+        Self {
+            s0: Vector3::zeros(),
+            s1: Matrix3::zeros(),
+            s2: [Matrix3::zeros(); 3],
+            area: 0.0,
+            centre: Vector3::zeros(),
+            radius: 0.0,
+            half_extent: Vector3::zeros(),
+            range,
+        }
+    }
+}
+
 /// An atlas with per-tile moments, for fast hydrostatics under planar water.
 ///
 /// Two levels: the atlas' tiles (`tile_size`² texels), and groups of
@@ -76,16 +92,7 @@ impl TiledAtlas {
             .par_iter()
             .map(|t| {
                 let r = t.range();
-                let mut m = TileMoments {
-                    s0: Vector3::zeros(),
-                    s1: Matrix3::zeros(),
-                    s2: [Matrix3::zeros(); 3],
-                    area: 0.0,
-                    centre: Vector3::zeros(),
-                    radius: 0.0,
-                    half_extent: Vector3::zeros(),
-                    range: (t.start, t.end),
-                };
+                let mut m = TileMoments::empty((t.start, t.end));
                 let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
                 for i in r.clone() {
                     let (x, a) = texel(atlas, i);
@@ -124,16 +131,7 @@ impl TiledAtlas {
             let key = group_of(&tiles[start]);
             let end = start + tiles[start..].iter().take_while(|m| group_of(m) == key).count();
             let members = &tiles[start..end];
-            let mut g = TileMoments {
-                s0: Vector3::zeros(),
-                s1: Matrix3::zeros(),
-                s2: [Matrix3::zeros(); 3],
-                area: 0.0,
-                centre: Vector3::zeros(),
-                radius: 0.0,
-                half_extent: Vector3::zeros(),
-                range: (start as u32, end as u32),
-            };
+            let mut g = TileMoments::empty((start as u32, end as u32));
             let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
             for m in members {
                 g.s0 += m.s0;
