@@ -1,29 +1,12 @@
-//! Hydrostatics at 1024²: per texel, tiled, a plain streaming read of the same
-//! atlas (the bandwidth floor), exact clipping and the per-triangle baseline.
+//! Hydrostatics at 1024²: per texel (and per texel with the body all dry and
+//! all submerged), tiled, a plain streaming read of the same atlas (the
+//! bandwidth floor), exact clipping and the per-triangle baseline.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, builtin};
 use soak_hydro::reference::{self, ClipPlane};
-use soak_hydro::{BodyState, HydroOptions, MassModel, TiledAtlas, Water, evaluate};
-
-/// Reads every position and area vector once, summing them: the floor any
-/// per-texel pass over the atlas is bound by.
-fn streaming_read(atlas: &Atlas) -> f64 {
-    use rayon::prelude::*;
-    atlas
-        .local_positions()
-        .par_chunks(4096)
-        .zip(atlas.area_vectors().par_chunks(4096))
-        .map(|(x, a)| {
-            let mut s = 0.0f32;
-            for (x, a) in x.iter().zip(a) {
-                s += x[0] + x[1] + x[2] + a[0] + a[1] + a[2];
-            }
-            s as f64
-        })
-        .sum()
-}
+use soak_hydro::{BodyState, HydroOptions, MassModel, TiledAtlas, Water, evaluate, streaming_read};
 
 fn hydro(c: &mut Criterion) {
     let mesh = builtin::sphere(0.5, 64, 32);
@@ -44,6 +27,17 @@ fn hydro(c: &mut Criterion) {
     g.bench_function("per_texel", |b| {
         b.iter(|| evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap())
     });
+    // The same pass with the body wholly above and wholly under the water:
+    // what a dry and a submerged texel each cost.
+    for (name, y) in [("per_texel_all_dry", 5.0), ("per_texel_all_wet", -5.0)] {
+        let st = BodyState::at_rest(Isometry3::from_parts(
+            Vector3::new(0.0, y, 0.0).into(),
+            pose.rotation,
+        ));
+        g.bench_function(name, |b| {
+            b.iter(|| evaluate(&atlas, &water, &st, &mass, 0.0, &opts).unwrap())
+        });
+    }
     g.bench_function("tiled", |b| {
         b.iter(|| tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap())
     });

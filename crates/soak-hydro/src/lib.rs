@@ -10,7 +10,9 @@ pub mod tiled;
 pub mod water;
 
 pub use error::{HydroError, WaterError};
-pub use hydrostatics::{BodyState, BuoyancyMode, Drag, HydroForces, HydroOptions, Wrench, evaluate};
+pub use hydrostatics::{
+    BodyState, BuoyancyMode, Drag, HydroForces, HydroOptions, Wrench, evaluate, streaming_read,
+};
 pub use mass::{MassModel, MassProperties, PrincipalInertia, VolumeMoments, volume_moments};
 pub use tiled::TiledAtlas;
 pub use water::{Gerstner, GerstnerWave, HeightField, Plane, Surface, SurfaceKind, Unbounded, Water};
