@@ -23,7 +23,7 @@ use nalgebra::{Isometry3, Point3};
 use serde::Serialize;
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin, load_mesh};
 use soak_hydro::reference::{self, ClipPlane, analytic};
-use soak_hydro::{BodyState, HydroOptions, MassModel, TiledAtlas, Water, evaluate};
+use soak_hydro::{BodyState, HydroOptions, MassModel, TiledAtlas, Water, evaluate, streaming_read};
 
 use crate::common::{self, ms};
 use crate::gpu::Gpu;
@@ -168,6 +168,9 @@ pub struct Row {
     pub per_texel_ms: f64,
     /// Median time of one tiled evaluation (`TiledAtlas::evaluate`), ms.
     pub tiled_ms: f64,
+    /// Per-texel time over a plain streaming read of the same atlas
+    /// (`soak_hydro::streaming_read`), the two timed in turn.
+    pub per_texel_over_floor: f64,
     /// GPU time per evaluation, ms: `None` until the `gpu` feature fills it.
     pub gpu_ms: Option<f64>,
     /// Median time of exact clipping (`reference::submerged_part`), ms.
@@ -227,6 +230,9 @@ pub struct Speedup {
     pub resolution: u32,
     /// per_texel_ms / tiled_ms.
     pub speedup: f64,
+    /// Per-texel time over a plain streaming read of the same atlas
+    /// (positions, area vectors, areas), the two timed in turn.
+    pub per_texel_over_floor: f64,
 }
 
 /// Everything `soak accuracy` measured.
@@ -311,6 +317,8 @@ struct Measured {
     tiled_diff: f64,
     per_texel_ms: f64,
     tiled_ms: f64,
+    /// Per-texel time over a streaming read of the same atlas, timed in turn.
+    over_floor: f64,
 }
 
 /// Exact references of one case.
@@ -364,6 +372,11 @@ fn measure(
         || evaluate(&atlas, &water, &state, &mass, 0.0, &opts),
         || tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts),
     );
+    let (per_texel_again_ms, floor_ms) = per_call_ms(
+        runs,
+        || evaluate(&atlas, &water, &state, &mass, 0.0, &opts),
+        || streaming_read(&atlas),
+    );
     let gpu_ms = match gpu {
         Some(g) => Some(
             g.evaluate_timed(&atlas, &water, &state, &mass, &opts, runs.clamp(1, 5))?
@@ -381,6 +394,7 @@ fn measure(
         tiled_diff,
         per_texel_ms,
         tiled_ms,
+        over_floor: per_texel_again_ms / floor_ms,
     })
 }
 
@@ -450,6 +464,7 @@ pub fn compute(quick: bool, out: &Path, mut gpu: Option<&mut Gpu>) -> anyhow::Re
                     tiled_vs_per_texel: mm.tiled_diff.max(centres.tiled_diff),
                     per_texel_ms: mm.per_texel_ms,
                     tiled_ms: mm.tiled_ms,
+                    per_texel_over_floor: mm.over_floor,
                     gpu_ms: mm.gpu_ms,
                     exact_ms,
                     per_triangle_ms,
@@ -496,6 +511,7 @@ pub fn compute(quick: bool, out: &Path, mut gpu: Option<&mut Gpu>) -> anyhow::Re
             mesh: r.mesh.clone(),
             resolution: at,
             speedup: r.per_texel_ms / r.tiled_ms,
+            per_texel_over_floor: r.per_texel_over_floor,
         })
         .collect();
     let mut report = Report {
@@ -627,11 +643,17 @@ fn speedup_line(report: &Report) -> String {
         .iter()
         .map(|s| format!("{} ×{:.1}", s.mesh, s.speedup))
         .collect();
+    let floors: Vec<String> = report
+        .tiled_speedup
+        .iter()
+        .map(|s| format!("{} ×{:.2}", s.mesh, s.per_texel_over_floor))
+        .collect();
     match report.tiled_speedup.first() {
         Some(s) => format!(
-            "tiled speed-up over per-texel at {}²: {}",
-            s.resolution,
-            parts.join(", ")
+            "tiled speed-up over per-texel at {r}²: {}; per-texel time over a streaming read of the same atlas at {r}²: {}",
+            parts.join(", "),
+            floors.join(", "),
+            r = s.resolution,
         ),
         None => String::new(),
     }

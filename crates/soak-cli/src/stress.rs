@@ -17,7 +17,7 @@ use rapier3d::prelude::{PhysicsWorld, RigidBodyBuilder};
 use serde::Serialize;
 use soak_bake::{Atlas, BakeOptions, builtin};
 use soak_graph::{Flooding, FlowOptions, LiquidGraph, Node, Permeability, Pipe, WATER_VISCOSITY};
-use soak_hydro::{Drag, Gerstner, GerstnerWave, HeightField, MassModel, Water};
+use soak_hydro::{BuoyancyMode, Drag, Gerstner, GerstnerWave, HeightField, MassModel, Water};
 use soak_rapier::liquid::{self, LiquidBody};
 use soak_rapier::{BodyDesc, Effects, ForceGenerator, convert};
 use soak_wet::{Diffusion, Environment, FieldResolution, Liquid, Material, Wetting};
@@ -48,6 +48,29 @@ pub struct Args {
     /// Cells run at once [default: the number of cores].
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Buoyancy mode of every cell: `archimedes` (ρ g V_s, vertical, at the
+    /// centre of buoyancy) or `pressure` (the sum of each submerged texel's
+    /// pressure force and its moment).
+    #[arg(long, value_enum, default_value_t = ModeArg::Archimedes)]
+    pub buoyancy: ModeArg,
+}
+
+/// `--buoyancy`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModeArg {
+    /// `BuoyancyMode::Archimedes`.
+    Archimedes,
+    /// `BuoyancyMode::Pressure`.
+    Pressure,
+}
+
+impl ModeArg {
+    fn mode(self) -> BuoyancyMode {
+        match self {
+            ModeArg::Archimedes => BuoyancyMode::Archimedes,
+            ModeArg::Pressure => BuoyancyMode::Pressure,
+        }
+    }
 }
 
 /// Density of the water, kg/m³ (soak's default fluid).
@@ -334,14 +357,14 @@ fn columns(atlas: &Atlas, pose: &Isometry3<f64>, water: &Water, t: f64) -> (f64,
 }
 
 /// The height at which the body, turned by `rotation`, displaces
-/// `fraction` of its volume in calm water at y = 0 (bisection).
-fn equilibrium(f: &Fixture, rotation: &UnitQuaternion<f64>, fraction: f64) -> f64 {
-    let calm = Water::calm(0.0);
+/// `fraction` of its volume in `water` at t = 0 (bisection).
+fn equilibrium(f: &Fixture, rotation: &UnitQuaternion<f64>, fraction: f64, water: &Water) -> f64 {
     let pose = |y: f64| Isometry3::from_parts(Translation3::new(0.0, y, 0.0), *rotation);
-    let (mut lo, mut hi) = (-2.0 * f.radius, 2.0 * f.radius);
+    let (lowest, highest) = water.surface.height_bounds(0.0).unwrap_or((0.0, 0.0));
+    let (mut lo, mut hi) = (lowest - 2.0 * f.radius, highest + 2.0 * f.radius);
     for _ in 0..60 {
         let mid = 0.5 * (lo + hi);
-        let (v, _) = columns(&f.atlas, &pose(mid), &calm, 0.0);
+        let (v, _) = columns(&f.atlas, &pose(mid), water, 0.0);
         if v / f.volume > fraction {
             lo = mid;
         } else {
@@ -406,13 +429,20 @@ struct Outcome {
     failures: Vec<String>,
 }
 
-/// Run length of a cell: 30 natural times, at least 60 steps, at most `max_steps`.
-fn step_count(size: f64, dt: f64, max_steps: usize) -> usize {
+/// Run length of a cell: 30 natural times, at least 60 steps, at most
+/// `max_steps`; in the sea also two periods of the longer wave, so that the
+/// last half of the run holds one whole period, at most `10 max_steps`.
+fn step_count(size: f64, dt: f64, max_steps: usize, sea_period: Option<f64>) -> usize {
     let tau = (size / G).sqrt();
-    ((30.0 * tau / dt).ceil() as usize).clamp(60, max_steps.max(60))
+    let cap = max_steps.max(60);
+    let run = ((30.0 * tau / dt).ceil() as usize).clamp(60, cap);
+    match sea_period {
+        Some(period) => run.max(((2.0 * period / dt).ceil() as usize).min(10 * cap)),
+        None => run,
+    }
 }
 
-fn run_cell(cell: &Cell, f: &Fixture, max_steps: usize) -> anyhow::Result<Outcome> {
+fn run_cell(cell: &Cell, f: &Fixture, max_steps: usize, mode: BuoyancyMode) -> anyhow::Result<Outcome> {
     let start = Instant::now();
     let dt = 1.0 / cell.rate as f64;
     let size = f.size;
@@ -420,10 +450,11 @@ fn run_cell(cell: &Cell, f: &Fixture, max_steps: usize) -> anyhow::Result<Outcom
     let water = water(cell.water, f.radius)?;
     let (lowest, highest) = water.surface.height_bounds(0.0).unwrap_or((0.0, 0.0));
 
-    // Start tilted, near the calm-water equilibrium and a little deeper
-    // (floaters), or just under the surface (neutral and sinking bodies).
+    // Start tilted, near the equilibrium in the cell's own water at t = 0
+    // and a little deeper (floaters), or just under its surface (neutral and
+    // sinking bodies).
     let rotation = UnitQuaternion::from_euler_angles(3f64.to_radians(), 0.0, 5f64.to_radians());
-    let y_eq = equilibrium(f, &rotation, cell.density.min(1.0));
+    let y_eq = equilibrium(f, &rotation, cell.density.min(1.0), &water);
     let y0 = y_eq - 0.05 * size;
     let pose0 = Isometry3::from_parts(Translation3::new(0.0, y0, 0.0), rotation);
 
@@ -432,7 +463,7 @@ fn run_cell(cell: &Cell, f: &Fixture, max_steps: usize) -> anyhow::Result<Outcom
     let handle = world
         .bodies
         .insert(RigidBodyBuilder::dynamic().pose(convert::to_pose(&pose0)));
-    let mut effects = Effects::buoyancy();
+    let mut effects = Effects::buoyancy().with_mode(mode);
     if cell.level >= Level::Drag {
         effects = effects.with_drag(Drag::default());
     }
@@ -505,7 +536,8 @@ fn run_cell(cell: &Cell, f: &Fixture, max_steps: usize) -> anyhow::Result<Outcom
     let wet_capacity: f64 =
         f.atlas.areas().iter().map(|&a| a as f64).sum::<f64>() * Material::cotton().saturation;
 
-    let steps = step_count(size, dt, max_steps);
+    let sea_period = (cell.water == WaterKind::Sea).then(|| wave_period(f.radius));
+    let steps = step_count(size, dt, max_steps, sea_period);
     let sample_every = (steps / 32).max(1);
     let mut failures = Vec::new();
     let mut finite = true;
@@ -528,6 +560,7 @@ fn run_cell(cell: &Cell, f: &Fixture, max_steps: usize) -> anyhow::Result<Outcom
     let mut e_max = e0;
 
     let mut fraction_sum = 0.0;
+    let mut centre_depth_sum = 0.0;
     let mut window = 0usize;
     let half = steps / 2;
     let mut liquid_worst: f64 = 0.0;
@@ -564,6 +597,8 @@ fn run_cell(cell: &Cell, f: &Fixture, max_steps: usize) -> anyhow::Result<Outcom
         }
         if k >= half {
             fraction_sum += body.forces().submerged_volume / f.volume;
+            let com = convert::pose(rb.position()) * body.mass_properties().center_of_mass;
+            centre_depth_sum += soak.water().surface.depth(&com, soak.time()) / size;
             window += 1;
         }
         if k % sample_every == 0 || k + 1 == steps {
@@ -637,6 +672,7 @@ fn run_cell(cell: &Cell, f: &Fixture, max_steps: usize) -> anyhow::Result<Outcom
     let final_vy = rb.linvel().y as f64 / (G * size).sqrt();
     let window = window.max(1) as f64;
     let mean_fraction = fraction_sum / window;
+    let mean_centre_depth = centre_depth_sum / window;
 
     // Energy allowance, J/kg: see docs/stress.md. The columns' potential
     // makes e constant for a body in calm water; a static height field
@@ -667,12 +703,33 @@ fn run_cell(cell: &Cell, f: &Fixture, max_steps: usize) -> anyhow::Result<Outcom
     // Settled or sunk as physics says.
     let (settled, settle_note, expected_fraction) = match expect {
         Expect::Floats => {
-            // At the surface over the last half: partly, never wholly, under
-            // water on average. On calm water with drag, after 20 natural
-            // times, also at rest at the analytic draft: the displaced
-            // fraction equals the relative density (Archimedes).
-            let mut ok = mean_fraction > 0.0 && mean_fraction < 0.999;
-            let mut note = format!("mean fraction {mean_fraction:.3} in (0, 1)");
+            // At the surface over the last half: neither sunk nor flown off.
+            // A floating body moves away from the surface only with energy:
+            // having gained Δe per kilogram (≥ 0, bounded by the energy
+            // check), its centre can go below the surface over it by at most
+            // ρ Δe / ((1 − ρ) g) more than it floats at (the net lift of a
+            // submerged body is (1/ρ − 1) g per kilogram), and above it by
+            // at most Δe / g; the surface itself spans hi − lo. So the mean
+            // centre depth over the last half must lie within one size
+            // V^(1/3) plus the surface's span plus those excursions, either
+            // way. On calm water, where there is no energy to gain, it must
+            // also, in a run of at least 10 natural times (long enough for
+            // what the 5 % deeper start throws up to come back down), be
+            // partly and never wholly under water on average. A run can end with
+            // a light body in the air on a ballistic arc (a wave or the cliff
+            // threw it): that is not flying off if its energy allowed it.
+            let gained = (e_max - e0).max(0.0);
+            let span = 1.0 + waves / size;
+            let dive = span + density_end * gained / ((1.0 - density_end).max(1e-9) * G * size);
+            let rise = span + gained / (G * size);
+            let mut ok = mean_centre_depth <= dive
+                && -mean_centre_depth <= rise
+                && (cell.water != WaterKind::Plane
+                    || taken as f64 * dt < 10.0 * tau
+                    || (mean_fraction > 0.0 && mean_fraction < 0.999));
+            let mut note = format!(
+                "mean centre depth {mean_centre_depth:.3} sizes in [−{rise:.3}, {dive:.3}], mean fraction {mean_fraction:.3}"
+            );
             if cell.water == WaterKind::Plane && cell.level >= Level::Drag && taken as f64 * dt >= 20.0 * tau
             {
                 let tol = 0.05 + 0.1 * density_end;
@@ -789,7 +846,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
                 loop {
                     let i = next.fetch_add(1, Ordering::Relaxed);
                     let Some(cell) = cells.get(i) else { break };
-                    let r = run_cell(cell, fixture_of(cell), max_steps);
+                    let r = run_cell(cell, fixture_of(cell), max_steps, args.buoyancy.mode());
                     results.lock().expect("no worker panicked")[i] = Some(r);
                 }
             });

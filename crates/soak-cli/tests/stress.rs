@@ -9,14 +9,10 @@ use std::process::Command;
 /// integrates the restoring buoyancy implicitly there (heave, pitch and
 /// roll, counting the drag applied with it), which keeps these bodies
 /// afloat; what is left: the cylinder with buoyancy alone gains energy by a
-/// little (about 20 % over its allowance), and the sliver with ingress on
-/// the cliff leaves the water (docs/stress.md, "Known failures"). These
-/// cells must still be finite and pass the liquid check; when one starts to
-/// pass, this test says to remove it from the list.
-const KNOWN_ENERGY_FAILURES: &[&str] = &[
-    "cylinder/1e-3m/0.01/1/10/plane/buoyancy",
-    "sliver/1e-3m/0.01/1/10/cliff/+ingress",
-];
+/// little (about 20 % over its allowance; docs/stress.md, "Known
+/// failures"). These cells must still be finite and pass the liquid check;
+/// when one starts to pass, this test says to remove it from the list.
+const KNOWN_ENERGY_FAILURES: &[&str] = &["cylinder/1e-3m/0.01/1/10/plane/buoyancy"];
 
 #[test]
 fn quick_matrix_passes() {

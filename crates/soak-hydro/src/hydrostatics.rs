@@ -456,10 +456,11 @@ pub(crate) fn add_planar_range(
         area_sum += f64::from(area);
         count += 1;
     };
-    let (xb, xt) = xs.as_chunks::<BLOCK>();
-    let (ab, at) = avs.as_chunks::<BLOCK>();
-    let (areab, areat) = areas.as_chunks::<BLOCK>();
-    for ((x, a), area) in xb.iter().zip(ab).zip(areab) {
+    let xb = xs.chunks_exact(BLOCK);
+    let ab = avs.chunks_exact(BLOCK);
+    let areab = areas.chunks_exact(BLOCK);
+    let (xt, at, areat) = (xb.remainder(), ab.remainder(), areab.remainder());
+    for ((x, a), area) in xb.zip(ab).zip(areab) {
         let r: [[f64; 3]; BLOCK] = std::array::from_fn(|k| widen(&x[k]));
         let d: [f64; BLOCK] = std::array::from_fn(|k| depth(&r[k]));
         if d.iter().any(|&d| d > 0.0) {
