@@ -59,3 +59,32 @@ fn quick_matrix_passes() {
         cells.iter().all(|c| c["pass"].as_bool().unwrap())
     );
 }
+
+/// The cells of the full matrix a thin body used to fail because the stiff
+/// step treatment took it for stiff at every step (its water plane bounded
+/// by `π r²`, 157 times too large for a 200:1 rod) and measured its pitch
+/// stiffness with turns that moved its ends by twice its width. Each
+/// gained 5–25 times its energy allowance before; each passes now.
+#[test]
+fn a_long_thin_rod_at_ordinary_steps_keeps_its_energy() {
+    for cell in [
+        "sliver/1m/0.5/1/240/plane/buoyancy",
+        "sliver/1m/0.1/1/10/plane/buoyancy",
+        "sliver/1m/0.5/1/240/plane/+drag",
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_soak"))
+            .args(["stress", "--json", "--only", cell])
+            .output()
+            .expect("run soak stress");
+        let cells: Vec<serde_json::Value> =
+            serde_json::from_slice(&out.stdout).expect("soak stress printed JSON");
+        assert_eq!(cells.len(), 1, "{cell}: one cell");
+        let c = &cells[0];
+        assert!(
+            c["pass"].as_bool().unwrap(),
+            "{cell}: {} (energy {} of its allowance)",
+            c["failures"],
+            c["energy_ratio"]
+        );
+    }
+}

@@ -706,7 +706,7 @@ impl ForceGenerator {
             // cannot reach the water within the step, falling at g.
             let centre = state.pose * b.atlas.origin();
             let radius = b.atlas.bounding_radius();
-            let reach = if implicit_weight(&self.water, radius, rb.mass() as f64, dt, substeps)
+            let reach = if implicit_weight(&self.water, &b.atlas, rb.mass() as f64, dt, substeps)
                 >= IMPLICIT_NEGLIGIBLE
             {
                 let c = (substeps + 1.0) / (2.0 * substeps);
@@ -911,11 +911,21 @@ const IMPLICIT_NEGLIGIBLE: f64 = 1e-3;
 
 /// `θ = w⁴/(1 + w⁴)`, `w = c ρ_w g π r² dt²/m`: how implicit the heave step
 /// is (see [`implicit_heave`]).
-fn implicit_weight(water: &Water, radius: f64, m: f64, dt: f64, substeps: f64) -> f64 {
+fn implicit_weight(water: &Water, atlas: &Atlas, m: f64, dt: f64, substeps: f64) -> f64 {
     let c = (substeps + 1.0) / (2.0 * substeps);
-    let w = c * water.density * water.gravity * std::f64::consts::PI * radius * radius * dt * dt / m;
+    let w = c * water.density * water.gravity * water_plane_bound(atlas) * dt * dt / m;
     let w4 = (w * w) * (w * w);
     w4 / (1.0 + w4)
+}
+
+/// An upper bound on the body's water-plane area, m², in any pose: the
+/// smaller of `π r²` (`r` the bounding radius) and half the surface area (a
+/// closed surface's projection on any plane, counted once from above and
+/// once from below, is at most its area). The second is the tight one for
+/// long thin bodies: a 200:1 rod's water plane is 1/80 of its `π r²`.
+fn water_plane_bound(atlas: &Atlas) -> f64 {
+    let r = atlas.bounding_radius();
+    (std::f64::consts::PI * r * r).min(0.5 * atlas.area())
 }
 
 /// The buoyancy with its restoring part integrated implicitly in heave,
@@ -946,8 +956,8 @@ fn implicit_weight(water: &Water, radius: f64, m: f64, dt: f64, substeps: f64) -
 ///
 /// `y_e = y₀ + θ ((1 − β) dt v + c dt² a)`, `a = F_y(y_e)/m − g`,
 ///
-/// with `θ = w⁴/(1 + w⁴)` and `w = c ρ_w g π r² dt²/m` (`r` the bounding
-/// radius, so `π r²` bounds the water-plane area and `w` bounds
+/// with `θ = w⁴/(1 + w⁴)` and `w = c ρ_w g A dt²/m` (`A` the bound of
+/// [`water_plane_bound`] on the water-plane area, so that `w` bounds
 /// `c k dt²/m`). `θ = 0` is the explicit lookahead step, `θ = 1` backward
 /// Euler; for `w ≪ 1` the change is of order `w⁴` (no visible damping nor
 /// frequency shift at ordinary steps), and for `w ≫ 1` the step is fully
@@ -980,7 +990,7 @@ fn implicit_heave(
     }
     let c = (substeps + 1.0) / (2.0 * substeps);
     let beta = (substeps - 1.0) / (2.0 * substeps);
-    let theta = implicit_weight(water, radius, m, dt, substeps);
+    let theta = implicit_weight(water, &b.atlas, m, dt, substeps);
     if theta.is_nan() || theta < IMPLICIT_NEGLIGIBLE {
         return buoyancy;
     }
@@ -1064,7 +1074,11 @@ fn implicit_heave(
     let Some(solved) = solved_dy else {
         return best;
     };
-    let turn = 0.01;
+    // A turn that moves no point by more than a tenth of the body's
+    // thickness 3V/A (its radius for a sphere; a 200:1 rod's width), so
+    // that the difference sees the torque's slope, not its saturation.
+    let thickness = 3.0 * b.atlas.volume().abs() / b.atlas.area().max(f64::MIN_POSITIVE);
+    let turn = (0.1 * thickness / radius).min(0.01);
     let mut k = Matrix3::zeros();
     for axis in [0, 2] {
         let mut e = Vector3::zeros();
