@@ -92,6 +92,9 @@ pub struct SoakBody {
     name: String,
     handle: RigidBodyHandle,
     atlas: Atlas,
+    /// The atlas' volume and the bounds the stiff-step treatment uses,
+    /// computed when the atlas is set (each is a pass over the texels).
+    shape: Shape,
     tiled: Option<TiledAtlas>,
     mass_model: MassModel,
     /// Mass from the model alone.
@@ -547,6 +550,7 @@ impl ForceGenerator {
         self.bodies.push(SoakBody {
             name: desc.name,
             handle,
+            shape: Shape::of(&desc.atlas),
             atlas: desc.atlas,
             tiled,
             mass_model: desc.mass_model,
@@ -656,6 +660,7 @@ impl ForceGenerator {
         if let Some(gpu) = &mut self.gpu {
             gpu.deform(id.0, positions)?;
         }
+        b.shape = Shape::of(&atlas);
         b.atlas = atlas;
         b.model_mass = mass;
         b.mass = total;
@@ -706,7 +711,7 @@ impl ForceGenerator {
             // cannot reach the water within the step, falling at g.
             let centre = state.pose * b.atlas.origin();
             let radius = b.atlas.bounding_radius();
-            let reach = if implicit_weight(&self.water, &b.atlas, rb.mass() as f64, dt, substeps)
+            let reach = if implicit_weight(&self.water, &b.shape, rb.mass() as f64, dt, substeps)
                 >= IMPLICIT_NEGLIGIBLE
             {
                 let c = (substeps + 1.0) / (2.0 * substeps);
@@ -780,7 +785,7 @@ impl ForceGenerator {
             };
             let mut wrench = Wrench::default();
             // Buoyancy can never exceed the weight of fluid the whole body displaces.
-            let limit = 1.5 * self.water.density * self.water.gravity * b.atlas.volume().abs() + 1e-9;
+            let limit = 1.5 * self.water.density * self.water.gravity * b.shape.volume + 1e-9;
             let bw = forces.buoyancy;
             if !bw.is_finite() {
                 self.firewall
@@ -909,23 +914,42 @@ impl ForceGenerator {
 /// by about `θ` of itself.
 const IMPLICIT_NEGLIGIBLE: f64 = 1e-3;
 
-/// `θ = w⁴/(1 + w⁴)`, `w = c ρ_w g π r² dt²/m`: how implicit the heave step
-/// is (see [`implicit_heave`]).
-fn implicit_weight(water: &Water, atlas: &Atlas, m: f64, dt: f64, substeps: f64) -> f64 {
+/// `θ = w⁴/(1 + w⁴)`, `w = c ρ_w g A dt²/m` with `A` the bound
+/// [`Shape::water_plane`]: how implicit the heave step is (see
+/// [`implicit_heave`]).
+fn implicit_weight(water: &Water, shape: &Shape, m: f64, dt: f64, substeps: f64) -> f64 {
     let c = (substeps + 1.0) / (2.0 * substeps);
-    let w = c * water.density * water.gravity * water_plane_bound(atlas) * dt * dt / m;
+    let w = c * water.density * water.gravity * shape.water_plane * dt * dt / m;
     let w4 = (w * w) * (w * w);
     w4 / (1.0 + w4)
 }
 
-/// An upper bound on the body's water-plane area, m², in any pose: the
-/// smaller of `π r²` (`r` the bounding radius) and half the surface area (a
-/// closed surface's projection on any plane, counted once from above and
-/// once from below, is at most its area). The second is the tight one for
-/// long thin bodies: a 200:1 rod's water plane is 1/80 of its `π r²`.
-fn water_plane_bound(atlas: &Atlas) -> f64 {
-    let r = atlas.bounding_radius();
-    (std::f64::consts::PI * r * r).min(0.5 * atlas.area())
+/// What the per-step work needs of a body's atlas, computed once per atlas.
+#[derive(Clone, Copy, Debug)]
+struct Shape {
+    /// Enclosed volume, m³ (absolute value).
+    volume: f64,
+    /// An upper bound on the water-plane area in any pose, m²: the smaller
+    /// of `π r²` (`r` the bounding radius) and half the surface area (a
+    /// closed surface's projection on any plane, counted once from above
+    /// and once from below, is at most its area). The second is the tight
+    /// one for long thin bodies: a 200:1 rod's is 1/80 of its `π r²`.
+    water_plane: f64,
+    /// Thickness `3V/A`, m: the radius of a sphere, about the width of a rod.
+    thickness: f64,
+}
+
+impl Shape {
+    fn of(atlas: &Atlas) -> Self {
+        let r = atlas.bounding_radius();
+        let area = atlas.area();
+        let volume = atlas.volume().abs();
+        Self {
+            volume,
+            water_plane: (std::f64::consts::PI * r * r).min(0.5 * area),
+            thickness: 3.0 * volume / area.max(f64::MIN_POSITIVE),
+        }
+    }
 }
 
 /// The buoyancy with its restoring part integrated implicitly in heave,
@@ -990,7 +1014,7 @@ fn implicit_heave(
     }
     let c = (substeps + 1.0) / (2.0 * substeps);
     let beta = (substeps - 1.0) / (2.0 * substeps);
-    let theta = implicit_weight(water, &b.atlas, m, dt, substeps);
+    let theta = implicit_weight(water, &b.shape, m, dt, substeps);
     if theta.is_nan() || theta < IMPLICIT_NEGLIGIBLE {
         return buoyancy;
     }
@@ -1077,8 +1101,7 @@ fn implicit_heave(
     // A turn that moves no point by more than a tenth of the body's
     // thickness 3V/A (its radius for a sphere; a 200:1 rod's width), so
     // that the difference sees the torque's slope, not its saturation.
-    let thickness = 3.0 * b.atlas.volume().abs() / b.atlas.area().max(f64::MIN_POSITIVE);
-    let turn = (0.1 * thickness / radius).min(0.01);
+    let turn = (0.1 * b.shape.thickness / radius).min(0.01);
     let mut k = Matrix3::zeros();
     for axis in [0, 2] {
         let mut e = Vector3::zeros();
