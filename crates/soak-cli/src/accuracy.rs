@@ -265,17 +265,17 @@ pub struct Report {
 
 /// How many calls of `f` make one timed sample of about 0.5 ms, so that
 /// microsecond calls are measurable.
-fn calls_per_sample<T>(f: &mut impl FnMut() -> T) -> usize {
+fn calls_per_sample(f: &mut dyn FnMut()) -> usize {
     let start = Instant::now();
-    black_box(f());
+    f();
     ((0.5 / ms(start).max(1e-6)).ceil() as usize).clamp(1, 10_000)
 }
 
 /// Time per call of `f` over `calls` calls, ms.
-fn sample_ms<T>(calls: usize, f: &mut impl FnMut() -> T) -> f64 {
+fn sample_ms(calls: usize, f: &mut dyn FnMut()) -> f64 {
     let start = Instant::now();
     for _ in 0..calls {
-        black_box(f());
+        f();
     }
     ms(start) / calls as f64
 }
@@ -285,17 +285,20 @@ fn median(mut v: Vec<f64>) -> f64 {
     v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
-/// Median time per call of two paths, ms, from `runs` samples each, taken
-/// alternately so that drift on a shared machine hits both alike (their
-/// ratio is what matters).
-fn per_call_ms<A, B>(runs: usize, mut a: impl FnMut() -> A, mut b: impl FnMut() -> B) -> (f64, f64) {
-    let (na, nb) = (calls_per_sample(&mut a), calls_per_sample(&mut b));
-    let (mut ta, mut tb) = (Vec::with_capacity(runs), Vec::with_capacity(runs));
+/// Median time per call of each path, ms, from `runs` samples each, taken
+/// in turn so that drift on a shared machine hits every path alike (their
+/// ratios are what matters). Each path's result goes through `black_box`.
+fn per_call_ms<const N: usize>(runs: usize, paths: [&mut dyn FnMut(); N]) -> [f64; N] {
+    let mut paths = paths;
+    let calls: Vec<usize> = paths.iter_mut().map(|p| calls_per_sample(*p)).collect();
+    let mut times: Vec<Vec<f64>> = vec![Vec::with_capacity(runs); N];
     for _ in 0..runs.max(1) {
-        ta.push(sample_ms(na, &mut a));
-        tb.push(sample_ms(nb, &mut b));
+        for ((p, &n), t) in paths.iter_mut().zip(&calls).zip(&mut times) {
+            t.push(sample_ms(n, *p));
+        }
     }
-    (median(ta), median(tb))
+    let mut medians = times.into_iter().map(median);
+    std::array::from_fn(|_| medians.next().unwrap_or(f64::NAN))
 }
 
 /// `n` evenly spaced values from `lo` to `hi`, both included.
@@ -317,7 +320,8 @@ struct Measured {
     tiled_diff: f64,
     per_texel_ms: f64,
     tiled_ms: f64,
-    /// Per-texel time over a streaming read of the same atlas, timed in turn.
+    /// Per-texel time over a streaming read of the same atlas, timed in turn
+    /// with it (and with the tiled path).
     over_floor: f64,
 }
 
@@ -367,15 +371,19 @@ fn measure(
     let trace = ex.inertia.trace();
     let inertia_error = (mass.inertia - ex.inertia).abs().max() / trace;
     let water = Water::calm(ex.levels[ex.timing_level]);
-    let (per_texel_ms, tiled_ms) = per_call_ms(
+    let [per_texel_ms, tiled_ms, floor_ms] = per_call_ms(
         runs,
-        || evaluate(&atlas, &water, &state, &mass, 0.0, &opts),
-        || tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts),
-    );
-    let (per_texel_again_ms, floor_ms) = per_call_ms(
-        runs,
-        || evaluate(&atlas, &water, &state, &mass, 0.0, &opts),
-        || streaming_read(&atlas),
+        [
+            &mut || {
+                let _ = black_box(evaluate(&atlas, &water, &state, &mass, 0.0, &opts));
+            },
+            &mut || {
+                let _ = black_box(tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts));
+            },
+            &mut || {
+                black_box(streaming_read(&atlas));
+            },
+        ],
     );
     let gpu_ms = match gpu {
         Some(g) => Some(
@@ -394,7 +402,7 @@ fn measure(
         tiled_diff,
         per_texel_ms,
         tiled_ms,
-        over_floor: per_texel_again_ms / floor_ms,
+        over_floor: per_texel_ms / floor_ms,
     })
 }
 
@@ -425,10 +433,18 @@ pub fn compute(quick: bool, out: &Path, mut gpu: Option<&mut Gpu>) -> anyhow::Re
         let solid = reference::solid_mass_properties(&case.mesh, DENSITY);
         let timing_level = levels.len() / 2;
         let plane = ClipPlane::horizontal(levels[timing_level]);
-        let (exact_ms, per_triangle_ms) = per_call_ms(
+        let [exact_ms, per_triangle_ms] = per_call_ms(
             plan.runs,
-            || reference::submerged_part(&case.mesh, &pose, &plane),
-            || reference::per_triangle_buoyancy(&case.mesh, &pose, &plane, 1000.0, 9.81),
+            [
+                &mut || {
+                    black_box(reference::submerged_part(&case.mesh, &pose, &plane));
+                },
+                &mut || {
+                    black_box(reference::per_triangle_buoyancy(
+                        &case.mesh, &pose, &plane, 1000.0, 9.81,
+                    ));
+                },
+            ],
         );
         let ex = Exact {
             pose,
