@@ -87,6 +87,62 @@ fn surface_at(b: Body, r: vec3<f32>) -> SurfacePoint {
     return out;
 }
 
+// Slope (dh/dx, dh/dz) of the surface above r, the CPU's `Surface::slope`:
+// for Gerstner waves J^-1 grad(y) at the particle's rest position (J the
+// Jacobian of its horizontal position), for a height field the bilinear
+// interpolant's (zero across an axis outside the grid), for a plane
+// -(n.x, n.z)/n.y, and none for an unbounded medium.
+fn surface_slope(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec2<f32> {
+    switch b.info.x {
+        case SURFACE_GERSTNER: {
+            var j = vec3<f32>(1.0, 0.0, 1.0); // xx, xz, zz
+            var g = vec2<f32>(0.0);
+            for (var i = b.info.y; i < b.info.y + b.info.z; i++) {
+                let w = waves[i];
+                let th = w.a.z * dot(w.a.xy, sp.rest) + w.b.z;
+                let f = w.b.x * w.a.z * cos(th);
+                j -= f * vec3<f32>(w.a.x * w.a.x, w.a.x * w.a.y, w.a.y * w.a.y);
+                g -= w.b.y * w.a.z * sin(th) * w.a.xy;
+            }
+            let det = j.x * j.z - j.y * j.y;
+            if (abs(det) < 1e-12) {
+                return vec2<f32>(0.0);
+            }
+            return vec2<f32>(j.z * g.x - j.y * g.y, j.x * g.y - j.y * g.x) / det;
+        }
+        case SURFACE_HEIGHT_FIELD: {
+            let nx = b.info.z;
+            let nz = b.info.w;
+            let gx = b.surface.x + r.x * b.surface.z;
+            let gz = b.surface.y + r.z * b.surface.w;
+            let fx = clamp(gx, 0.0, f32(nx - 1u));
+            let fz = clamp(gz, 0.0, f32(nz - 1u));
+            let ix = min(u32(fx), nx - 2u);
+            let iz = min(u32(fz), nz - 2u);
+            let u = fx - f32(ix);
+            let v = fz - f32(iz);
+            let h00 = height_sample(b, ix, iz);
+            let h10 = height_sample(b, ix + 1u, iz);
+            let h01 = height_sample(b, ix, iz + 1u);
+            let h11 = height_sample(b, ix + 1u, iz + 1u);
+            var s = vec2<f32>(0.0);
+            if (gx >= 0.0 && gx <= f32(nx - 1u)) {
+                s.x = ((1.0 - v) * (h10 - h00) + v * (h11 - h01)) * b.surface.z;
+            }
+            if (gz >= 0.0 && gz <= f32(nz - 1u)) {
+                s.y = ((1.0 - u) * (h01 - h00) + u * (h11 - h10)) * b.surface.w;
+            }
+            return s;
+        }
+        case SURFACE_UNBOUNDED: {
+            return vec2<f32>(0.0);
+        }
+        default: {
+            return -b.surface.xz / b.surface.y;
+        }
+    }
+}
+
 // Fluid velocity at r (m/s): the orbital velocity of the Gerstner particle
 // above it, decaying below the mean level, or the uniform current.
 fn fluid_velocity(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec3<f32> {

@@ -23,6 +23,11 @@ use crate::water::{SurfaceKind, Water};
 #[serde(rename_all = "snake_case")]
 pub enum BuoyancyMode {
     /// `ρ g V_s` straight up at the centre of buoyancy (the thesis' model).
+    /// Where the surface over a floating body is not flat, its torque also
+    /// takes the slope's part, so that force and torque together are the
+    /// derivative of the water's potential and a body rocking over waves
+    /// or a step neither gains nor loses energy by it; there is still no
+    /// sideways force (no drift).
     #[default]
     Archimedes,
     /// Sum of hydrostatic pressure forces `−ρ g d_i A_i` and their torques.
@@ -188,6 +193,9 @@ pub(crate) struct BuoyancySums {
     pub area: f64,
     /// Submerged texels.
     pub count: usize,
+    /// Archimedes' slope terms, where the surface is not flat (see
+    /// [`SlopeSums`]).
+    pub slope: SlopeSums,
 }
 
 impl BuoyancySums {
@@ -213,6 +221,7 @@ impl std::ops::Add for BuoyancySums {
             rxf: self.rxf + o.rxf,
             area: self.area + o.area,
             count: self.count + o.count,
+            slope: self.slope + o.slope,
         }
     }
 }
@@ -237,6 +246,40 @@ impl BuoyancySums {
         self.rxf += r.cross(&f);
         self.area += area;
         self.count += 1;
+    }
+}
+
+/// The sums that make Archimedes' torque the derivative of the water's
+/// potential where the surface over a body is not flat, with
+/// `s = (∂h/∂x, 0, ∂h/∂z)` the surface's slope over a submerged texel,
+/// `w = −A_y d`, and `ρ` the texel's position relative to the centre of
+/// mass (see [`slope_torque`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct SlopeSums {
+    /// Σ (d²/2) A × ŷ.
+    pub ad2: Vector3<f64>,
+    /// Σ w ρ × s.
+    pub wrs: Vector3<f64>,
+}
+
+impl std::ops::Add for SlopeSums {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self {
+            ad2: self.ad2 + o.ad2,
+            wrs: self.wrs + o.wrs,
+        }
+    }
+}
+
+impl SlopeSums {
+    /// Adds a submerged texel (world axes): `rho` from the centre of mass,
+    /// `a` its area vector, `d` its depth and `slope` the surface's over it.
+    #[inline]
+    pub(crate) fn add(&mut self, rho: &Vector3<f64>, a: &Vector3<f64>, d: f64, slope: [f64; 2]) {
+        let s = Vector3::new(slope[0], 0.0, slope[1]);
+        self.ad2 += (0.5 * d * d) * Vector3::new(-a.z, 0.0, a.x);
+        self.wrs += (-a.y * d) * rho.cross(&s);
     }
 }
 
@@ -361,6 +404,7 @@ pub(crate) struct Frame {
     /// World centre of mass.
     pub com: Vector3<f64>,
     pub plane: Option<(Vector3<f64>, f64)>,
+    pub texels: usize,
 }
 
 impl Frame {
@@ -374,13 +418,7 @@ impl Frame {
         let rot = state.pose.rotation.to_rotation_matrix().into_inner();
         let ow = (state.pose * atlas.origin()).coords;
         let com = (state.pose * mass.center_of_mass).coords;
-        let plane = match water.surface.kind(t) {
-            SurfaceKind::Plane { normal, offset } => Some((normal, offset)),
-            // No free surface: a horizontal plane above the whole body gives
-            // the same sums (Σ A = 0 for a closed surface) with finite depths.
-            SurfaceKind::Unbounded => Some((Vector3::y(), ow.y + atlas.bounding_radius() + 1.0)),
-            SurfaceKind::General => None,
-        };
+        let plane = Self::surface_plane(water, t, &ow, atlas.bounding_radius());
         let local_plane = plane.map(|(n, c)| {
             let alpha = (c - n.dot(&ow)) / n.y;
             let beta = -(rot.transpose() * n) / n.y;
@@ -392,6 +430,24 @@ impl Frame {
             ow,
             com,
             plane,
+            texels: atlas.len(),
+        }
+    }
+
+    /// The water's surface as a plane `(normal, offset)` at time `t`, if it
+    /// is one, for a body whose atlas origin is at `ow` within `radius`.
+    pub(crate) fn surface_plane(
+        water: &Water,
+        t: f64,
+        ow: &Vector3<f64>,
+        radius: f64,
+    ) -> Option<(Vector3<f64>, f64)> {
+        match water.surface.kind(t) {
+            SurfaceKind::Plane { normal, offset } => Some((normal, offset)),
+            // No free surface: a horizontal plane above the whole body gives
+            // the same sums (Σ A = 0 for a closed surface) with finite depths.
+            SurfaceKind::Unbounded => Some((Vector3::y(), ow.y + radius + 1.0)),
+            SurfaceKind::General => None,
         }
     }
 
@@ -566,6 +622,10 @@ pub fn evaluate(
                     if d > 0.0 {
                         let aw = frame.rot * a;
                         s.b.add_texel(&r, &aw, atlas.areas()[i] as f64, d);
+                        if options.buoyancy == BuoyancyMode::Archimedes {
+                            let slope = water.surface.slope(p.x, p.z, t, &hint);
+                            s.b.slope.add(&(p - frame.com), &aw, d, slope);
+                        }
                         if let Some(drag) = &options.drag {
                             let rc = p - frame.com;
                             let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
@@ -622,6 +682,37 @@ pub(crate) fn drag_sums(
     })
 }
 
+/// What Archimedes' torque takes from a surface that is not flat, over
+/// `ρ_w g`: zero under flat water, where `ρ_w g V_s` at the centre of
+/// buoyancy is the whole of it.
+///
+/// Under a static surface `h(x, z)` the water's potential is the columns'
+/// `U = ρ_w g Σ (−A_y) d²/2`. Archimedes' vertical force is `−∂U/∂y`; the
+/// torque that makes the pair conserve energy is `−∂U/∂θ` about the centre
+/// of mass, `ρ_w g Σ [(d²/2) A × ŷ + A_y d ρ × (s − ŷ)]`: the force at the
+/// centre of buoyancy plus `ρ_w g (Σ (d²/2) A × ŷ − Σ w ρ × s)`. Without
+/// these terms a floating body pitching over a slope takes in energy every
+/// swing. A body wholly under water keeps the classic torque of `ρ_w g V`
+/// at its centre of buoyancy: real pressure forgets the surface's shape with
+/// depth, and the columns' terms would be differences of numbers that grow
+/// with the depth squared. A tilted plane's slope is the same everywhere,
+/// and its sums follow from the others (`Σ (d²/2) A ≈ (Σ w d/2)(s − ŷ)`, the
+/// divergence theorem).
+fn slope_torque(frame: &Frame, s: &BuoyancySums) -> Vector3<f64> {
+    if s.count >= frame.texels {
+        return Vector3::zeros();
+    }
+    match frame.plane {
+        Some((n, _)) if n.x == 0.0 && n.z == 0.0 => Vector3::zeros(),
+        Some((n, _)) => {
+            let slope = Vector3::new(-n.x / n.y, 0.0, -n.z / n.y);
+            let wrho = s.wr - s.vol * (frame.com - frame.ow);
+            s.wd2 * slope.cross(&Vector3::y()) - wrho.cross(&slope)
+        }
+        None => s.slope.ad2 - s.slope.wrs,
+    }
+}
+
 /// Turns the sums into forces.
 pub(crate) fn finish(
     frame: &Frame,
@@ -643,9 +734,10 @@ pub(crate) fn finish(
     };
     let archimedes = {
         let force = Vector3::new(0.0, rg * volume, 0.0);
+        let slope_torque = rg * slope_torque(frame, s);
         Wrench {
             force,
-            torque: (cb - com).cross(&force),
+            torque: (cb - com).cross(&force) + slope_torque,
         }
     };
     let pressure = {

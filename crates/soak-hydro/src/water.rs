@@ -84,6 +84,21 @@ pub trait Surface: Send + Sync {
         (self.depth(p, t), v)
     }
 
+    /// Slope `(∂f/∂x, ∂f/∂z)` of the surface above `(x, z)` (m) at time `t`
+    /// (s), dimensionless. Archimedes buoyancy needs it where the surface is
+    /// not flat, so that its torque is the derivative of the water's
+    /// potential. `hint` is [`Surface::probe`]'s, left by a probe at the
+    /// same point. The default takes central differences of
+    /// [`Surface::height`] 10⁻⁵ (1 + |x| + |z|) m apart.
+    fn slope(&self, x: f64, z: f64, t: f64, hint: &[f64; 2]) -> [f64; 2] {
+        let _ = hint;
+        let h = 1e-5 * (1.0 + x.abs() + z.abs());
+        [
+            (self.height(x + h, z, t) - self.height(x - h, z, t)) / (2.0 * h),
+            (self.height(x, z + h, t) - self.height(x, z - h, t)) / (2.0 * h),
+        ]
+    }
+
     /// Depth of `p` below the surface, m (positive under water, measured vertically).
     fn depth(&self, p: &Point3<f64>, t: f64) -> f64 {
         self.height(p.x, p.z, t) - p.y
@@ -144,6 +159,9 @@ impl Surface for Plane {
     }
     fn height(&self, x: f64, z: f64, _t: f64) -> f64 {
         (self.offset - self.normal.x * x - self.normal.z * z) / self.normal.y
+    }
+    fn slope(&self, _x: f64, _z: f64, _t: f64, _hint: &[f64; 2]) -> [f64; 2] {
+        [-self.normal.x / self.normal.y, -self.normal.z / self.normal.y]
     }
     fn velocity(&self, _p: &Point3<f64>, _t: f64) -> Vector3<f64> {
         self.current
@@ -362,6 +380,30 @@ impl Surface for Gerstner {
         (height - p.y, v)
     }
 
+    /// `(∂f/∂x, ∂f/∂z) = J⁻¹ ∇y` at the particle's rest position, with `J`
+    /// the Jacobian of its horizontal position and `∇y` the gradient of its
+    /// height, both over the rest position.
+    fn slope(&self, x: f64, z: f64, t: f64, hint: &[f64; 2]) -> [f64; 2] {
+        let (x0, z0) = self.rest_position_from(x, z, t, *hint);
+        let (mut jxx, mut jxz, mut jzz) = (1.0, 0.0, 1.0);
+        let (mut gx, mut gz) = (0.0, 0.0);
+        for w in &self.cache {
+            let th = w.k * (w.dir.x * x0 + w.dir.y * z0) - w.omega * t + w.phase;
+            let (s, c) = th.sin_cos();
+            let f = w.qa * w.k * c;
+            jxx -= f * w.dir.x * w.dir.x;
+            jxz -= f * w.dir.x * w.dir.y;
+            jzz -= f * w.dir.y * w.dir.y;
+            gx -= w.a * w.k * s * w.dir.x;
+            gz -= w.a * w.k * s * w.dir.y;
+        }
+        let det = jxx * jzz - jxz * jxz;
+        if det.abs() < 1e-12 {
+            return [0.0, 0.0];
+        }
+        [(jzz * gx - jxz * gz) / det, (jxx * gz - jxz * gx) / det]
+    }
+
     /// Orbital velocity of the surface particle above `p`, decaying as
     /// `e^{k·(y − level)}` below the mean level (Airy theory).
     fn velocity(&self, p: &Point3<f64>, t: f64) -> Vector3<f64> {
@@ -460,6 +502,31 @@ impl Surface for HeightField {
         (1.0 - v) * ((1.0 - u) * h(ix, iz) + u * h(ix + 1, iz))
             + v * ((1.0 - u) * h(ix, iz + 1) + u * h(ix + 1, iz + 1))
     }
+    /// The bilinear interpolant's slope; zero across an axis outside the
+    /// grid, where the edge value holds.
+    fn slope(&self, x: f64, z: f64, _t: f64, _hint: &[f64; 2]) -> [f64; 2] {
+        let gx = (x - self.origin[0]) / self.spacing[0];
+        let gz = (z - self.origin[1]) / self.spacing[1];
+        let fx = gx.clamp(0.0, (self.nx - 1) as f64);
+        let fz = gz.clamp(0.0, (self.nz - 1) as f64);
+        let (ix, iz) = ((fx as usize).min(self.nx - 2), (fz as usize).min(self.nz - 2));
+        let (u, v) = (fx - ix as f64, fz - iz as f64);
+        let h = |i: usize, j: usize| self.heights[j * self.nx + i];
+        let inside = |g: f64, n: usize| (0.0..=(n - 1) as f64).contains(&g);
+        let sx = if inside(gx, self.nx) {
+            ((1.0 - v) * (h(ix + 1, iz) - h(ix, iz)) + v * (h(ix + 1, iz + 1) - h(ix, iz + 1)))
+                / self.spacing[0]
+        } else {
+            0.0
+        };
+        let sz = if inside(gz, self.nz) {
+            ((1.0 - u) * (h(ix, iz + 1) - h(ix, iz)) + u * (h(ix + 1, iz + 1) - h(ix + 1, iz)))
+                / self.spacing[1]
+        } else {
+            0.0
+        };
+        [sx, sz]
+    }
     fn velocity(&self, _p: &Point3<f64>, _t: f64) -> Vector3<f64> {
         Vector3::from(self.current)
     }
@@ -481,6 +548,9 @@ impl Surface for Unbounded {
     }
     fn height(&self, _x: f64, _z: f64, _t: f64) -> f64 {
         f64::INFINITY
+    }
+    fn slope(&self, _x: f64, _z: f64, _t: f64, _hint: &[f64; 2]) -> [f64; 2] {
+        [0.0, 0.0]
     }
     fn velocity(&self, _p: &Point3<f64>, _t: f64) -> Vector3<f64> {
         Vector3::from(self.current)

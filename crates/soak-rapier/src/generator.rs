@@ -10,8 +10,8 @@ use rapier3d::prelude::{
 use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
 use soak_hydro::{
-    BodyState, BuoyancyMode, Drag, HydroForces, HydroOptions, MassModel, MassProperties, TiledAtlas, Water,
-    Wrench,
+    BodyState, BuoyancyMode, Drag, HydroForces, HydroOptions, MassModel, MassProperties, SurfaceKind,
+    TiledAtlas, Water, Wrench,
 };
 use soak_wet::{Environment, StepReport, Wetting};
 
@@ -1102,8 +1102,13 @@ fn implicit_heave(
     // thickness 3V/A (its radius for a sphere; a 200:1 rod's width), so
     // that the difference sees the torque's slope, not its saturation.
     let turn = (0.1 * b.shape.thickness / radius).min(0.01);
+    // Yaw too where the surface is not flat: a slope makes a yaw torque
+    // that can be as stiff as pitch and roll (over a flat surface there is
+    // none, and its difference would only be noise).
+    let flat = matches!(water.surface.kind(t), SurfaceKind::Plane { normal, .. } if normal.x == 0.0 && normal.z == 0.0);
+    let axes: &[usize] = if flat { &[0, 2] } else { &[0, 1, 2] };
     let mut k = Matrix3::zeros();
-    for axis in [0, 2] {
+    for &axis in axes {
         let mut e = Vector3::zeros();
         e[axis] = turn;
         let (Some(plus), Some(minus)) = (at_pose(posed(solved, e)), at_pose(posed(solved, -e))) else {

@@ -8,7 +8,9 @@ use super::layout::{Body, Dispatch, HYDRO_SLOTS, ITEM_TEXELS, Item, dispatch_byt
 use super::scope::{read_back, scoped};
 use super::surface::{HeightFields, encode_surface};
 use crate::error::HydroError;
-use crate::hydrostatics::{BodyState, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, finish};
+use crate::hydrostatics::{
+    BodyState, BuoyancyMode, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, SlopeSums, finish,
+};
 use crate::mass::MassProperties;
 use crate::water::Water;
 
@@ -103,7 +105,7 @@ impl GpuHydro {
 
     /// Buoyancy and drag on many bodies at time `t` (s), each with its own
     /// atlas, water, pose and options: one submission (one dispatch per page
-    /// of texels, one for the reduction) and one readback of 160 bytes per
+    /// of texels, one for the reduction) and one readback of 192 bytes per
     /// body. Results are in the order of `bodies`.
     pub fn evaluate_batch(&self, bodies: &[GpuBody<'_>], t: f64) -> Result<Vec<HydroForces>, GpuError> {
         if bodies.is_empty() {
@@ -137,7 +139,11 @@ impl GpuHydro {
                 drag: [
                     drag.map_or(0.0, |d| d.linear) as f32,
                     if drag.is_some() { 1.0 } else { 0.0 },
-                    0.0,
+                    if b.options.buoyancy == BuoyancyMode::Archimedes {
+                        1.0
+                    } else {
+                        0.0
+                    },
                     0.0,
                 ],
                 slot: [b.atlas.0, 0, 0, 0],
@@ -145,13 +151,15 @@ impl GpuHydro {
             };
             encode_surface(i, b.water, &ow, t, &mut body, &mut waves, &mut heights)?;
             gpu_bodies.push(body);
-            // `finish` reads the reference point and the centre of mass only.
+            // `finish` reads the reference point, the centre of mass, the
+            // plane (for Archimedes' slope terms) and the texel count.
             frames.push(Frame {
                 local_plane: None,
                 rot,
                 ow,
                 com,
-                plane: None,
+                plane: Frame::surface_plane(b.water, t, &ow, 0.0),
+                texels: entry.len,
             });
             let first = partials;
             for s in &entry.segments {
@@ -289,7 +297,7 @@ impl GpuHydro {
             .iter()
             .enumerate()
             .map(|(i, b)| {
-                let q = &floats[i * 40..(i + 1) * 40];
+                let q = &floats[i * 4 * HYDRO_SLOTS as usize..(i + 1) * 4 * HYDRO_SLOTS as usize];
                 let (sums, drag) = decode(q);
                 let drag = b.options.drag.map(|_| drag);
                 finish(
@@ -318,6 +326,10 @@ fn decode(q: &[f32]) -> (BuoyancySums, DragSums) {
         rxf: v(8),
         area: f(11),
         count: q[12].to_bits() as usize,
+        slope: SlopeSums {
+            ad2: Vector3::new(f(40), 0.0, f(41)),
+            wrs: v(42),
+        },
     };
     let kvv = Matrix3::new(f(13), f(14), f(15), f(14), f(16), f(17), f(15), f(17), f(18));
     let kvw = Matrix3::new(f(25), f(26), f(27), f(28), f(29), f(30), f(31), f(32), f(33));

@@ -10,9 +10,11 @@
 //   5: b1, b2, b3, b4       6: b5, Kvw00, Kvw01, Kvw02
 //   7: Kvw10, Kvw11, Kvw12, Kvw20                   8: Kvw21, Kvw22, Kww00, Kww01
 //   9: Kww02, Kww11, Kww12, Kww22
-// (K = [[Kvv, Kvw], [Kvwᵀ, Kww]] is symmetric.)
+//  10: ad2.x, ad2.z, wrs.x, wrs.y                  11: wrs.z, 0, 0, 0
+// (K = [[Kvv, Kvw], [Kvwᵀ, Kww]] is symmetric; ad2 and wrs are Archimedes'
+// slope sums, `SlopeSums` of hydrostatics.rs.)
 
-const SLOTS: u32 = 10u;
+const SLOTS: u32 = 12u;
 
 @group(0) @binding(0) var<storage, read> texels: array<vec4<f32>>;
 @group(0) @binding(1) var<storage, read> bodies: array<Body>;
@@ -23,7 +25,7 @@ const SLOTS: u32 = 10u;
 @group(0) @binding(6) var<storage, read_write> partials: array<vec4<f32>>;
 @group(0) @binding(7) var<uniform> dispatch: Dispatch;
 
-var<workgroup> scratch: array<vec4<f32>, 640>; // WG * SLOTS
+var<workgroup> scratch: array<vec4<f32>, 768>; // WG * SLOTS
 
 fn rotate(b: Body, x: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(dot(b.rot0.xyz, x), dot(b.rot1.xyz, x), dot(b.rot2.xyz, x));
@@ -51,8 +53,8 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) l
     let cd = b.angular_velocity.w;
     let linear = b.drag.x;
 
-    // Ten accumulators indexed by constants only, so compilers keep them in registers.
-    var acc: array<vec4<f32>, 10>;
+    // Twelve accumulators indexed by constants only, so compilers keep them in registers.
+    var acc: array<vec4<f32>, 12>;
     for (var k = 0u; k < PER_THREAD; k++) {
         let i = item.start + k * WG + lid;
         if (i >= item.end) {
@@ -71,6 +73,14 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) l
             acc[1] += vec4<f32>(0.5 * w * d, f);
             acc[2] += vec4<f32>(cross(r, f), area);
             acc[3].x += 1.0;
+            if (b.drag.z > 0.5) {
+                let s2 = surface_slope(b, r, sp);
+                let rho = r - b.com.xyz;
+                let wrs = w * cross(rho, vec3<f32>(s2.x, 0.0, s2.y));
+                let dd = 0.5 * d * d;
+                acc[10] += vec4<f32>(-dd * a.z, dd * a.x, wrs.x, wrs.y);
+                acc[11].x += wrs.z;
+            }
             if (drag_on) {
                 let rc = r - b.com.xyz;
                 let u = fluid_velocity(b, r, sp);
@@ -125,6 +135,8 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) l
     scratch[at + 7u] = acc[7];
     scratch[at + 8u] = acc[8];
     scratch[at + 9u] = acc[9];
+    scratch[at + 10u] = acc[10];
+    scratch[at + 11u] = acc[11];
     for (var s = WG / 2u; s > 0u; s = s >> 1u) {
         workgroupBarrier();
         if (lid < s) {

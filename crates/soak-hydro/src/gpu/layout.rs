@@ -11,7 +11,7 @@ pub(crate) const PER_THREAD: u32 = 64;
 /// Texels per work item (one workgroup, one partial).
 pub(crate) const ITEM_TEXELS: u32 = WG * PER_THREAD;
 /// vec4s per hydrostatics partial (`SLOTS` in buoyancy.wgsl).
-pub(crate) const HYDRO_SLOTS: u32 = 10;
+pub(crate) const HYDRO_SLOTS: u32 = 12;
 /// vec4s per mass partial (`SLOTS` in mass.wgsl).
 pub(crate) const MASS_SLOTS: u32 = 3;
 /// Bytes per texel in a page: position and area vector, two vec4s.

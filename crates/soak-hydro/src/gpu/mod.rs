@@ -6,7 +6,7 @@
 //! each texel, finds its depth under the water surface (plane, Gerstner sea,
 //! height field or unbounded medium, in `shaders/water_surface.wgsl`) and
 //! sums buoyancy and drag terms per workgroup; a second reduces the partials
-//! per body. The sums come back (160 bytes per body) and the CPU turns them
+//! per body. The sums come back (192 bytes per body) and the CPU turns them
 //! into [`crate::HydroForces`] with the code [`crate::evaluate`] uses, the
 //! implicit drag solve included. Many bodies, each with its own atlas, pose
 //! and water, go in one submission and one readback
