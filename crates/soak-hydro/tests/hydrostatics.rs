@@ -569,3 +569,100 @@ fn bad_state_and_water_are_refused() {
         .is_err()
     );
 }
+
+/// The columns' potential `Σ −A_y d²/2` (m⁴) of the atlas at `pose`, summed
+/// here from the surface's heights alone: the energy the water stores.
+fn columns_potential(atlas: &Atlas, water: &Water, pose: &Isometry3<f64>) -> f64 {
+    let mut u = 0.0;
+    for (i, a) in atlas.area_vectors().iter().enumerate() {
+        let p = pose * atlas.position(i);
+        let d = water.surface.depth(&p, 0.0);
+        if d > 0.0 {
+            let ay = (pose.rotation * Vector3::new(a[0] as f64, a[1] as f64, a[2] as f64)).y;
+            u -= ay * d * d / 2.0;
+        }
+    }
+    u
+}
+
+/// Over a surface that is not flat, Archimedes' torque is minus the
+/// derivative of the columns' potential under a turn about the centre of
+/// mass (central differences of [`columns_potential`], summed independently
+/// from the surface's heights): what makes a floating body rocking over
+/// waves or a step keep its energy. `ρ g V_s` at the centre of buoyancy
+/// alone, the torque before, is off by far more than the tolerance.
+#[test]
+fn archimedes_torque_is_the_derivative_of_the_columns_potential() {
+    let sea = Water::new(
+        Gerstner::new(
+            0.0,
+            vec![GerstnerWave {
+                amplitude: 0.3,
+                wavelength: 5.0,
+                direction_deg: 20.0,
+                steepness: 0.6,
+                phase: 0.3,
+            }],
+            G,
+        )
+        .unwrap(),
+    );
+    // A smooth bump sampled every 0.1 m (bilinear between samples).
+    let n = 41;
+    let heights = (0..n * n)
+        .map(|k| {
+            let (x, z) = (-2.0 + 0.1 * (k % n) as f64, -2.0 + 0.1 * (k / n) as f64);
+            0.25 * (-(x - 0.4).powi(2) - (z + 0.2).powi(2)).exp()
+        })
+        .collect();
+    let bump = Water::new(soak_hydro::HeightField::new([-2.0, -2.0], [0.1, 0.1], n, n, heights).unwrap());
+    let atlas = bake(&builtin::cuboid(1.0, 0.6, 0.8), 256);
+    let mass = solid(&atlas);
+    let pose = Isometry3::from_parts(
+        Translation3::new(0.2, 0.05, -0.1),
+        UnitQuaternion::from_euler_angles(0.15, 0.4, -0.1),
+    );
+    for (name, water) in [("Gerstner sea", &sea), ("height-field bump", &bump)] {
+        let f = evaluate(
+            &atlas,
+            water,
+            &BodyState::at_rest(pose),
+            &mass,
+            0.0,
+            &HydroOptions::default(),
+        )
+        .unwrap();
+        assert!(
+            f.submerged_volume > 0.05 && f.submerged_volume < 0.4,
+            "{name}: {}",
+            f.submerged_volume
+        );
+        let com = pose * mass.center_of_mass;
+        let eps = 1e-4;
+        let turned = |axis: Vector3<f64>, angle: f64| {
+            let q = UnitQuaternion::from_scaled_axis(axis * angle);
+            Isometry3::from_parts(Translation3::from(com.coords - q * com.coords), q) * pose
+        };
+        let mut fd = Vector3::zeros();
+        for k in 0..3 {
+            let axis = Vector3::ith(k, 1.0);
+            let up = columns_potential(&atlas, water, &turned(axis, eps));
+            let down = columns_potential(&atlas, water, &turned(axis, -eps));
+            fd[k] = -RHO * G * (up - down) / (2.0 * eps);
+        }
+        let scale = RHO * G * f.submerged_volume * atlas.bounding_radius();
+        let err = (f.archimedes.torque - fd).norm() / scale;
+        assert!(
+            err < 2e-3,
+            "{name}: torque {:?}, −∂U/∂θ {fd:?}, error {err:.2e}",
+            f.archimedes.torque
+        );
+        let classic = (f.center_of_buoyancy - com).cross(&f.archimedes.force);
+        let off = (classic - fd).norm() / scale;
+        assert!(
+            off > 10.0 * err.max(1e-4),
+            "{name}: the classic torque is off by only {off:.2e}"
+        );
+        eprintln!("{name}: error {err:.2e} of ρ g V_s r; the classic torque's {off:.2e}");
+    }
+}

@@ -100,3 +100,53 @@ fn planes_and_height_fields() {
     assert!(HeightField::new([0.0, 0.0], [1.0, 1.0], 2, 2, vec![0.0; 3]).is_err());
     assert!(HeightField::new([0.0, 0.0], [1.0, 1.0], 2, 2, vec![0.0, f64::NAN, 0.0, 0.0]).is_err());
 }
+
+/// A surface that gives only its heights: `Surface::slope` differentiates it.
+struct Ripple;
+impl Surface for Ripple {
+    fn height(&self, x: f64, z: f64, _t: f64) -> f64 {
+        0.3 * (x.sin() * (0.5 * z).cos())
+    }
+}
+
+#[test]
+fn slopes_are_the_derivatives_of_the_heights() {
+    let central = |s: &dyn Surface, x: f64, z: f64, t: f64| {
+        let h = 1e-6;
+        [
+            (s.height(x + h, z, t) - s.height(x - h, z, t)) / (2.0 * h),
+            (s.height(x, z + h, t) - s.height(x, z - h, t)) / (2.0 * h),
+        ]
+    };
+    for steepness in [0.0, 0.5, 0.9] {
+        let sea = sea(steepness);
+        for (x, z, t) in [(0.3, -1.2, 0.0), (2.7, 0.4, 1.7), (-4.1, 3.3, 5.2)] {
+            let s = sea.slope(x, z, t, &[0.0, 0.0]);
+            let c = central(&sea, x, z, t);
+            for k in 0..2 {
+                assert!(
+                    (s[k] - c[k]).abs() < 1e-6,
+                    "steepness {steepness} at ({x}, {z}, {t}): {s:?} vs {c:?}"
+                );
+            }
+        }
+    }
+    // The default: central differences of the heights.
+    for (x, z) in [(0.2, 0.1), (1.4, -2.0)] {
+        let s = Ripple.slope(x, z, 0.0, &[0.0, 0.0]);
+        let exact = [0.3 * x.cos() * (0.5 * z).cos(), -0.15 * x.sin() * (0.5 * z).sin()];
+        assert!(
+            (s[0] - exact[0]).abs() < 1e-8 && (s[1] - exact[1]).abs() < 1e-8,
+            "{s:?} vs {exact:?}"
+        );
+    }
+    // h = x + z on this grid (spacing 1 by 2, heights 0, 1, 2, 3); flat
+    // outside it, where the edge value holds.
+    let hf = HeightField::new([0.0, 0.0], [1.0, 2.0], 2, 2, vec![0.0, 1.0, 2.0, 3.0]).unwrap();
+    assert_eq!(hf.slope(0.5, 1.0, 0.0, &[0.0, 0.0]), [1.0, 1.0]);
+    assert_eq!(hf.slope(-3.0, 1.0, 0.0, &[0.0, 0.0]), [0.0, 1.0]);
+    assert_eq!(hf.slope(9.0, 9.0, 0.0, &[0.0, 0.0]), [0.0, 0.0]);
+    let p = Plane::tilted(Point3::new(1.0, 2.0, 3.0), Vector3::new(0.0, 1.0, 1.0)).unwrap();
+    let s = p.slope(5.0, -7.0, 0.0, &[0.0, 0.0]);
+    assert!(s[0].abs() < 1e-15 && (s[1] + 1.0).abs() < 1e-12, "{s:?}");
+}
