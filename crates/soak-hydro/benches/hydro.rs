@@ -1,12 +1,17 @@
 //! Hydrostatics at 1024²: per texel (and per texel with the body all dry and
 //! all submerged), tiled, a plain streaming read of the same atlas (the
-//! bandwidth floor), exact clipping and the per-triangle baseline.
+//! bandwidth floor), exact clipping and the per-triangle baseline; and on a
+//! Gerstner sea, per texel, in Archimedes mode (which also takes the
+//! surface's slope for its torque) and in pressure mode.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, builtin};
 use soak_hydro::reference::{self, ClipPlane};
-use soak_hydro::{BodyState, HydroOptions, MassModel, TiledAtlas, Water, evaluate, streaming_read};
+use soak_hydro::{
+    BodyState, BuoyancyMode, Gerstner, GerstnerWave, HydroOptions, MassModel, TiledAtlas, Water, evaluate,
+    streaming_read,
+};
 
 fn hydro(c: &mut Criterion) {
     let mesh = builtin::sphere(0.5, 64, 32);
@@ -47,6 +52,32 @@ fn hydro(c: &mut Criterion) {
     g.bench_function("per_triangle_baseline", |b| {
         b.iter(|| reference::per_triangle_buoyancy(&mesh, &pose, &ClipPlane::horizontal(0.0), 1000.0, 9.81))
     });
+    let sea = Water::new(
+        Gerstner::new(
+            0.0,
+            vec![GerstnerWave {
+                amplitude: 0.3,
+                wavelength: 5.0,
+                direction_deg: 20.0,
+                steepness: 0.6,
+                phase: 0.3,
+            }],
+            9.81,
+        )
+        .unwrap(),
+    );
+    for (name, mode) in [
+        ("gerstner_archimedes", BuoyancyMode::Archimedes),
+        ("gerstner_pressure", BuoyancyMode::Pressure),
+    ] {
+        let o = HydroOptions {
+            buoyancy: mode,
+            ..opts
+        };
+        g.bench_function(name, |b| {
+            b.iter(|| evaluate(&atlas, &sea, &state, &mass, 0.0, &o).unwrap())
+        });
+    }
     g.finish();
 }
 

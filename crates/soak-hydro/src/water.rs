@@ -384,24 +384,39 @@ impl Surface for Gerstner {
     /// the Jacobian of its horizontal position and `∇y` the gradient of its
     /// height, both over the rest position.
     fn slope(&self, x: f64, z: f64, t: f64, hint: &[f64; 2]) -> [f64; 2] {
-        let (x0, z0) = self.rest_position_from(x, z, t, *hint);
-        let (mut jxx, mut jxz, mut jzz) = (1.0, 0.0, 1.0);
-        let (mut gx, mut gz) = (0.0, 0.0);
-        for w in &self.cache {
-            let th = w.k * (w.dir.x * x0 + w.dir.y * z0) - w.omega * t + w.phase;
-            let (s, c) = th.sin_cos();
-            let f = w.qa * w.k * c;
-            jxx -= f * w.dir.x * w.dir.x;
-            jxz -= f * w.dir.x * w.dir.y;
-            jzz -= f * w.dir.y * w.dir.y;
-            gx -= w.a * w.k * s * w.dir.x;
-            gz -= w.a * w.k * s * w.dir.y;
+        // After a probe at the same point the hint holds the particle's
+        // displacement, so the first guess is its rest position: check it
+        // in the same pass over the waves that takes J and ∇y.
+        let mut rest = (x - hint[0], z - hint[1]);
+        for attempt in 0..2 {
+            let (x0, z0) = rest;
+            let (mut px, mut pz) = (x0, z0);
+            let (mut jxx, mut jxz, mut jzz) = (1.0, 0.0, 1.0);
+            let (mut gx, mut gz) = (0.0, 0.0);
+            for w in &self.cache {
+                let th = w.k * (w.dir.x * x0 + w.dir.y * z0) - w.omega * t + w.phase;
+                let (s, c) = th.sin_cos();
+                px -= w.qa * w.dir.x * s;
+                pz -= w.qa * w.dir.y * s;
+                let f = w.qa * w.k * c;
+                jxx -= f * w.dir.x * w.dir.x;
+                jxz -= f * w.dir.x * w.dir.y;
+                jzz -= f * w.dir.y * w.dir.y;
+                gx -= w.a * w.k * s * w.dir.x;
+                gz -= w.a * w.k * s * w.dir.y;
+            }
+            let off = (px - x).abs() + (pz - z).abs();
+            if attempt == 0 && off > 1e-9 * (1.0 + x.abs() + z.abs()) {
+                rest = self.rest_position_from(x, z, t, *hint);
+                continue;
+            }
+            let det = jxx * jzz - jxz * jxz;
+            if det.abs() < 1e-12 {
+                return [0.0, 0.0];
+            }
+            return [(jzz * gx - jxz * gz) / det, (jxx * gz - jxz * gx) / det];
         }
-        let det = jxx * jzz - jxz * jxz;
-        if det.abs() < 1e-12 {
-            return [0.0, 0.0];
-        }
-        [(jzz * gx - jxz * gz) / det, (jxx * gz - jxz * gx) / det]
+        [0.0, 0.0]
     }
 
     /// Orbital velocity of the surface particle above `p`, decaying as
