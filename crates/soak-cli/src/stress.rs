@@ -340,18 +340,38 @@ fn water(kind: WaterKind, r: f64) -> anyhow::Result<Water> {
 
 /// Submerged volume (m³) and the columns' potential `Σ −A_y d²/2` (m⁴) of
 /// the atlas at `pose` in `water` at time `t`.
+///
+/// Once every texel is under water the potential is `∫_V d dV`, and the
+/// columns reaching up to the surface from far below would sum it as
+/// differences of numbers that grow with the depth (`Σ −A_y h_i y_i`, with
+/// the surface's heights over the top and the bottom samples differing by
+/// the sampling wherever the surface is not flat). It is then summed by
+/// columns that stop at the height `Y` of the atlas origin, as
+/// `∫_V h dV − Y V + ∫_V (Y − y) dV`, each term bounded by the body's size.
 fn columns(atlas: &Atlas, pose: &Isometry3<f64>, water: &Water, t: f64) -> (f64, f64) {
     let mut volume = 0.0;
     let mut potential = 0.0;
+    let top = (pose * atlas.origin()).y;
+    let (mut under, mut local_volume, mut local_potential) = (true, 0.0, 0.0);
     let mut hint = [0.0; 2];
     for (i, a) in atlas.area_vectors().iter().enumerate() {
         let p = pose * atlas.position(i);
         let d = water.surface.probe(&p, t, false, &mut hint).0;
+        let ay = (pose.rotation * Vector3::new(a[0] as f64, a[1] as f64, a[2] as f64)).y;
         if d > 0.0 {
-            let ay = (pose.rotation * Vector3::new(a[0] as f64, a[1] as f64, a[2] as f64)).y;
             volume -= ay * d;
             potential -= ay * d * d / 2.0;
+        } else {
+            under = false;
         }
+        // Column from the sample up to `top`: the surface's height
+        // `h = d + y` relative to `top`, times the column, plus `∫ (top − y) dy`.
+        let column = top - p.y;
+        local_volume -= ay * column;
+        local_potential -= ay * ((d - column) * column + column * column / 2.0);
+    }
+    if under {
+        return (local_volume, local_potential);
     }
     (volume, potential)
 }
@@ -994,6 +1014,38 @@ fn print_markdown(outcomes: &[Outcome], quick: bool, resolution: u32, max_steps:
         println!("Failing cells ({}):\n", failing.len());
         for o in failing {
             println!("- `{}`: {}", o.cell, o.failures.join("; "));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Lowering a body wholly under water by `Δ` adds `V Δ` to the columns'
+    /// potential `∫_V d dV`, whatever the surface over it: the measure the
+    /// energy check uses must say so at any depth, where columns summed up
+    /// to the surface (`Σ −A_y d²/2` as such) drift with the depth over the
+    /// cliff's step.
+    #[test]
+    fn the_potential_of_a_submerged_body_grows_by_its_volume_times_the_depth() {
+        let atlas = Atlas::bake(&builtin::cylinder(0.5, 1.0, 24), BakeOptions::square(32)).unwrap();
+        let r = atlas.bounding_radius();
+        let water = water(WaterKind::Cliff, r).unwrap();
+        let turn = UnitQuaternion::from_euler_angles(0.05, 0.3, 0.09);
+        let at = |depth: f64| {
+            let pose = Isometry3::from_parts(Translation3::new(0.02, -depth, -0.01), turn);
+            columns(&atlas, &pose, &water, 0.0)
+        };
+        let (v, u0) = at(2.0);
+        for depth in [20.0, 2e3, 2e5] {
+            let (vd, u) = at(depth);
+            assert!((vd - v).abs() < 1e-9 * v, "volume {vd} at {depth} m against {v}");
+            let drift = (u - u0 - v * (depth - 2.0)).abs() / (v * r);
+            assert!(
+                drift < 1e-6,
+                "at {depth} m the potential drifts by {drift:.2e} V r"
+            );
         }
     }
 }
