@@ -320,19 +320,9 @@ impl Gerstner {
         // singular (the sharpest crests). Converges in a few iterations.
         let (mut x0, mut z0) = (x - shift[0], z - shift[1]);
         for _ in 0..16 {
-            let (mut px, mut pz) = (x0, z0);
-            let (mut jxx, mut jxz, mut jzz) = (1.0, 0.0, 1.0);
-            for w in &self.cache {
-                let th = w.k * (w.dir.x * x0 + w.dir.y * z0) - w.omega * t + w.phase;
-                let (s, c) = th.sin_cos();
-                px -= w.qa * w.dir.x * s;
-                pz -= w.qa * w.dir.y * s;
-                let f = w.qa * w.k * c;
-                jxx -= f * w.dir.x * w.dir.x;
-                jxz -= f * w.dir.x * w.dir.y;
-                jzz -= f * w.dir.y * w.dir.y;
-            }
-            let (rx, rz) = (px - x, pz - z);
+            let jet = self.jet(x0, z0, t);
+            let [jxx, jxz, jzz] = jet.jacobian;
+            let (rx, rz) = (jet.position[0] - x, jet.position[1] - z);
             let det = jxx * jzz - jxz * jxz;
             let (dx, dz) = if det > 1e-3 {
                 ((jzz * rx - jxz * rz) / det, (jxx * rz - jxz * rx) / det)
@@ -347,6 +337,41 @@ impl Gerstner {
         }
         (x0, z0)
     }
+
+    /// The horizontal position of the particle at rest position `(x0, z0)`,
+    /// its Jacobian over the rest position and the gradient of its height.
+    fn jet(&self, x0: f64, z0: f64, t: f64) -> Jet {
+        let (mut px, mut pz) = (x0, z0);
+        let (mut jxx, mut jxz, mut jzz) = (1.0, 0.0, 1.0);
+        let (mut gx, mut gz) = (0.0, 0.0);
+        for w in &self.cache {
+            let th = w.k * (w.dir.x * x0 + w.dir.y * z0) - w.omega * t + w.phase;
+            let (s, c) = th.sin_cos();
+            px -= w.qa * w.dir.x * s;
+            pz -= w.qa * w.dir.y * s;
+            let f = w.qa * w.k * c;
+            jxx -= f * w.dir.x * w.dir.x;
+            jxz -= f * w.dir.x * w.dir.y;
+            jzz -= f * w.dir.y * w.dir.y;
+            let e = w.a * w.k * s;
+            gx -= e * w.dir.x;
+            gz -= e * w.dir.y;
+        }
+        Jet {
+            position: [px, pz],
+            jacobian: [jxx, jxz, jzz],
+            height_gradient: [gx, gz],
+        }
+    }
+}
+
+/// A Gerstner particle's horizontal position (m), the symmetric Jacobian
+/// `[xx, xz, zz]` of that position over its rest position, and the gradient
+/// of its height over its rest position.
+struct Jet {
+    position: [f64; 2],
+    jacobian: [f64; 3],
+    height_gradient: [f64; 2],
 }
 
 impl Surface for Gerstner {
@@ -385,38 +410,21 @@ impl Surface for Gerstner {
     /// height, both over the rest position.
     fn slope(&self, x: f64, z: f64, t: f64, hint: &[f64; 2]) -> [f64; 2] {
         // After a probe at the same point the hint holds the particle's
-        // displacement, so the first guess is its rest position: check it
-        // in the same pass over the waves that takes J and ∇y.
-        let mut rest = (x - hint[0], z - hint[1]);
-        for attempt in 0..2 {
-            let (x0, z0) = rest;
-            let (mut px, mut pz) = (x0, z0);
-            let (mut jxx, mut jxz, mut jzz) = (1.0, 0.0, 1.0);
-            let (mut gx, mut gz) = (0.0, 0.0);
-            for w in &self.cache {
-                let th = w.k * (w.dir.x * x0 + w.dir.y * z0) - w.omega * t + w.phase;
-                let (s, c) = th.sin_cos();
-                px -= w.qa * w.dir.x * s;
-                pz -= w.qa * w.dir.y * s;
-                let f = w.qa * w.k * c;
-                jxx -= f * w.dir.x * w.dir.x;
-                jxz -= f * w.dir.x * w.dir.y;
-                jzz -= f * w.dir.y * w.dir.y;
-                gx -= w.a * w.k * s * w.dir.x;
-                gz -= w.a * w.k * s * w.dir.y;
-            }
-            let off = (px - x).abs() + (pz - z).abs();
-            if attempt == 0 && off > 1e-9 * (1.0 + x.abs() + z.abs()) {
-                rest = self.rest_position_from(x, z, t, *hint);
-                continue;
-            }
-            let det = jxx * jzz - jxz * jxz;
-            if det.abs() < 1e-12 {
-                return [0.0, 0.0];
-            }
-            return [(jzz * gx - jxz * gz) / det, (jxx * gz - jxz * gx) / det];
+        // displacement, so the first guess is its rest position: the same
+        // pass over the waves checks it and takes J and ∇y.
+        let mut jet = self.jet(x - hint[0], z - hint[1], t);
+        let off = (jet.position[0] - x).abs() + (jet.position[1] - z).abs();
+        if off > 1e-9 * (1.0 + x.abs() + z.abs()) {
+            let (x0, z0) = self.rest_position_from(x, z, t, *hint);
+            jet = self.jet(x0, z0, t);
         }
-        [0.0, 0.0]
+        let [jxx, jxz, jzz] = jet.jacobian;
+        let [gx, gz] = jet.height_gradient;
+        let det = jxx * jzz - jxz * jxz;
+        if det.abs() < 1e-12 {
+            return [0.0, 0.0];
+        }
+        [(jzz * gx - jxz * gz) / det, (jxx * gz - jxz * gx) / det]
     }
 
     /// Orbital velocity of the surface particle above `p`, decaying as
@@ -499,6 +507,33 @@ impl HeightField {
     }
 }
 
+/// The grid cell under a point: its corner heights `[h00, h10, h01, h11]`,
+/// the point's fractions `(u, v)` across it, and whether the point is
+/// inside the grid along x and z (outside, the edge value holds).
+struct Cell {
+    corners: [f64; 4],
+    u: f64,
+    v: f64,
+    inside: [bool; 2],
+}
+
+impl HeightField {
+    fn cell(&self, x: f64, z: f64) -> Cell {
+        let gx = (x - self.origin[0]) / self.spacing[0];
+        let gz = (z - self.origin[1]) / self.spacing[1];
+        let (nx, nz) = ((self.nx - 1) as f64, (self.nz - 1) as f64);
+        let (fx, fz) = (gx.clamp(0.0, nx), gz.clamp(0.0, nz));
+        let (ix, iz) = ((fx as usize).min(self.nx - 2), (fz as usize).min(self.nz - 2));
+        let h = |i: usize, j: usize| self.heights[j * self.nx + i];
+        Cell {
+            corners: [h(ix, iz), h(ix + 1, iz), h(ix, iz + 1), h(ix + 1, iz + 1)],
+            u: fx - ix as f64,
+            v: fz - iz as f64,
+            inside: [(0.0..=nx).contains(&gx), (0.0..=nz).contains(&gz)],
+        }
+    }
+}
+
 impl Surface for HeightField {
     fn height_bounds(&self, _t: f64) -> Option<(f64, f64)> {
         let lo = self.heights.iter().copied().fold(f64::INFINITY, f64::min);
@@ -509,34 +544,22 @@ impl Surface for HeightField {
         Some(self)
     }
     fn height(&self, x: f64, z: f64, _t: f64) -> f64 {
-        let fx = ((x - self.origin[0]) / self.spacing[0]).clamp(0.0, (self.nx - 1) as f64);
-        let fz = ((z - self.origin[1]) / self.spacing[1]).clamp(0.0, (self.nz - 1) as f64);
-        let (ix, iz) = ((fx as usize).min(self.nx - 2), (fz as usize).min(self.nz - 2));
-        let (u, v) = (fx - ix as f64, fz - iz as f64);
-        let h = |i: usize, j: usize| self.heights[j * self.nx + i];
-        (1.0 - v) * ((1.0 - u) * h(ix, iz) + u * h(ix + 1, iz))
-            + v * ((1.0 - u) * h(ix, iz + 1) + u * h(ix + 1, iz + 1))
+        let c = self.cell(x, z);
+        let [h00, h10, h01, h11] = c.corners;
+        (1.0 - c.v) * ((1.0 - c.u) * h00 + c.u * h10) + c.v * ((1.0 - c.u) * h01 + c.u * h11)
     }
     /// The bilinear interpolant's slope; zero across an axis outside the
     /// grid, where the edge value holds.
     fn slope(&self, x: f64, z: f64, _t: f64, _hint: &[f64; 2]) -> [f64; 2] {
-        let gx = (x - self.origin[0]) / self.spacing[0];
-        let gz = (z - self.origin[1]) / self.spacing[1];
-        let fx = gx.clamp(0.0, (self.nx - 1) as f64);
-        let fz = gz.clamp(0.0, (self.nz - 1) as f64);
-        let (ix, iz) = ((fx as usize).min(self.nx - 2), (fz as usize).min(self.nz - 2));
-        let (u, v) = (fx - ix as f64, fz - iz as f64);
-        let h = |i: usize, j: usize| self.heights[j * self.nx + i];
-        let inside = |g: f64, n: usize| (0.0..=(n - 1) as f64).contains(&g);
-        let sx = if inside(gx, self.nx) {
-            ((1.0 - v) * (h(ix + 1, iz) - h(ix, iz)) + v * (h(ix + 1, iz + 1) - h(ix, iz + 1)))
-                / self.spacing[0]
+        let c = self.cell(x, z);
+        let [h00, h10, h01, h11] = c.corners;
+        let sx = if c.inside[0] {
+            ((1.0 - c.v) * (h10 - h00) + c.v * (h11 - h01)) / self.spacing[0]
         } else {
             0.0
         };
-        let sz = if inside(gz, self.nz) {
-            ((1.0 - u) * (h(ix, iz + 1) - h(ix, iz)) + u * (h(ix + 1, iz + 1) - h(ix + 1, iz)))
-                / self.spacing[1]
+        let sz = if c.inside[1] {
+            ((1.0 - c.u) * (h01 - h00) + c.u * (h11 - h10)) / self.spacing[1]
         } else {
             0.0
         };
