@@ -129,6 +129,10 @@ impl GpuHydro {
             let ow = (b.state.pose * entry.origin).coords;
             let com = (b.state.pose * b.mass.center_of_mass).coords;
             let drag = b.options.drag;
+            let plane = Frame::surface_plane(b.water, t, &ow, 0.0);
+            // Archimedes' slope sums per texel only under a surface that is
+            // not a plane: a plane's follow from the other sums in `finish`.
+            let slope_sums = b.options.buoyancy == BuoyancyMode::Archimedes && plane.is_none();
             let mut body = Body {
                 rot0: v4(&rot.row(0).transpose(), 0.0),
                 rot1: v4(&rot.row(1).transpose(), 0.0),
@@ -139,11 +143,7 @@ impl GpuHydro {
                 drag: [
                     drag.map_or(0.0, |d| d.linear) as f32,
                     if drag.is_some() { 1.0 } else { 0.0 },
-                    if b.options.buoyancy == BuoyancyMode::Archimedes {
-                        1.0
-                    } else {
-                        0.0
-                    },
+                    if slope_sums { 1.0 } else { 0.0 },
                     0.0,
                 ],
                 slot: [b.atlas.0, 0, 0, 0],
@@ -158,7 +158,7 @@ impl GpuHydro {
                 rot,
                 ow,
                 com,
-                plane: Frame::surface_plane(b.water, t, &ow, 0.0),
+                plane,
                 texels: entry.len,
             });
             let first = partials;
