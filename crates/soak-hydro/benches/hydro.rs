@@ -81,5 +81,31 @@ fn hydro(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, hydro);
+/// The per-texel pass against the streaming read at 2048², where the atlas
+/// (about 90 MB) no longer fits a processor's cache and the floor is the
+/// memory's bandwidth; at 1024² (about 22 MB) it is the last-level cache's.
+fn beyond_the_cache(c: &mut Criterion) {
+    let atlas = Atlas::bake(&builtin::sphere(0.5, 64, 32), BakeOptions::square(2048)).unwrap();
+    let mass = MassModel::Solid { density: 500.0 }
+        .mass_properties(&atlas)
+        .unwrap();
+    let rotation = UnitQuaternion::from_euler_angles(0.3, 0.2, 0.1);
+    let water = Water::calm(0.0);
+    let opts = HydroOptions::default();
+    let mut g = c.benchmark_group("sphere_2048");
+    g.bench_function("streaming_read", |b| b.iter(|| streaming_read(&atlas)));
+    for (name, y) in [
+        ("per_texel", 0.1),
+        ("per_texel_all_dry", 5.0),
+        ("per_texel_all_wet", -5.0),
+    ] {
+        let st = BodyState::at_rest(Isometry3::from_parts(Vector3::new(0.0, y, 0.0).into(), rotation));
+        g.bench_function(name, |b| {
+            b.iter(|| evaluate(&atlas, &water, &st, &mass, 0.0, &opts).unwrap())
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, hydro, beyond_the_cache);
 criterion_main!(benches);

@@ -474,11 +474,16 @@ pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
 /// in object coordinates relative to the atlas origin, `g` the world's up in
 /// object axes (object-frame sums).
 ///
-/// Depths are taken a block of [`BLOCK`] texels at a time (a loop the
-/// compiler vectorises), so a dry block costs one test; the submerged
-/// texels then add to twelve sums kept in locals, with the signs and the ½
-/// of [`BuoyancySums`] applied once at the end. The order of the additions
-/// is fixed, so the result does not depend on the thread count.
+/// Texels are taken [`LANES`] at a time: their coordinates widened to f64
+/// and laid side by side, a group with no submerged texel costs one test,
+/// and the others add to eleven sums of [`LANES`] lanes each, a dry lane
+/// adding zeros (its depth clamped to zero). Written so the compiler maps
+/// a group onto SIMD registers; where the processor has AVX2 and FMA the
+/// same code runs compiled for them, with fused multiply-adds (chosen at
+/// run time: the two differ in the last bits, 1e-16 relative). The lanes
+/// are summed in a fixed order at the end, and the signs and the ½ of
+/// [`BuoyancySums`] applied once, so on one machine the result is the same
+/// bits run after run and for any thread count.
 #[inline]
 pub(crate) fn add_planar_range(
     s: &mut BuoyancySums,
@@ -491,60 +496,160 @@ pub(crate) fn add_planar_range(
     let xs = &atlas.local_positions()[range.clone()];
     let avs = &atlas.area_vectors()[range.clone()];
     let areas = &atlas.areas()[range];
-    let widen = |x: &[f32; 3]| [f64::from(x[0]), f64::from(x[1]), f64::from(x[2])];
-    let depth = |r: &[f64; 3]| alpha + (beta.x * r[0] + beta.y * r[1] + beta.z * r[2]);
-    // Σ ay d r, Σ ay d², Σ d a, Σ r × (d a), Σ area, count (Σ ay d = g · Σ d a).
-    let (mut wr, mut wd) = ([0.0f64; 3], 0.0f64);
-    let (mut f, mut rxf, mut area_sum, mut count) = ([0.0f64; 3], [0.0f64; 3], 0.0f64, 0usize);
-    let mut add = |r: &[f64; 3], a: &[f32; 3], area: f32, d: f64| {
-        let da = [d * f64::from(a[0]), d * f64::from(a[1]), d * f64::from(a[2])];
-        let w = g.x * da[0] + g.y * da[1] + g.z * da[2];
-        wr[0] += w * r[0];
-        wr[1] += w * r[1];
-        wr[2] += w * r[2];
-        wd += w * d;
-        f[0] += da[0];
-        f[1] += da[1];
-        f[2] += da[2];
-        rxf[0] += r[1] * da[2] - r[2] * da[1];
-        rxf[1] += r[2] * da[0] - r[0] * da[2];
-        rxf[2] += r[0] * da[1] - r[1] * da[0];
-        area_sum += f64::from(area);
-        count += 1;
+    let plane = PlaneLanes {
+        alpha,
+        beta: [beta.x, beta.y, beta.z],
+        g: [g.x, g.y, g.z],
     };
-    let xb = xs.chunks_exact(BLOCK);
-    let ab = avs.chunks_exact(BLOCK);
-    let areab = areas.chunks_exact(BLOCK);
-    let (xt, at, areat) = (xb.remainder(), ab.remainder(), areab.remainder());
-    for ((x, a), area) in xb.zip(ab).zip(areab) {
-        let r: [[f64; 3]; BLOCK] = std::array::from_fn(|k| widen(&x[k]));
-        let d: [f64; BLOCK] = std::array::from_fn(|k| depth(&r[k]));
-        if d.iter().any(|&d| d > 0.0) {
-            for k in 0..BLOCK {
-                if d[k] > 0.0 {
-                    add(&r[k], &a[k], area[k], d[k]);
-                }
-            }
-        }
-    }
-    for ((x, a), &area) in xt.iter().zip(at).zip(areat) {
-        let r = widen(x);
-        let d = depth(&r);
-        if d > 0.0 {
-            add(&r, a, area, d);
-        }
-    }
-    s.vol -= g.x * f[0] + g.y * f[1] + g.z * f[2];
-    s.wr -= Vector3::from(wr);
-    s.wd2 -= 0.5 * wd;
-    s.f -= Vector3::from(f);
-    s.rxf -= Vector3::from(rxf);
-    s.area += area_sum;
-    s.count += count;
+    let lanes = planar_lanes(&plane, xs, avs, areas);
+    // Σ ay d r, Σ ay d², Σ d a, Σ r × (d a), Σ area (Σ ay d = g · Σ d a).
+    let sum = |v: &[f64; LANES]| (v[0] + v[1]) + (v[2] + v[3]);
+    let f = Vector3::new(sum(&lanes.f[0]), sum(&lanes.f[1]), sum(&lanes.f[2]));
+    s.vol -= g.dot(&f);
+    s.wr -= Vector3::new(sum(&lanes.wr[0]), sum(&lanes.wr[1]), sum(&lanes.wr[2]));
+    s.wd2 -= 0.5 * sum(&lanes.wd);
+    s.f -= f;
+    s.rxf -= Vector3::new(sum(&lanes.rxf[0]), sum(&lanes.rxf[1]), sum(&lanes.rxf[2]));
+    s.area += sum(&lanes.area);
+    s.count += lanes.count;
 }
 
-/// Texels whose depths the planar kernel takes together.
-const BLOCK: usize = 8;
+/// Texels the planar kernel takes side by side.
+const LANES: usize = 4;
+
+/// The planar water of [`add_planar_range`] as plain arrays.
+struct PlaneLanes {
+    alpha: f64,
+    beta: [f64; 3],
+    g: [f64; 3],
+}
+
+/// The planar kernel's sums, one per lane (see [`add_planar_range`]).
+#[derive(Default)]
+struct PlanarLanes {
+    wr: [[f64; LANES]; 3],
+    wd: [f64; LANES],
+    f: [[f64; LANES]; 3],
+    rxf: [[f64; LANES]; 3],
+    area: [f64; LANES],
+    count: usize,
+}
+
+fn planar_lanes(p: &PlaneLanes, xs: &[[f32; 3]], avs: &[[f32; 3]], areas: &[f32]) -> PlanarLanes {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+            // SAFETY: the processor has AVX2 and FMA, checked just above.
+            #[allow(unsafe_code)]
+            return unsafe { planar_lanes_avx2(p, xs, avs, areas) };
+        }
+    }
+    planar_lanes_generic::<false>(p, xs, avs, areas)
+}
+
+/// Four texels' coordinates as one array of four per coordinate, widened.
+#[inline(always)]
+fn load_lanes(v: &[[f32; 3]]) -> [[f64; LANES]; 3] {
+    std::array::from_fn(|c| std::array::from_fn(|k| f64::from(v[k][c])))
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn planar_lanes_avx2(p: &PlaneLanes, xs: &[[f32; 3]], avs: &[[f32; 3]], areas: &[f32]) -> PlanarLanes {
+    planar_lanes_generic::<true>(p, xs, avs, areas)
+}
+
+#[inline(always)]
+fn planar_lanes_generic<const FMA: bool>(
+    p: &PlaneLanes,
+    xs: &[[f32; 3]],
+    avs: &[[f32; 3]],
+    areas: &[f32],
+) -> PlanarLanes {
+    let mut acc = PlanarLanes::default();
+    let mut count = [0u64; LANES];
+    let xb = xs.chunks_exact(LANES);
+    let ab = avs.chunks_exact(LANES);
+    let areab = areas.chunks_exact(LANES);
+    let (xt, at, areat) = (xb.remainder(), ab.remainder(), areab.remainder());
+    for ((x, a), area) in xb.zip(ab).zip(areab) {
+        let r = load_lanes(x);
+        let d: [f64; LANES] = std::array::from_fn(|k| {
+            madd::<FMA>(
+                p.beta[2],
+                r[2][k],
+                madd::<FMA>(p.beta[1], r[1][k], madd::<FMA>(p.beta[0], r[0][k], p.alpha)),
+            )
+        });
+        if d.iter().fold(false, |any, &d| any | (d > 0.0)) {
+            let a = load_lanes(a);
+            let wet: [bool; LANES] = std::array::from_fn(|k| d[k] > 0.0);
+            let area: [f64; LANES] = std::array::from_fn(|k| f64::from(area[k]));
+            for k in 0..LANES {
+                count[k] += u64::from(wet[k]);
+            }
+            add_lanes::<FMA>(&mut acc, p, &r, &a, &area, &d, &wet);
+        }
+    }
+    // The last texels, each in a lane of its own.
+    for (k, ((x, a), &area)) in xt.iter().zip(at).zip(areat).enumerate() {
+        let mut r = [[0.0; LANES]; 3];
+        let mut av = [[0.0; LANES]; 3];
+        for c in 0..3 {
+            r[c][k] = f64::from(x[c]);
+            av[c][k] = f64::from(a[c]);
+        }
+        let mut d = [0.0; LANES];
+        d[k] = madd::<FMA>(
+            p.beta[2],
+            r[2][k],
+            madd::<FMA>(p.beta[1], r[1][k], madd::<FMA>(p.beta[0], r[0][k], p.alpha)),
+        );
+        let mut wet = [false; LANES];
+        wet[k] = d[k] > 0.0;
+        let mut ar = [0.0; LANES];
+        ar[k] = f64::from(area);
+        count[k] += u64::from(wet[k]);
+        add_lanes::<FMA>(&mut acc, p, &r, &av, &ar, &d, &wet);
+    }
+    acc.count = count.iter().sum::<u64>() as usize;
+    acc
+}
+
+/// `a b + c`, fused where the processor has FMA.
+#[inline(always)]
+fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
+    if FMA { a.mul_add(b, c) } else { a * b + c }
+}
+
+/// One group of texels; a dry lane adds zeros.
+#[inline(always)]
+fn add_lanes<const FMA: bool>(
+    acc: &mut PlanarLanes,
+    p: &PlaneLanes,
+    r: &[[f64; LANES]; 3],
+    a: &[[f64; LANES]; 3],
+    area: &[f64; LANES],
+    d: &[f64; LANES],
+    wet: &[bool; LANES],
+) {
+    for k in 0..LANES {
+        let (d, area) = if wet[k] { (d[k], area[k]) } else { (0.0, 0.0) };
+        let da = [d * a[0][k], d * a[1][k], d * a[2][k]];
+        let w = madd::<FMA>(p.g[2], da[2], madd::<FMA>(p.g[1], da[1], p.g[0] * da[0]));
+        acc.wr[0][k] = madd::<FMA>(w, r[0][k], acc.wr[0][k]);
+        acc.wr[1][k] = madd::<FMA>(w, r[1][k], acc.wr[1][k]);
+        acc.wr[2][k] = madd::<FMA>(w, r[2][k], acc.wr[2][k]);
+        acc.wd[k] = madd::<FMA>(w, d, acc.wd[k]);
+        acc.f[0][k] += da[0];
+        acc.f[1][k] += da[1];
+        acc.f[2][k] += da[2];
+        acc.rxf[0][k] = madd::<FMA>(r[1][k], da[2], madd::<FMA>(-r[2][k], da[1], acc.rxf[0][k]));
+        acc.rxf[1][k] = madd::<FMA>(r[2][k], da[0], madd::<FMA>(-r[0][k], da[2], acc.rxf[1][k]));
+        acc.rxf[2][k] = madd::<FMA>(r[0][k], da[1], madd::<FMA>(-r[1][k], da[0], acc.rxf[2][k]));
+        acc.area[k] += area;
+    }
+}
 
 /// Reads every position, area vector and area of the atlas once and folds
 /// their bits into a checksum, in the same parallel chunks as
@@ -806,4 +911,76 @@ fn implicit_drag(d: &DragSums, state: &BodyState, mass: &MassProperties, dt: f64
         .unwrap_or(q);
     let applied = m * (q_new - q) / dt;
     (wrench(&applied), wrench(&explicit))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::UnitQuaternion;
+    use soak_bake::{BakeOptions, builtin};
+
+    /// The planar kernel, with and without fused multiply-adds, against the
+    /// plain per-texel sums of the general path ([`BuoyancySums::add_local`])
+    /// at poses cutting the boat at the waterline, over a range whose length
+    /// is not a multiple of the lanes.
+    #[test]
+    fn the_planar_kernel_adds_what_the_plain_sums_add() {
+        let atlas = Atlas::bake(&builtin::boat(4.0, 1.2, 0.6), BakeOptions::square(128)).unwrap();
+        let n = atlas.len() - 3;
+        assert_ne!(n % LANES, 0);
+        for (k, y) in [-0.05, 0.0, 0.1, 0.3].into_iter().enumerate() {
+            let rot = UnitQuaternion::from_euler_angles(0.3 * k as f64, 0.2, -0.1)
+                .to_rotation_matrix()
+                .into_inner();
+            let g = rot.transpose() * Vector3::y();
+            let (alpha, beta) = (y, -g);
+            let mut plain = BuoyancySums::default();
+            for i in 0..n {
+                let (r, a) = texel(&atlas, i);
+                let d = alpha + beta.dot(&r);
+                if d > 0.0 {
+                    plain.add_local(&r, &a, a.dot(&g), f64::from(atlas.areas()[i]), d);
+                }
+            }
+            let p = PlaneLanes {
+                alpha,
+                beta: beta.into(),
+                g: g.into(),
+            };
+            let (xs, avs, areas) = (
+                &atlas.local_positions()[..n],
+                &atlas.area_vectors()[..n],
+                &atlas.areas()[..n],
+            );
+            assert!(plain.count > 0 && plain.count < n, "the waterline cuts the boat");
+            let mut dispatched = BuoyancySums::default();
+            add_planar_range(&mut dispatched, &atlas, 0..n, alpha, &beta, &g);
+            for lanes in [
+                planar_lanes_generic::<false>(&p, xs, avs, areas),
+                planar_lanes_generic::<true>(&p, xs, avs, areas),
+            ] {
+                let sum = |v: &[f64; LANES]| v.iter().sum::<f64>();
+                assert_eq!(lanes.count, plain.count);
+                let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
+                assert!(close(sum(&lanes.area), plain.area));
+                for c in 0..3 {
+                    assert!(close(-sum(&lanes.f[c]), plain.f[c]), "f {c}");
+                    assert!(close(-sum(&lanes.wr[c]), plain.wr[c]), "wr {c}");
+                    assert!(close(-sum(&lanes.rxf[c]), plain.rxf[c]), "rxf {c}");
+                }
+                assert!(close(-0.5 * sum(&lanes.wd), plain.wd2));
+            }
+            // The path this processor takes, with its own loads.
+            assert_eq!(dispatched.count, plain.count);
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
+            assert!(close(dispatched.area, plain.area));
+            assert!(close(dispatched.vol, plain.vol));
+            assert!(close(dispatched.wd2, plain.wd2));
+            for c in 0..3 {
+                assert!(close(dispatched.f[c], plain.f[c]), "f {c}");
+                assert!(close(dispatched.wr[c], plain.wr[c]), "wr {c}");
+                assert!(close(dispatched.rxf[c], plain.rxf[c]), "rxf {c}");
+            }
+        }
+    }
 }
