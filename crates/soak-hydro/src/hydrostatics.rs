@@ -193,7 +193,10 @@ pub(crate) struct BuoyancySums {
     pub area: f64,
     /// Submerged texels.
     pub count: usize,
-    /// Archimedes' slope terms, where the surface is not flat (see
+    /// Σ (d²/2) A: with the surface's slope, what makes Archimedes' torque
+    /// the derivative of the columns' potential (see [`slope_torque`]).
+    pub d2a: Vector3<f64>,
+    /// Archimedes' slope term, where the surface is not a plane (see
     /// [`SlopeSums`]).
     pub slope: SlopeSums,
 }
@@ -205,6 +208,7 @@ impl BuoyancySums {
             wr: rot * self.wr,
             f: rot * self.f,
             rxf: rot * self.rxf,
+            d2a: rot * self.d2a,
             ..*self
         }
     }
@@ -221,6 +225,7 @@ impl std::ops::Add for BuoyancySums {
             rxf: self.rxf + o.rxf,
             area: self.area + o.area,
             count: self.count + o.count,
+            d2a: self.d2a + o.d2a,
             slope: self.slope + o.slope,
         }
     }
@@ -246,18 +251,17 @@ impl BuoyancySums {
         self.rxf += r.cross(&f);
         self.area += area;
         self.count += 1;
+        self.d2a += (0.5 * d * d) * a;
     }
 }
 
-/// The sums that make Archimedes' torque the derivative of the water's
-/// potential where the surface over a body is not flat, with
-/// `s = (∂h/∂x, 0, ∂h/∂z)` the surface's slope over a submerged texel,
-/// `w = −A_y d`, and `ρ` the texel's position relative to the centre of
-/// mass (see [`slope_torque`]).
+/// The sum that, with [`BuoyancySums::d2a`], makes Archimedes' torque the
+/// derivative of the water's potential where the surface over a body is
+/// not a plane, with `s = (∂h/∂x, 0, ∂h/∂z)` the surface's slope over a
+/// submerged texel, `w = −A_y d`, and `ρ` the texel's position relative to
+/// the centre of mass (see [`slope_torque`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct SlopeSums {
-    /// Σ (d²/2) A × ŷ.
-    pub ad2: Vector3<f64>,
     /// Σ w ρ × s.
     pub wrs: Vector3<f64>,
 }
@@ -266,7 +270,6 @@ impl std::ops::Add for SlopeSums {
     type Output = Self;
     fn add(self, o: Self) -> Self {
         Self {
-            ad2: self.ad2 + o.ad2,
             wrs: self.wrs + o.wrs,
         }
     }
@@ -278,7 +281,6 @@ impl SlopeSums {
     #[inline]
     pub(crate) fn add(&mut self, rho: &Vector3<f64>, a: &Vector3<f64>, d: f64, slope: [f64; 2]) {
         let s = Vector3::new(slope[0], 0.0, slope[1]);
-        self.ad2 += (0.5 * d * d) * Vector3::new(-a.z, 0.0, a.x);
         self.wrs += (-a.y * d) * rho.cross(&s);
     }
 }
@@ -476,7 +478,7 @@ pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
 ///
 /// Texels are taken [`LANES`] at a time: their coordinates widened to f64
 /// and laid side by side, a group with no submerged texel costs one test,
-/// and the others add to eleven sums of [`LANES`] lanes each, a dry lane
+/// and the others add to fourteen sums of [`LANES`] lanes each, a dry lane
 /// adding zeros (its depth clamped to zero). Written so the compiler maps
 /// a group onto SIMD registers; where the processor has AVX2 and FMA the
 /// same code runs compiled for them, with fused multiply-adds (chosen at
@@ -510,6 +512,7 @@ pub(crate) fn add_planar_range(
     s.wd2 -= 0.5 * sum(&lanes.wd);
     s.f -= f;
     s.rxf -= Vector3::new(sum(&lanes.rxf[0]), sum(&lanes.rxf[1]), sum(&lanes.rxf[2]));
+    s.d2a += 0.5 * Vector3::new(sum(&lanes.d2a[0]), sum(&lanes.d2a[1]), sum(&lanes.d2a[2]));
     s.area += sum(&lanes.area);
     s.count += lanes.count;
 }
@@ -531,6 +534,7 @@ struct PlanarLanes {
     wd: [f64; LANES],
     f: [[f64; LANES]; 3],
     rxf: [[f64; LANES]; 3],
+    d2a: [[f64; LANES]; 3],
     area: [f64; LANES],
     count: usize,
 }
@@ -647,6 +651,9 @@ fn add_lanes<const FMA: bool>(
         acc.rxf[0][k] = madd::<FMA>(r[1][k], da[2], madd::<FMA>(-r[2][k], da[1], acc.rxf[0][k]));
         acc.rxf[1][k] = madd::<FMA>(r[2][k], da[0], madd::<FMA>(-r[0][k], da[2], acc.rxf[1][k]));
         acc.rxf[2][k] = madd::<FMA>(r[0][k], da[1], madd::<FMA>(-r[1][k], da[0], acc.rxf[2][k]));
+        acc.d2a[0][k] = madd::<FMA>(d, da[0], acc.d2a[0][k]);
+        acc.d2a[1][k] = madd::<FMA>(d, da[1], acc.d2a[1][k]);
+        acc.d2a[2][k] = madd::<FMA>(d, da[2], acc.d2a[2][k]);
         acc.area[k] += area;
     }
 }
@@ -787,34 +794,40 @@ pub(crate) fn drag_sums(
     })
 }
 
-/// What Archimedes' torque takes from a surface that is not flat, over
-/// `ρ_w g`: zero under flat water, where `ρ_w g V_s` at the centre of
-/// buoyancy is the whole of it.
+/// What Archimedes' torque needs, over `ρ_w g`, beyond `ρ_w g V_s` at the
+/// centre of buoyancy, to be the derivative of the water's potential as the
+/// texels sample it.
 ///
 /// Under a static surface `h(x, z)` the water's potential is the columns'
 /// `U = ρ_w g Σ (−A_y) d²/2`. Archimedes' vertical force is `−∂U/∂y`; the
 /// torque that makes the pair conserve energy is `−∂U/∂θ` about the centre
 /// of mass, `ρ_w g Σ [(d²/2) A × ŷ + A_y d ρ × (s − ŷ)]`: the force at the
 /// centre of buoyancy plus `ρ_w g (Σ (d²/2) A × ŷ − Σ w ρ × s)`. Without
-/// these terms a floating body pitching over a slope takes in energy every
-/// swing. A body wholly under water keeps the classic torque of `ρ_w g V`
-/// at its centre of buoyancy: real pressure forgets the surface's shape with
-/// depth, and the columns' terms would be differences of numbers that grow
-/// with the depth squared. A tilted plane's slope is the same everywhere,
-/// and its sums follow from the others (`Σ (d²/2) A ≈ (Σ w d/2)(s − ŷ)`, the
-/// divergence theorem).
+/// the second term a floating body pitching over a slope takes in energy
+/// every swing. Under flat water `s = 0`, and `Σ (d²/2) A` of the exact
+/// surface is vertical (the divergence theorem: `−ŷ ∫ d dV`), so the term
+/// vanishes in the limit; but a body's samples can leave it a torque the
+/// potential does not have (a sliver triangle's few samples sit off its
+/// middle line), and one about an axis of small inertia spins the body.
+/// Summed from the same samples, the torque is the derivative of their
+/// potential whatever their placement. A body wholly under water keeps
+/// the classic torque of `ρ_w g V` at its centre of buoyancy: real pressure
+/// forgets the surface's shape with depth, and the columns' terms would be
+/// differences of numbers that grow with the depth squared. A tilted
+/// plane's slope is the same everywhere: `Σ w ρ × s = (Σ w ρ) × s`.
 fn slope_torque(frame: &Frame, s: &BuoyancySums) -> Vector3<f64> {
     if s.count >= frame.texels {
         return Vector3::zeros();
     }
+    let columns = s.d2a.cross(&Vector3::y());
     match frame.plane {
-        Some((n, _)) if n.x == 0.0 && n.z == 0.0 => Vector3::zeros(),
+        Some((n, _)) if n.x == 0.0 && n.z == 0.0 => columns,
         Some((n, _)) => {
             let slope = Vector3::new(-n.x / n.y, 0.0, -n.z / n.y);
             let wrho = s.wr - s.vol * (frame.com - frame.ow);
-            s.wd2 * slope.cross(&Vector3::y()) - wrho.cross(&slope)
+            columns - wrho.cross(&slope)
         }
-        None => s.slope.ad2 - s.slope.wrs,
+        None => columns - s.slope.wrs,
     }
 }
 
@@ -967,6 +980,7 @@ mod tests {
                     assert!(close(-sum(&lanes.f[c]), plain.f[c]), "f {c}");
                     assert!(close(-sum(&lanes.wr[c]), plain.wr[c]), "wr {c}");
                     assert!(close(-sum(&lanes.rxf[c]), plain.rxf[c]), "rxf {c}");
+                    assert!(close(0.5 * sum(&lanes.d2a[c]), plain.d2a[c]), "d2a {c}");
                 }
                 assert!(close(-0.5 * sum(&lanes.wd), plain.wd2));
             }
@@ -980,6 +994,7 @@ mod tests {
                 assert!(close(dispatched.f[c], plain.f[c]), "f {c}");
                 assert!(close(dispatched.wr[c], plain.wr[c]), "wr {c}");
                 assert!(close(dispatched.rxf[c], plain.rxf[c]), "rxf {c}");
+                assert!(close(dispatched.d2a[c], plain.d2a[c]), "d2a {c}");
             }
         }
     }

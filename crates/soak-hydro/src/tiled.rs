@@ -351,6 +351,9 @@ fn add_closed_form(
     let b2 = m.s2[2] * beta;
     let cross2 = Vector3::new(b2[1] - b1[2], b0[2] - b2[0], b1[0] - b0[1]);
     s.rxf += -(alpha * cross1 + cross2);
+    // Σ (d²/2) A_j = (α² S0_j + 2α (S1 β)_j + βᵀ S2_j β) / 2
+    let bsb = Vector3::new(beta.dot(&b0), beta.dot(&b1), beta.dot(&b2));
+    s.d2a += 0.5 * (alpha * alpha * m.s0 + 2.0 * alpha * (m.s1 * beta) + bsb);
     s.area += m.area;
     s.count += texels as usize;
 }

@@ -130,8 +130,8 @@ impl GpuHydro {
             let com = (b.state.pose * b.mass.center_of_mass).coords;
             let drag = b.options.drag;
             let plane = Frame::surface_plane(b.water, t, &ow, 0.0);
-            // Archimedes' slope sums per texel only under a surface that is
-            // not a plane: a plane's follow from the other sums in `finish`.
+            // Archimedes' slope sum per texel only under a surface that is
+            // not a plane: a plane's follows from the other sums in `finish`.
             let slope_sums = b.options.buoyancy == BuoyancyMode::Archimedes && plane.is_none();
             let mut body = Body {
                 rot0: v4(&rot.row(0).transpose(), 0.0),
@@ -326,10 +326,8 @@ fn decode(q: &[f32]) -> (BuoyancySums, DragSums) {
         rxf: v(8),
         area: f(11),
         count: q[12].to_bits() as usize,
-        slope: SlopeSums {
-            ad2: Vector3::new(f(40), 0.0, f(41)),
-            wrs: v(42),
-        },
+        d2a: v(40),
+        slope: SlopeSums { wrs: v(44) },
     };
     let kvv = Matrix3::new(f(13), f(14), f(15), f(14), f(16), f(17), f(15), f(17), f(18));
     let kvw = Matrix3::new(f(25), f(26), f(27), f(28), f(29), f(30), f(31), f(32), f(33));

@@ -10,9 +10,11 @@
 //   5: b1, b2, b3, b4       6: b5, Kvw00, Kvw01, Kvw02
 //   7: Kvw10, Kvw11, Kvw12, Kvw20                   8: Kvw21, Kvw22, Kww00, Kww01
 //   9: Kww02, Kww11, Kww12, Kww22
-//  10: ad2.x, ad2.z, wrs.x, wrs.y                  11: wrs.z, 0, 0, 0
-// (K = [[Kvv, Kvw], [Kvwᵀ, Kww]] is symmetric; ad2 and wrs are Archimedes'
-// slope sums, `SlopeSums` of hydrostatics.rs.)
+//  10: d2a.xyz, 0                                11: wrs.xyz, 0
+// (K = [[Kvv, Kvw], [Kvwᵀ, Kww]] is symmetric; d2a = Σ (d²/2) A and
+// wrs = Σ w ρ × s are Archimedes' torque sums, `BuoyancySums::d2a` and
+// `SlopeSums` of hydrostatics.rs; wrs only in Archimedes mode under a
+// surface that is not a plane.)
 
 const SLOTS: u32 = 12u;
 
@@ -73,13 +75,11 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) l
             acc[1] += vec4<f32>(0.5 * w * d, f);
             acc[2] += vec4<f32>(cross(r, f), area);
             acc[3].x += 1.0;
+            acc[10] += vec4<f32>(0.5 * d * d * a, 0.0);
             if (b.drag.z > 0.5) {
                 let s2 = surface_slope(b, r, sp);
                 let rho = r - b.com.xyz;
-                let wrs = w * cross(rho, vec3<f32>(s2.x, 0.0, s2.y));
-                let dd = 0.5 * d * d;
-                acc[10] += vec4<f32>(-dd * a.z, dd * a.x, wrs.x, wrs.y);
-                acc[11].x += wrs.z;
+                acc[11] += vec4<f32>(w * cross(rho, vec3<f32>(s2.x, 0.0, s2.y)), 0.0);
             }
             if (drag_on) {
                 let rc = r - b.com.xyz;
