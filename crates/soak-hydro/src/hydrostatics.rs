@@ -478,7 +478,7 @@ pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
 ///
 /// Texels are taken [`LANES`] at a time: their coordinates widened to f64
 /// and laid side by side, a group with no submerged texel costs one test,
-/// and the others add to fourteen sums of [`LANES`] lanes each, a dry lane
+/// and the others add to thirteen sums of [`LANES`] lanes each, a dry lane
 /// adding zeros (its depth clamped to zero). Written so the compiler maps
 /// a group onto SIMD registers; where the processor has AVX2 and FMA the
 /// same code runs compiled for them, with fused multiply-adds (chosen at
@@ -504,15 +504,17 @@ pub(crate) fn add_planar_range(
         g: [g.x, g.y, g.z],
     };
     let lanes = planar_lanes(&plane, xs, avs, areas);
-    // Σ ay d r, Σ ay d², Σ d a, Σ r × (d a), Σ area (Σ ay d = g · Σ d a).
+    // Σ ay d r, Σ d a, Σ r × (d a), Σ d² a, Σ area (Σ ay d = g · Σ d a, Σ ay d² = g · Σ d² a).
     let sum = |v: &[f64; LANES]| (v[0] + v[1]) + (v[2] + v[3]);
     let f = Vector3::new(sum(&lanes.f[0]), sum(&lanes.f[1]), sum(&lanes.f[2]));
     s.vol -= g.dot(&f);
     s.wr -= Vector3::new(sum(&lanes.wr[0]), sum(&lanes.wr[1]), sum(&lanes.wr[2]));
-    s.wd2 -= 0.5 * sum(&lanes.wd);
     s.f -= f;
     s.rxf -= Vector3::new(sum(&lanes.rxf[0]), sum(&lanes.rxf[1]), sum(&lanes.rxf[2]));
-    s.d2a += 0.5 * Vector3::new(sum(&lanes.d2a[0]), sum(&lanes.d2a[1]), sum(&lanes.d2a[2]));
+    // Σ d² a, whose part along the world's up is Σ ay d².
+    let dda = Vector3::new(sum(&lanes.d2a[0]), sum(&lanes.d2a[1]), sum(&lanes.d2a[2]));
+    s.wd2 -= 0.5 * g.dot(&dda);
+    s.d2a += 0.5 * dda;
     s.area += sum(&lanes.area);
     s.count += lanes.count;
 }
@@ -531,7 +533,6 @@ struct PlaneLanes {
 #[derive(Default)]
 struct PlanarLanes {
     wr: [[f64; LANES]; 3],
-    wd: [f64; LANES],
     f: [[f64; LANES]; 3],
     rxf: [[f64; LANES]; 3],
     d2a: [[f64; LANES]; 3],
@@ -644,7 +645,6 @@ fn add_lanes<const FMA: bool>(
         acc.wr[0][k] = madd::<FMA>(w, r[0][k], acc.wr[0][k]);
         acc.wr[1][k] = madd::<FMA>(w, r[1][k], acc.wr[1][k]);
         acc.wr[2][k] = madd::<FMA>(w, r[2][k], acc.wr[2][k]);
-        acc.wd[k] = madd::<FMA>(w, d, acc.wd[k]);
         acc.f[0][k] += da[0];
         acc.f[1][k] += da[1];
         acc.f[2][k] += da[2];
@@ -982,7 +982,8 @@ mod tests {
                     assert!(close(-sum(&lanes.rxf[c]), plain.rxf[c]), "rxf {c}");
                     assert!(close(0.5 * sum(&lanes.d2a[c]), plain.d2a[c]), "d2a {c}");
                 }
-                assert!(close(-0.5 * sum(&lanes.wd), plain.wd2));
+                let dda = Vector3::from(std::array::from_fn(|c| sum(&lanes.d2a[c])));
+                assert!(close(-0.5 * g.dot(&dda), plain.wd2));
             }
             // The path this processor takes, with its own loads.
             assert_eq!(dispatched.count, plain.count);
