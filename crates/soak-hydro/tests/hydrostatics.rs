@@ -585,6 +585,28 @@ fn columns_potential(atlas: &Atlas, water: &Water, pose: &Isometry3<f64>) -> f64
     u
 }
 
+/// `−ρ g ∂U/∂θ` about the three world axes through `com`, `U` the columns'
+/// potential of [`columns_potential`], by central differences of turns of
+/// `eps` rad: the torque that conserves the water's energy.
+fn potential_torque(
+    atlas: &Atlas,
+    water: &Water,
+    pose: &Isometry3<f64>,
+    com: &nalgebra::Point3<f64>,
+    eps: f64,
+) -> Vector3<f64> {
+    let turned = |axis: Vector3<f64>, angle: f64| {
+        let q = UnitQuaternion::from_scaled_axis(axis * angle);
+        Isometry3::from_parts(Translation3::from(com.coords - q * com.coords), q) * pose
+    };
+    Vector3::from_fn(|k, _| {
+        let axis = Vector3::ith(k, 1.0);
+        let up = columns_potential(atlas, water, &turned(axis, eps));
+        let down = columns_potential(atlas, water, &turned(axis, -eps));
+        -RHO * G * (up - down) / (2.0 * eps)
+    })
+}
+
 /// Over a surface that is not flat, Archimedes' torque is minus the
 /// derivative of the columns' potential under a turn about the centre of
 /// mass (central differences of [`columns_potential`], summed independently
@@ -638,18 +660,7 @@ fn archimedes_torque_is_the_derivative_of_the_columns_potential() {
             f.submerged_volume
         );
         let com = pose * mass.center_of_mass;
-        let eps = 1e-4;
-        let turned = |axis: Vector3<f64>, angle: f64| {
-            let q = UnitQuaternion::from_scaled_axis(axis * angle);
-            Isometry3::from_parts(Translation3::from(com.coords - q * com.coords), q) * pose
-        };
-        let mut fd = Vector3::zeros();
-        for k in 0..3 {
-            let axis = Vector3::ith(k, 1.0);
-            let up = columns_potential(&atlas, water, &turned(axis, eps));
-            let down = columns_potential(&atlas, water, &turned(axis, -eps));
-            fd[k] = -RHO * G * (up - down) / (2.0 * eps);
-        }
+        let fd = potential_torque(&atlas, water, &pose, &com, 1e-4);
         let scale = RHO * G * f.submerged_volume * atlas.bounding_radius();
         let err = (f.archimedes.torque - fd).norm() / scale;
         assert!(
@@ -700,18 +711,7 @@ fn on_calm_water_archimedes_torque_is_the_derivative_of_the_sampled_potential() 
         f.submerged_volume
     );
     let com = pose * mass.center_of_mass;
-    let eps = 1e-5;
-    let turned = |axis: Vector3<f64>, angle: f64| {
-        let q = UnitQuaternion::from_scaled_axis(axis * angle);
-        Isometry3::from_parts(Translation3::from(com.coords - q * com.coords), q) * pose
-    };
-    let mut fd = Vector3::zeros();
-    for k in 0..3 {
-        let axis = Vector3::ith(k, 1.0);
-        let up = columns_potential(&atlas, &water, &turned(axis, eps));
-        let down = columns_potential(&atlas, &water, &turned(axis, -eps));
-        fd[k] = -RHO * G * (up - down) / (2.0 * eps);
-    }
+    let fd = potential_torque(&atlas, &water, &pose, &com, 1e-5);
     // Along the rod, on the scale of ρ g V_s times its width.
     let along = pose.rotation * Vector3::x();
     let scale = RHO * G * f.submerged_volume * 0.01;
