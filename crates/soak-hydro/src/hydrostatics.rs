@@ -529,6 +529,19 @@ struct PlaneLanes {
     g: [f64; 3],
 }
 
+impl PlaneLanes {
+    /// The depth `α + β·r` of lane `k`.
+    #[inline(always)]
+    fn depth<const FMA: bool>(&self, r: &[[f64; LANES]; 3], k: usize) -> f64 {
+        let b = &self.beta;
+        madd::<FMA>(
+            b[2],
+            r[2][k],
+            madd::<FMA>(b[1], r[1][k], madd::<FMA>(b[0], r[0][k], self.alpha)),
+        )
+    }
+}
+
 /// The planar kernel's sums, one per lane (see [`add_planar_range`]).
 #[derive(Default)]
 struct PlanarLanes {
@@ -579,13 +592,7 @@ fn planar_lanes_generic<const FMA: bool>(
     let (xt, at, areat) = (xb.remainder(), ab.remainder(), areab.remainder());
     for ((x, a), area) in xb.zip(ab).zip(areab) {
         let r = load_lanes(x);
-        let d: [f64; LANES] = std::array::from_fn(|k| {
-            madd::<FMA>(
-                p.beta[2],
-                r[2][k],
-                madd::<FMA>(p.beta[1], r[1][k], madd::<FMA>(p.beta[0], r[0][k], p.alpha)),
-            )
-        });
+        let d: [f64; LANES] = std::array::from_fn(|k| p.depth::<FMA>(&r, k));
         if d.iter().fold(false, |any, &d| any | (d > 0.0)) {
             let a = load_lanes(a);
             let wet: [bool; LANES] = std::array::from_fn(|k| d[k] > 0.0);
@@ -605,11 +612,7 @@ fn planar_lanes_generic<const FMA: bool>(
             av[c][k] = f64::from(a[c]);
         }
         let mut d = [0.0; LANES];
-        d[k] = madd::<FMA>(
-            p.beta[2],
-            r[2][k],
-            madd::<FMA>(p.beta[1], r[1][k], madd::<FMA>(p.beta[0], r[0][k], p.alpha)),
-        );
+        d[k] = p.depth::<FMA>(&r, k);
         let mut wet = [false; LANES];
         wet[k] = d[k] > 0.0;
         let mut ar = [0.0; LANES];
