@@ -156,11 +156,12 @@ pub struct HydroForces {
     pub wetted_area: f64,
     /// Submerged texels.
     pub submerged_texels: usize,
-    /// Archimedes buoyancy: `ρ g V_s` up at the centre of buoyancy.
-    pub archimedes: Wrench,
-    /// Pressure-mode buoyancy: `Σ −ρ g d_i A_i` and its torque.
-    pub pressure: Wrench,
-    /// The buoyancy selected by [`HydroOptions::buoyancy`].
+    /// The buoyancy of the mode [`HydroOptions::buoyancy`] selects, N and
+    /// N·m about the centre of mass: in Archimedes mode `ρ g V_s` up at the
+    /// centre of buoyancy (its torque with the terms that make it the
+    /// derivative of the sampled potential), in pressure mode the pressure
+    /// force `Σ −ρ g d_i A_i` and its moment, zero when off. Only the
+    /// selected mode's sums are taken: to compare the two, evaluate twice.
     pub buoyancy: Wrench,
     /// Drag as applied: the implicit integral over the step divided by `dt`.
     pub drag: Wrench,
@@ -185,7 +186,8 @@ pub(crate) struct BuoyancySums {
     pub wr: Vector3<f64>,
     /// Σ w d / 2.
     pub wd2: f64,
-    /// Σ −d A.
+    /// Σ −d A (the planar kernel sums it, and the next, only for
+    /// pressure mode: see [`add_planar_range`]).
     pub f: Vector3<f64>,
     /// Σ r × (−d A).
     pub rxf: Vector3<f64>,
@@ -478,8 +480,12 @@ pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
 ///
 /// Texels are taken [`LANES`] at a time: their coordinates widened to f64
 /// and laid side by side, a group with no submerged texel costs one test,
-/// and the others add to thirteen sums of [`LANES`] lanes each, a dry lane
-/// adding zeros (its depth clamped to zero). Written so the compiler maps
+/// and the others add to sums of [`LANES`] lanes each, a dry lane adding
+/// zeros (its depth clamped to zero). Archimedes' buoyancy needs eight
+/// (`Σ w`, `Σ w r`, `Σ d² a`, `Σ area`); the pressure force and its torque
+/// five more (`Σ d a`, `Σ r × d a`), summed only where `pressure` asks for
+/// them (the sums of [`BuoyancySums::f`] and [`BuoyancySums::rxf`] are
+/// left alone otherwise). Written so the compiler maps
 /// a group onto SIMD registers; where the processor has AVX2 and FMA the
 /// same code runs compiled for them, with fused multiply-adds (chosen at
 /// run time: the two differ in the last bits, 1e-16 relative). The lanes
@@ -494,6 +500,7 @@ pub(crate) fn add_planar_range(
     alpha: f64,
     beta: &Vector3<f64>,
     g: &Vector3<f64>,
+    pressure: bool,
 ) {
     let xs = &atlas.local_positions()[range.clone()];
     let avs = &atlas.area_vectors()[range.clone()];
@@ -503,14 +510,16 @@ pub(crate) fn add_planar_range(
         beta: [beta.x, beta.y, beta.z],
         g: [g.x, g.y, g.z],
     };
-    let lanes = planar_lanes(&plane, xs, avs, areas);
-    // Σ ay d r, Σ d a, Σ r × (d a), Σ d² a, Σ area (Σ ay d = g · Σ d a, Σ ay d² = g · Σ d² a).
+    let lanes = planar_lanes(&plane, xs, avs, areas, pressure);
+    // Σ ay d, Σ ay d r, Σ d² a, Σ area, and Σ d a, Σ r × (d a) for the
+    // pressure force (Σ ay d² = g · Σ d² a).
     let sum = |v: &[f64; LANES]| (v[0] + v[1]) + (v[2] + v[3]);
-    let f = Vector3::new(sum(&lanes.f[0]), sum(&lanes.f[1]), sum(&lanes.f[2]));
-    s.vol -= g.dot(&f);
+    s.vol -= sum(&lanes.vol);
     s.wr -= Vector3::new(sum(&lanes.wr[0]), sum(&lanes.wr[1]), sum(&lanes.wr[2]));
-    s.f -= f;
-    s.rxf -= Vector3::new(sum(&lanes.rxf[0]), sum(&lanes.rxf[1]), sum(&lanes.rxf[2]));
+    if pressure {
+        s.f -= Vector3::new(sum(&lanes.f[0]), sum(&lanes.f[1]), sum(&lanes.f[2]));
+        s.rxf -= Vector3::new(sum(&lanes.rxf[0]), sum(&lanes.rxf[1]), sum(&lanes.rxf[2]));
+    }
     // Σ d² a, whose part along the world's up is Σ ay d².
     let dda = Vector3::new(sum(&lanes.d2a[0]), sum(&lanes.d2a[1]), sum(&lanes.d2a[2]));
     s.wd2 -= 0.5 * g.dot(&dda);
@@ -545,6 +554,7 @@ impl PlaneLanes {
 /// The planar kernel's sums, one per lane (see [`add_planar_range`]).
 #[derive(Default)]
 struct PlanarLanes {
+    vol: [f64; LANES],
     wr: [[f64; LANES]; 3],
     f: [[f64; LANES]; 3],
     rxf: [[f64; LANES]; 3],
@@ -553,16 +563,32 @@ struct PlanarLanes {
     count: usize,
 }
 
-fn planar_lanes(p: &PlaneLanes, xs: &[[f32; 3]], avs: &[[f32; 3]], areas: &[f32]) -> PlanarLanes {
+fn planar_lanes(
+    p: &PlaneLanes,
+    xs: &[[f32; 3]],
+    avs: &[[f32; 3]],
+    areas: &[f32],
+    pressure: bool,
+) -> PlanarLanes {
     #[cfg(target_arch = "x86_64")]
     {
         if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
             // SAFETY: the processor has AVX2 and FMA, checked just above.
             #[allow(unsafe_code)]
-            return unsafe { planar_lanes_avx2(p, xs, avs, areas) };
+            return unsafe {
+                if pressure {
+                    planar_lanes_avx2::<true>(p, xs, avs, areas)
+                } else {
+                    planar_lanes_avx2::<false>(p, xs, avs, areas)
+                }
+            };
         }
     }
-    planar_lanes_generic::<false>(p, xs, avs, areas)
+    if pressure {
+        planar_lanes_generic::<false, true>(p, xs, avs, areas)
+    } else {
+        planar_lanes_generic::<false, false>(p, xs, avs, areas)
+    }
 }
 
 /// Four texels' coordinates as one array of four per coordinate, widened.
@@ -573,12 +599,17 @@ fn load_lanes(v: &[[f32; 3]]) -> [[f64; LANES]; 3] {
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-fn planar_lanes_avx2(p: &PlaneLanes, xs: &[[f32; 3]], avs: &[[f32; 3]], areas: &[f32]) -> PlanarLanes {
-    planar_lanes_generic::<true>(p, xs, avs, areas)
+fn planar_lanes_avx2<const PRESSURE: bool>(
+    p: &PlaneLanes,
+    xs: &[[f32; 3]],
+    avs: &[[f32; 3]],
+    areas: &[f32],
+) -> PlanarLanes {
+    planar_lanes_generic::<true, PRESSURE>(p, xs, avs, areas)
 }
 
 #[inline(always)]
-fn planar_lanes_generic<const FMA: bool>(
+fn planar_lanes_generic<const FMA: bool, const PRESSURE: bool>(
     p: &PlaneLanes,
     xs: &[[f32; 3]],
     avs: &[[f32; 3]],
@@ -600,7 +631,7 @@ fn planar_lanes_generic<const FMA: bool>(
             for k in 0..LANES {
                 count[k] += u64::from(wet[k]);
             }
-            add_lanes::<FMA>(&mut acc, p, &r, &a, &area, &d, &wet);
+            add_lanes::<FMA, PRESSURE>(&mut acc, p, &r, &a, &area, &d, &wet);
         }
     }
     // The last texels, each in a lane of its own.
@@ -618,7 +649,7 @@ fn planar_lanes_generic<const FMA: bool>(
         let mut ar = [0.0; LANES];
         ar[k] = f64::from(area);
         count[k] += u64::from(wet[k]);
-        add_lanes::<FMA>(&mut acc, p, &r, &av, &ar, &d, &wet);
+        add_lanes::<FMA, PRESSURE>(&mut acc, p, &r, &av, &ar, &d, &wet);
     }
     acc.count = count.iter().sum::<u64>() as usize;
     acc
@@ -630,9 +661,11 @@ fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
     if FMA { a.mul_add(b, c) } else { a * b + c }
 }
 
-/// One group of texels; a dry lane adds zeros.
+/// One group of texels; a dry lane adds zeros. The pressure sums only
+/// where `PRESSURE`: a pass in Archimedes mode keeps eight running sums
+/// instead of thirteen, which the processor holds in registers.
 #[inline(always)]
-fn add_lanes<const FMA: bool>(
+fn add_lanes<const FMA: bool, const PRESSURE: bool>(
     acc: &mut PlanarLanes,
     p: &PlaneLanes,
     r: &[[f64; LANES]; 3],
@@ -648,12 +681,15 @@ fn add_lanes<const FMA: bool>(
         acc.wr[0][k] = madd::<FMA>(w, r[0][k], acc.wr[0][k]);
         acc.wr[1][k] = madd::<FMA>(w, r[1][k], acc.wr[1][k]);
         acc.wr[2][k] = madd::<FMA>(w, r[2][k], acc.wr[2][k]);
-        acc.f[0][k] += da[0];
-        acc.f[1][k] += da[1];
-        acc.f[2][k] += da[2];
-        acc.rxf[0][k] = madd::<FMA>(r[1][k], da[2], madd::<FMA>(-r[2][k], da[1], acc.rxf[0][k]));
-        acc.rxf[1][k] = madd::<FMA>(r[2][k], da[0], madd::<FMA>(-r[0][k], da[2], acc.rxf[1][k]));
-        acc.rxf[2][k] = madd::<FMA>(r[0][k], da[1], madd::<FMA>(-r[1][k], da[0], acc.rxf[2][k]));
+        acc.vol[k] += w;
+        if PRESSURE {
+            acc.f[0][k] += da[0];
+            acc.f[1][k] += da[1];
+            acc.f[2][k] += da[2];
+            acc.rxf[0][k] = madd::<FMA>(r[1][k], da[2], madd::<FMA>(-r[2][k], da[1], acc.rxf[0][k]));
+            acc.rxf[1][k] = madd::<FMA>(r[2][k], da[0], madd::<FMA>(-r[0][k], da[2], acc.rxf[1][k]));
+            acc.rxf[2][k] = madd::<FMA>(r[0][k], da[1], madd::<FMA>(-r[1][k], da[0], acc.rxf[2][k]));
+        }
         acc.d2a[0][k] = madd::<FMA>(d, da[0], acc.d2a[0][k]);
         acc.d2a[1][k] = madd::<FMA>(d, da[1], acc.d2a[1][k]);
         acc.d2a[2][k] = madd::<FMA>(d, da[2], acc.d2a[2][k]);
@@ -712,12 +748,13 @@ pub fn evaluate(
     water.validate()?;
     state.check()?;
     let frame = Frame::new(atlas, water, state, mass, t);
+    let pressure = options.buoyancy == BuoyancyMode::Pressure;
     let sums = match frame.local_plane {
         // Planar water: depth is affine in object coordinates, so sum there
         // and rotate once.
         Some((alpha, beta, g)) => chunked_sum(atlas.len(), BuoyancySums::default(), |range| {
             let mut s = BuoyancySums::default();
-            add_planar_range(&mut s, atlas, range, alpha, &beta, &g);
+            add_planar_range(&mut s, atlas, range, alpha, &beta, &g, pressure);
             s
         })
         .rotated(&frame.rot),
@@ -853,25 +890,23 @@ pub(crate) fn finish(
     } else {
         com
     };
-    let archimedes = {
-        let force = Vector3::new(0.0, rg * volume, 0.0);
-        let slope_torque = rg * slope_torque(frame, s);
-        Wrench {
-            force,
-            torque: (cb - com).cross(&force) + slope_torque,
-        }
-    };
-    let pressure = {
-        let force = rg * s.f;
-        // Σ (p − c) × F = Σ r × F − (c − o_w) × Σ F
-        Wrench {
-            force,
-            torque: rg * s.rxf - (com - ow).cross(&force),
-        }
-    };
     let buoyancy = match options.buoyancy {
-        BuoyancyMode::Archimedes => archimedes,
-        BuoyancyMode::Pressure => pressure,
+        BuoyancyMode::Archimedes => {
+            let force = Vector3::new(0.0, rg * volume, 0.0);
+            let slope_torque = rg * slope_torque(frame, s);
+            Wrench {
+                force,
+                torque: (cb - com).cross(&force) + slope_torque,
+            }
+        }
+        BuoyancyMode::Pressure => {
+            let force = rg * s.f;
+            // Σ (p − c) × F = Σ r × F − (c − o_w) × Σ F
+            Wrench {
+                force,
+                torque: rg * s.rxf - (com - ow).cross(&force),
+            }
+        }
         BuoyancyMode::Off => Wrench::default(),
     };
     let (drag, drag_explicit) = match drag {
@@ -883,8 +918,6 @@ pub(crate) fn finish(
         center_of_buoyancy: Point3::from(cb),
         wetted_area: s.area,
         submerged_texels: s.count,
-        archimedes,
-        pressure,
         buoyancy,
         drag,
         drag_explicit,
@@ -935,7 +968,8 @@ mod tests {
     use nalgebra::UnitQuaternion;
     use soak_bake::{BakeOptions, builtin};
 
-    /// The planar kernel, with and without fused multiply-adds, against the
+    /// The planar kernel, with and without fused multiply-adds and with and
+    /// without the pressure sums, against the
     /// plain per-texel sums of the general path ([`BuoyancySums::add_local`])
     /// at poses cutting the boat at the waterline, over a range whose length
     /// is not a multiple of the lanes.
@@ -969,36 +1003,49 @@ mod tests {
                 &atlas.areas()[..n],
             );
             assert!(plain.count > 0 && plain.count < n, "the waterline cuts the boat");
-            let mut dispatched = BuoyancySums::default();
-            add_planar_range(&mut dispatched, &atlas, 0..n, alpha, &beta, &g);
-            for lanes in [
-                planar_lanes_generic::<false>(&p, xs, avs, areas),
-                planar_lanes_generic::<true>(&p, xs, avs, areas),
+            // Both variants, with and without the pressure sums.
+            for (lanes, pressure) in [
+                (planar_lanes_generic::<false, true>(&p, xs, avs, areas), true),
+                (planar_lanes_generic::<true, true>(&p, xs, avs, areas), true),
+                (planar_lanes_generic::<false, false>(&p, xs, avs, areas), false),
+                (planar_lanes_generic::<true, false>(&p, xs, avs, areas), false),
             ] {
                 let sum = |v: &[f64; LANES]| v.iter().sum::<f64>();
                 assert_eq!(lanes.count, plain.count);
                 let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
                 assert!(close(sum(&lanes.area), plain.area));
+                assert!(close(-sum(&lanes.vol), plain.vol));
                 for c in 0..3 {
-                    assert!(close(-sum(&lanes.f[c]), plain.f[c]), "f {c}");
                     assert!(close(-sum(&lanes.wr[c]), plain.wr[c]), "wr {c}");
-                    assert!(close(-sum(&lanes.rxf[c]), plain.rxf[c]), "rxf {c}");
                     assert!(close(0.5 * sum(&lanes.d2a[c]), plain.d2a[c]), "d2a {c}");
+                    if pressure {
+                        assert!(close(-sum(&lanes.f[c]), plain.f[c]), "f {c}");
+                        assert!(close(-sum(&lanes.rxf[c]), plain.rxf[c]), "rxf {c}");
+                    } else {
+                        assert_eq!(lanes.f[c], [0.0; LANES], "f {c} is not summed");
+                        assert_eq!(lanes.rxf[c], [0.0; LANES], "rxf {c} is not summed");
+                    }
                 }
                 let dda = Vector3::from(std::array::from_fn(|c| sum(&lanes.d2a[c])));
                 assert!(close(-0.5 * g.dot(&dda), plain.wd2));
             }
             // The path this processor takes, with its own loads.
-            assert_eq!(dispatched.count, plain.count);
-            let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
-            assert!(close(dispatched.area, plain.area));
-            assert!(close(dispatched.vol, plain.vol));
-            assert!(close(dispatched.wd2, plain.wd2));
-            for c in 0..3 {
-                assert!(close(dispatched.f[c], plain.f[c]), "f {c}");
-                assert!(close(dispatched.wr[c], plain.wr[c]), "wr {c}");
-                assert!(close(dispatched.rxf[c], plain.rxf[c]), "rxf {c}");
-                assert!(close(dispatched.d2a[c], plain.d2a[c]), "d2a {c}");
+            for pressure in [false, true] {
+                let mut dispatched = BuoyancySums::default();
+                add_planar_range(&mut dispatched, &atlas, 0..n, alpha, &beta, &g, pressure);
+                assert_eq!(dispatched.count, plain.count);
+                let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
+                assert!(close(dispatched.area, plain.area));
+                assert!(close(dispatched.vol, plain.vol));
+                assert!(close(dispatched.wd2, plain.wd2));
+                for c in 0..3 {
+                    assert!(close(dispatched.wr[c], plain.wr[c]), "wr {c}");
+                    assert!(close(dispatched.d2a[c], plain.d2a[c]), "d2a {c}");
+                    if pressure {
+                        assert!(close(dispatched.f[c], plain.f[c]), "f {c}");
+                        assert!(close(dispatched.rxf[c], plain.rxf[c]), "rxf {c}");
+                    }
+                }
             }
         }
     }

@@ -14,8 +14,8 @@ use soak_bake::Atlas;
 
 use crate::error::HydroError;
 use crate::hydrostatics::{
-    BodyState, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, add_planar_range, evaluate, finish,
-    texel,
+    BodyState, BuoyancyMode, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, add_planar_range,
+    evaluate, finish, texel,
 };
 use crate::mass::MassProperties;
 use crate::water::Water;
@@ -223,6 +223,7 @@ impl TiledAtlas {
             }
         };
         const GROUP_CHUNK: usize = 8;
+        let pressure = options.buoyancy == BuoyancyMode::Pressure;
         let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
         let parts: Vec<(BuoyancySums, Option<DragSums>, TileCounts)> = (0..n_chunks)
             .into_par_iter()
@@ -276,7 +277,15 @@ impl TiledAtlas {
                                     }
                                     Side::Cut => {
                                         counts.cut += 1;
-                                        add_planar_range(&mut local, atlas, start..end, alpha, &beta, &g);
+                                        add_planar_range(
+                                            &mut local,
+                                            atlas,
+                                            start..end,
+                                            alpha,
+                                            &beta,
+                                            &g,
+                                            pressure,
+                                        );
                                     }
                                 }
                             }

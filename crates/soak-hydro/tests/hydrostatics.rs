@@ -10,6 +10,12 @@ use soak_hydro::{
 
 const RHO: f64 = 1000.0;
 const G: f64 = 9.80665;
+/// Pressure mode, with the other options at their defaults.
+const PRESSURE: HydroOptions = HydroOptions {
+    buoyancy: BuoyancyMode::Pressure,
+    drag: None,
+    dt: 1.0 / 60.0,
+};
 
 /// A small deterministic generator for poses.
 struct Lcg(u64);
@@ -120,8 +126,8 @@ fn pressure_mode_equals_archimedes_on_a_plane() {
         let diameter = 2.0 * atlas.bounding_radius();
         for _ in 0..10 {
             let pose = rng.pose(0.6);
-            let f = at(&atlas, &Water::calm(0.1), pose, &HydroOptions::default());
-            let (a, p) = (f.archimedes, f.pressure);
+            let a = at(&atlas, &Water::calm(0.1), pose, &HydroOptions::default()).buoyancy;
+            let p = at(&atlas, &Water::calm(0.1), pose, &PRESSURE).buoyancy;
             let mag = a.force.norm();
             if mag < 1.0 {
                 continue;
@@ -155,23 +161,20 @@ fn on_a_wave_slope_pressure_pushes_sideways_and_archimedes_does_not() {
     let water = Water::new(sea);
     let atlas = bake(&builtin::sphere(0.5, 64, 32), 512);
     // A quarter wavelength from the crest the surface slopes; x = 1.5 m at t = 0.
-    let f = at(
-        &atlas,
-        &water,
-        Isometry3::translation(1.5, 0.0, 0.0),
-        &HydroOptions::default(),
-    );
-    assert_eq!(f.archimedes.force.x, 0.0);
-    assert_eq!(f.archimedes.force.z, 0.0);
-    let side = f.pressure.force.x.abs() / f.pressure.force.y;
+    let pose = Isometry3::translation(1.5, 0.0, 0.0);
+    let archimedes = at(&atlas, &water, pose, &HydroOptions::default()).buoyancy;
+    let pressure = at(&atlas, &water, pose, &PRESSURE).buoyancy;
+    assert_eq!(archimedes.force.x, 0.0);
+    assert_eq!(archimedes.force.z, 0.0);
+    let side = pressure.force.x.abs() / pressure.force.y;
     assert!(side > 0.05, "pressure mode has only {side} sideways");
     // And it pushes down the slope: the surface falls towards +x there.
     let h = |x: f64| soak_hydro::Surface::height(&*water.surface, x, 0.0, 0.0);
     let slope = (h(1.51) - h(1.49)) / 0.02;
     assert!(
-        slope.signum() != f.pressure.force.x.signum(),
+        slope.signum() != pressure.force.x.signum(),
         "slope {slope}, force {}",
-        f.pressure.force.x
+        pressure.force.x
     );
 }
 
@@ -199,45 +202,50 @@ fn tiled_equals_per_texel_at_arbitrary_poses() {
             } else {
                 Water::new(Plane::tilted(Point3::new(0.0, 0.1, 0.0), Vector3::new(0.1, 1.0, -0.2)).unwrap())
             };
-            let opts = HydroOptions {
-                drag: Some(Drag {
-                    coefficient: 0.8,
-                    linear: 0.3,
-                }),
-                ..Default::default()
-            };
-            let a = evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap();
-            let b = tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap();
-            let scale = a.buoyancy.force.norm().max(1.0);
-            let close = |x: f64, y: f64, s: f64| (x - y).abs() <= 1e-6 * s.max(1e-12);
-            assert!(
-                close(a.submerged_volume, b.submerged_volume, mesh.volume()),
-                "{name}"
-            );
-            assert_eq!(a.submerged_texels, b.submerged_texels, "{name}");
-            for (x, y) in a.pressure.force.iter().zip(b.pressure.force.iter()) {
+            // Both modes: the tiles' closed forms and the cut tiles' texels
+            // take Archimedes' sums in one and the pressure sums in the other.
+            for mode in [BuoyancyMode::Archimedes, BuoyancyMode::Pressure] {
+                let opts = HydroOptions {
+                    buoyancy: mode,
+                    drag: Some(Drag {
+                        coefficient: 0.8,
+                        linear: 0.3,
+                    }),
+                    ..Default::default()
+                };
+                let a = evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap();
+                let b = tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap();
+                let scale = a.buoyancy.force.norm().max(1.0);
+                let close = |x: f64, y: f64, s: f64| (x - y).abs() <= 1e-6 * s.max(1e-12);
                 assert!(
-                    close(*x, *y, scale),
-                    "{name}: {} vs {}",
-                    a.pressure.force,
-                    b.pressure.force
+                    close(a.submerged_volume, b.submerged_volume, mesh.volume()),
+                    "{name}"
                 );
+                assert_eq!(a.submerged_texels, b.submerged_texels, "{name}");
+                for (x, y) in a.buoyancy.force.iter().zip(b.buoyancy.force.iter()) {
+                    assert!(
+                        close(*x, *y, scale),
+                        "{name} {mode:?}: {} vs {}",
+                        a.buoyancy.force,
+                        b.buoyancy.force
+                    );
+                }
+                let tscale = scale * atlas.bounding_radius();
+                for (x, y) in a.buoyancy.torque.iter().zip(b.buoyancy.torque.iter()) {
+                    assert!(
+                        close(*x, *y, tscale),
+                        "{name} {mode:?}: {} vs {}",
+                        a.buoyancy.torque,
+                        b.buoyancy.torque
+                    );
+                }
+                if a.submerged_volume > 1e-6 {
+                    assert!(
+                        (a.center_of_buoyancy - b.center_of_buoyancy).norm() < 1e-6 * atlas.bounding_radius()
+                    );
+                }
+                assert!((a.drag.force - b.drag.force).norm() <= 1e-6 * a.drag.force.norm().max(1e-9));
             }
-            let tscale = scale * atlas.bounding_radius();
-            for (x, y) in a.pressure.torque.iter().zip(b.pressure.torque.iter()) {
-                assert!(
-                    close(*x, *y, tscale),
-                    "{name}: {} vs {}",
-                    a.pressure.torque,
-                    b.pressure.torque
-                );
-            }
-            if a.submerged_volume > 1e-6 {
-                assert!(
-                    (a.center_of_buoyancy - b.center_of_buoyancy).norm() < 1e-6 * atlas.bounding_radius()
-                );
-            }
-            assert!((a.drag.force - b.drag.force).norm() <= 1e-6 * a.drag.force.norm().max(1e-9));
         }
     }
 }
@@ -251,7 +259,8 @@ fn check_exact(mesh: &Mesh, atlas: &Atlas, pose: Isometry3<f64>, level: f64, wha
         f.submerged_volume.is_finite() && f.center_of_buoyancy.iter().all(|c| c.is_finite()),
         "{what}"
     );
-    assert!(f.buoyancy.is_finite() && f.pressure.is_finite(), "{what}");
+    let p = at(atlas, &Water::calm(level), pose, &PRESSURE);
+    assert!(f.buoyancy.is_finite() && p.buoyancy.is_finite(), "{what}");
     assert!(
         (f.submerged_volume - exact.volume).abs() / v < 2e-3,
         "{what}: {} vs {}",
@@ -662,13 +671,13 @@ fn archimedes_torque_is_the_derivative_of_the_columns_potential() {
         let com = pose * mass.center_of_mass;
         let fd = potential_torque(&atlas, water, &pose, &com, 1e-4);
         let scale = RHO * G * f.submerged_volume * atlas.bounding_radius();
-        let err = (f.archimedes.torque - fd).norm() / scale;
+        let err = (f.buoyancy.torque - fd).norm() / scale;
         assert!(
             err < 2e-3,
             "{name}: torque {:?}, −∂U/∂θ {fd:?}, error {err:.2e}",
-            f.archimedes.torque
+            f.buoyancy.torque
         );
-        let classic = (f.center_of_buoyancy - com).cross(&f.archimedes.force);
+        let classic = (f.center_of_buoyancy - com).cross(&f.buoyancy.force);
         let off = (classic - fd).norm() / scale;
         assert!(
             off > 10.0 * err.max(1e-4),
@@ -715,16 +724,16 @@ fn on_calm_water_archimedes_torque_is_the_derivative_of_the_sampled_potential() 
     // Along the rod, on the scale of ρ g V_s times its width.
     let along = pose.rotation * Vector3::x();
     let scale = RHO * G * f.submerged_volume * 0.01;
-    let err = (f.archimedes.torque - fd).dot(&along).abs() / scale;
-    let classic = (f.center_of_buoyancy - com).cross(&f.archimedes.force);
+    let err = (f.buoyancy.torque - fd).dot(&along).abs() / scale;
+    let classic = (f.center_of_buoyancy - com).cross(&f.buoyancy.force);
     let off = (classic - fd).dot(&along).abs() / scale;
     eprintln!(
         "{:.3} submerged; along the rod: error {err:.2e} of ρ g V_s w; the classic torque's {off:.2e}",
         f.submerged_volume / volume
     );
-    assert!(err < 1e-3, "torque {:?}, −∂U/∂θ {fd:?}", f.archimedes.torque);
+    assert!(err < 1e-3, "torque {:?}, −∂U/∂θ {fd:?}", f.buoyancy.torque);
     assert!(off > 0.05, "the classic torque is off by only {off:.2e}");
     // And across it, on the scale of ρ g V_s times the rod's half length.
-    let whole = (f.archimedes.torque - fd).norm() / (RHO * G * f.submerged_volume);
+    let whole = (f.buoyancy.torque - fd).norm() / (RHO * G * f.submerged_volume);
     assert!(whole < 1e-3, "error {whole:.2e} of ρ g V_s · 1 m");
 }

@@ -10,7 +10,8 @@ use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use soak_bake::{Atlas, BakeOptions, builtin};
 use soak_hydro::{
-    BodyState, Drag, HydroOptions, MassModel, MassProperties, Plane, TiledAtlas, Water, evaluate,
+    BodyState, BuoyancyMode, Drag, HydroOptions, MassModel, MassProperties, Plane, TiledAtlas, Water,
+    evaluate,
 };
 
 struct Body {
@@ -44,6 +45,7 @@ struct Case {
     level: f64,
     tilt: Option<[f64; 2]>,
     drag: bool,
+    pressure: bool,
 }
 
 fn case() -> impl Strategy<Value = Case> {
@@ -56,9 +58,10 @@ fn case() -> impl Strategy<Value = Case> {
         -2.5..2.5f64,
         prop::option::of(prop::array::uniform2(-0.4..0.4f64)),
         any::<bool>(),
+        any::<bool>(),
     )
         .prop_map(
-            |(body, position, angles, velocity, spin, level, tilt, drag)| Case {
+            |(body, position, angles, velocity, spin, level, tilt, drag, pressure)| Case {
                 body,
                 position,
                 angles,
@@ -67,6 +70,7 @@ fn case() -> impl Strategy<Value = Case> {
                 level,
                 tilt,
                 drag,
+                pressure,
             },
         )
 }
@@ -92,6 +96,7 @@ proptest! {
             ),
         };
         let options = HydroOptions {
+            buoyancy: if c.pressure { BuoyancyMode::Pressure } else { BuoyancyMode::Archimedes },
             drag: c.drag.then_some(Drag { coefficient: 1.0, linear: 0.2 }),
             ..Default::default()
         };
@@ -101,12 +106,12 @@ proptest! {
         prop_assert!((a.submerged_volume - b.submerged_volume).abs() <= 1e-6 * volume);
         prop_assert_eq!(a.submerged_texels, b.submerged_texels);
         prop_assert!((a.wetted_area - b.wetted_area).abs() <= 1e-6 * body.atlas.area());
-        let scale = (water.density * water.gravity * volume).max(a.pressure.force.norm());
+        let scale = (water.density * water.gravity * volume).max(a.buoyancy.force.norm());
         let diameter = 2.0 * body.atlas.bounding_radius();
-        prop_assert!((a.pressure.force - b.pressure.force).norm() <= 1e-6 * scale,
-            "{} vs {}", a.pressure.force, b.pressure.force);
-        prop_assert!((a.pressure.torque - b.pressure.torque).norm() <= 1e-6 * scale * diameter,
-            "{} vs {}", a.pressure.torque, b.pressure.torque);
+        prop_assert!((a.buoyancy.force - b.buoyancy.force).norm() <= 1e-6 * scale,
+            "{} vs {}", a.buoyancy.force, b.buoyancy.force);
+        prop_assert!((a.buoyancy.torque - b.buoyancy.torque).norm() <= 1e-6 * scale * diameter,
+            "{} vs {}", a.buoyancy.torque, b.buoyancy.torque);
         prop_assert!((a.drag.force - b.drag.force).norm() <= 1e-6 * a.drag.force.norm().max(1e-9));
         if a.submerged_volume > 1e-9 * volume {
             prop_assert!((a.center_of_buoyancy - b.center_of_buoyancy).norm() <= 1e-6 * diameter);
