@@ -1,8 +1,9 @@
-//! Hydrostatics at 1024²: per texel (and per texel with the body all dry and
-//! all submerged), tiled, a plain streaming read of the same atlas (the
-//! bandwidth floor), exact clipping and the per-triangle baseline; and on a
-//! Gerstner sea, per texel, in Archimedes mode (which also takes the
-//! surface's slope for its torque) and in pressure mode.
+//! Hydrostatics at 1024²: per texel in Archimedes mode (and with the body all
+//! dry and all submerged) and in pressure mode, tiled, a plain streaming
+//! read of the same atlas (the bandwidth floor), exact clipping and the
+//! per-triangle baseline; and on a Gerstner sea, per texel, in Archimedes
+//! mode (which also takes the surface's slope for its torque) and in
+//! pressure mode.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
@@ -31,6 +32,14 @@ fn hydro(c: &mut Criterion) {
     g.bench_function("streaming_read", |b| b.iter(|| streaming_read(&atlas)));
     g.bench_function("per_texel", |b| {
         b.iter(|| evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap())
+    });
+    // Pressure mode sums the pressure force and its moment as well.
+    let pressure = HydroOptions {
+        buoyancy: BuoyancyMode::Pressure,
+        ..opts
+    };
+    g.bench_function("per_texel_pressure", |b| {
+        b.iter(|| evaluate(&atlas, &water, &state, &mass, 0.0, &pressure).unwrap())
     });
     // The same pass with the body wholly above and wholly under the water:
     // what a dry and a submerged texel each cost.
