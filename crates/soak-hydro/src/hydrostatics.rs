@@ -186,8 +186,9 @@ pub(crate) struct BuoyancySums {
     pub wr: Vector3<f64>,
     /// Σ w d / 2.
     pub wd2: f64,
-    /// Σ −d A (the planar kernel sums it, and the next, only for
-    /// pressure mode: see [`add_planar_range`]).
+    /// Σ −d A (the planar kernel sums it, and the next, only in
+    /// pressure mode, and `d2a` only in Archimedes mode: see
+    /// [`add_planar_range`]).
     pub f: Vector3<f64>,
     /// Σ r × (−d A).
     pub rxf: Vector3<f64>,
@@ -483,9 +484,11 @@ pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
 /// and the others add to sums of [`LANES`] lanes each, a dry lane adding
 /// zeros (its depth clamped to zero). Archimedes' buoyancy needs eight
 /// (`Σ w`, `Σ w r`, `Σ d² a`, `Σ area`); the pressure force and its torque
-/// need `Σ d a` and `Σ r × d a` as well (thirteen, `Σ w` being `g · Σ d a`),
-/// summed only where `pressure` asks for them (the sums of
-/// [`BuoyancySums::f`] and [`BuoyancySums::rxf`] are left alone otherwise).
+/// eleven (`Σ d a`, `Σ r × d a`, and for the centre of buoyancy `Σ w r`,
+/// `Σ w d`, `Σ area`, `Σ w` being `g · Σ d a`). `pressure` chooses; the
+/// sums of [`BuoyancySums`] the other mode needs are left alone
+/// ([`BuoyancySums::f`] and [`BuoyancySums::rxf`] in Archimedes mode,
+/// [`BuoyancySums::d2a`] in pressure mode).
 /// Written so the compiler maps
 /// a group onto SIMD registers; where the processor has AVX2 and FMA the
 /// same code runs compiled for them, with fused multiply-adds (chosen at
@@ -512,8 +515,8 @@ pub(crate) fn add_planar_range(
         g: [g.x, g.y, g.z],
     };
     let lanes = planar_lanes(&plane, xs, avs, areas, pressure);
-    // Σ ay d, Σ ay d r, Σ d² a, Σ area, and Σ d a, Σ r × (d a) for the
-    // pressure force (Σ ay d² = g · Σ d² a).
+    // Σ ay d r and Σ area; Archimedes: Σ ay d and Σ d² a (Σ ay d² = g · Σ d² a);
+    // pressure: Σ d a, Σ r × (d a) (Σ ay d = g · Σ d a) and Σ ay d².
     let sum = |v: &[f64; LANES]| (v[0] + v[1]) + (v[2] + v[3]);
     s.wr -= Vector3::new(sum(&lanes.wr[0]), sum(&lanes.wr[1]), sum(&lanes.wr[2]));
     if pressure {
@@ -521,13 +524,13 @@ pub(crate) fn add_planar_range(
         s.vol -= g.dot(&f);
         s.f -= f;
         s.rxf -= Vector3::new(sum(&lanes.rxf[0]), sum(&lanes.rxf[1]), sum(&lanes.rxf[2]));
+        s.wd2 -= 0.5 * sum(&lanes.wd);
     } else {
         s.vol -= sum(&lanes.vol);
+        let dda = Vector3::new(sum(&lanes.d2a[0]), sum(&lanes.d2a[1]), sum(&lanes.d2a[2]));
+        s.wd2 -= 0.5 * g.dot(&dda);
+        s.d2a += 0.5 * dda;
     }
-    // Σ d² a, whose part along the world's up is Σ ay d².
-    let dda = Vector3::new(sum(&lanes.d2a[0]), sum(&lanes.d2a[1]), sum(&lanes.d2a[2]));
-    s.wd2 -= 0.5 * g.dot(&dda);
-    s.d2a += 0.5 * dda;
     s.area += sum(&lanes.area);
     s.count += lanes.count;
 }
@@ -559,6 +562,7 @@ impl PlaneLanes {
 #[derive(Default)]
 struct PlanarLanes {
     vol: [f64; LANES],
+    wd: [f64; LANES],
     wr: [[f64; LANES]; 3],
     f: [[f64; LANES]; 3],
     rxf: [[f64; LANES]; 3],
@@ -665,9 +669,9 @@ fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
     if FMA { a.mul_add(b, c) } else { a * b + c }
 }
 
-/// One group of texels; a dry lane adds zeros. The pressure sums only
-/// where `PRESSURE`: a pass in Archimedes mode keeps eight running sums
-/// instead of thirteen, which the processor holds in registers.
+/// One group of texels; a dry lane adds zeros. Eight running sums in
+/// Archimedes mode, eleven where `PRESSURE` (see [`add_planar_range`]):
+/// fewer than the processor's vector registers.
 #[inline(always)]
 fn add_lanes<const FMA: bool, const PRESSURE: bool>(
     acc: &mut PlanarLanes,
@@ -692,12 +696,13 @@ fn add_lanes<const FMA: bool, const PRESSURE: bool>(
             acc.rxf[0][k] = madd::<FMA>(r[1][k], da[2], madd::<FMA>(-r[2][k], da[1], acc.rxf[0][k]));
             acc.rxf[1][k] = madd::<FMA>(r[2][k], da[0], madd::<FMA>(-r[0][k], da[2], acc.rxf[1][k]));
             acc.rxf[2][k] = madd::<FMA>(r[0][k], da[1], madd::<FMA>(-r[1][k], da[0], acc.rxf[2][k]));
+            acc.wd[k] = madd::<FMA>(w, d, acc.wd[k]);
         } else {
             acc.vol[k] += w;
+            acc.d2a[0][k] = madd::<FMA>(d, da[0], acc.d2a[0][k]);
+            acc.d2a[1][k] = madd::<FMA>(d, da[1], acc.d2a[1][k]);
+            acc.d2a[2][k] = madd::<FMA>(d, da[2], acc.d2a[2][k]);
         }
-        acc.d2a[0][k] = madd::<FMA>(d, da[0], acc.d2a[0][k]);
-        acc.d2a[1][k] = madd::<FMA>(d, da[1], acc.d2a[1][k]);
-        acc.d2a[2][k] = madd::<FMA>(d, da[2], acc.d2a[2][k]);
         acc.area[k] += area;
     }
 }
@@ -1021,21 +1026,25 @@ mod tests {
                 assert!(close(sum(&lanes.area), plain.area));
                 for c in 0..3 {
                     assert!(close(-sum(&lanes.wr[c]), plain.wr[c]), "wr {c}");
-                    assert!(close(0.5 * sum(&lanes.d2a[c]), plain.d2a[c]), "d2a {c}");
                     if pressure {
                         assert!(close(-sum(&lanes.f[c]), plain.f[c]), "f {c}");
                         assert!(close(-sum(&lanes.rxf[c]), plain.rxf[c]), "rxf {c}");
-                        assert_eq!(lanes.vol[c], 0.0, "Σ w is g · Σ d a");
+                        assert_eq!(lanes.d2a[c], [0.0; LANES], "d2a {c} is not summed");
                     } else {
+                        assert!(close(0.5 * sum(&lanes.d2a[c]), plain.d2a[c]), "d2a {c}");
                         assert_eq!(lanes.f[c], [0.0; LANES], "f {c} is not summed");
                         assert_eq!(lanes.rxf[c], [0.0; LANES], "rxf {c} is not summed");
                     }
                 }
-                if !pressure {
+                if pressure {
+                    assert_eq!(lanes.vol, [0.0; LANES], "Σ w is g · Σ d a");
+                    assert!(close(-0.5 * sum(&lanes.wd), plain.wd2));
+                } else {
                     assert!(close(-sum(&lanes.vol), plain.vol));
+                    assert_eq!(lanes.wd, [0.0; LANES], "Σ w d is g · Σ d² a");
+                    let dda = Vector3::from(std::array::from_fn(|c| sum(&lanes.d2a[c])));
+                    assert!(close(-0.5 * g.dot(&dda), plain.wd2));
                 }
-                let dda = Vector3::from(std::array::from_fn(|c| sum(&lanes.d2a[c])));
-                assert!(close(-0.5 * g.dot(&dda), plain.wd2));
             }
             // The path this processor takes, with its own loads.
             for pressure in [false, true] {
@@ -1048,10 +1057,11 @@ mod tests {
                 assert!(close(dispatched.wd2, plain.wd2));
                 for c in 0..3 {
                     assert!(close(dispatched.wr[c], plain.wr[c]), "wr {c}");
-                    assert!(close(dispatched.d2a[c], plain.d2a[c]), "d2a {c}");
                     if pressure {
                         assert!(close(dispatched.f[c], plain.f[c]), "f {c}");
                         assert!(close(dispatched.rxf[c], plain.rxf[c]), "rxf {c}");
+                    } else {
+                        assert!(close(dispatched.d2a[c], plain.d2a[c]), "d2a {c}");
                     }
                 }
             }
