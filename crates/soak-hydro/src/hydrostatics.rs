@@ -488,8 +488,7 @@ pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
 /// `Σ w d`, `Σ area`, `Σ w` being `g · Σ d a`). `pressure` chooses; the
 /// sums of [`BuoyancySums`] the other mode needs are left alone
 /// ([`BuoyancySums::f`] and [`BuoyancySums::rxf`] in Archimedes mode,
-/// [`BuoyancySums::d2a`] in pressure mode).
-/// Written so the compiler maps
+/// [`BuoyancySums::d2a`] in pressure mode). Written so the compiler maps
 /// a group onto SIMD registers; where the processor has AVX2 and FMA the
 /// same code runs compiled for them, with fused multiply-adds (chosen at
 /// run time: the two differ in the last bits, 1e-16 relative). The lanes
@@ -979,10 +978,10 @@ mod tests {
     use soak_bake::{BakeOptions, builtin};
 
     /// The planar kernel, with and without fused multiply-adds and with and
-    /// without the pressure sums, against the
-    /// plain per-texel sums of the general path ([`BuoyancySums::add_local`])
-    /// at poses cutting the boat at the waterline, over a range whose length
-    /// is not a multiple of the lanes.
+    /// without the pressure sums, against the plain per-texel sums of the
+    /// general path ([`BuoyancySums::add_local`]) at poses cutting the boat
+    /// at the waterline, over a range whose length is not a multiple of the
+    /// lanes.
     #[test]
     fn the_planar_kernel_adds_what_the_plain_sums_add() {
         let atlas = Atlas::bake(&builtin::boat(4.0, 1.2, 0.6), BakeOptions::square(128)).unwrap();
