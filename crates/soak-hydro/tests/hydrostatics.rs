@@ -222,23 +222,19 @@ fn tiled_equals_per_texel_at_arbitrary_poses() {
                     "{name}"
                 );
                 assert_eq!(a.submerged_texels, b.submerged_texels, "{name}");
-                for (x, y) in a.buoyancy.force.iter().zip(b.buoyancy.force.iter()) {
-                    assert!(
-                        close(*x, *y, scale),
-                        "{name} {mode:?}: {} vs {}",
-                        a.buoyancy.force,
-                        b.buoyancy.force
-                    );
-                }
-                let tscale = scale * atlas.bounding_radius();
-                for (x, y) in a.buoyancy.torque.iter().zip(b.buoyancy.torque.iter()) {
-                    assert!(
-                        close(*x, *y, tscale),
-                        "{name} {mode:?}: {} vs {}",
-                        a.buoyancy.torque,
-                        b.buoyancy.torque
-                    );
-                }
+                // Component by component, on the force's scale and on the
+                // torque's (that force times the radius).
+                let same = |u: &Vector3<f64>, v: &Vector3<f64>, s: f64| {
+                    for (x, y) in u.iter().zip(v.iter()) {
+                        assert!(close(*x, *y, s), "{name} {mode:?}: {u} vs {v}");
+                    }
+                };
+                same(&a.buoyancy.force, &b.buoyancy.force, scale);
+                same(
+                    &a.buoyancy.torque,
+                    &b.buoyancy.torque,
+                    scale * atlas.bounding_radius(),
+                );
                 if a.submerged_volume > 1e-6 {
                     assert!(
                         (a.center_of_buoyancy - b.center_of_buoyancy).norm() < 1e-6 * atlas.bounding_radius()
