@@ -102,7 +102,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let hull = if above <= 0.0 { 1.0 } else { (-above / 0.03).exp() };
             let q = atlas.position(i);
             let splash = procedural::fractal_noise(1.6 * q.x + 7.0, 1.6 * q.z, 4, 11);
-            let deck = if atlas.area_vectors()[i][1] > 0.0 && q.y > 0.55 {
+            let deck = if atlas.area_vectors().get(i)[1] > 0.0 && q.y > 0.55 {
                 ((splash - 0.58) / 0.04).clamp(0.0, 1.0)
             } else {
                 0.0

@@ -3,6 +3,7 @@
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
+use crate::columns::Columns;
 use crate::error::BakeError;
 
 /// A run of consecutive texels that lie in one `tile_size`² block of the texture.
@@ -48,8 +49,8 @@ pub struct Atlas {
     pub(crate) height: u32,
     pub(crate) tile_size: u32,
     pub(crate) origin: [f64; 3],
-    pub(crate) local_positions: Vec<[f32; 3]>,
-    pub(crate) area_vectors: Vec<[f32; 3]>,
+    pub(crate) local_positions: Columns,
+    pub(crate) area_vectors: Columns,
     pub(crate) areas: Vec<f32>,
     pub(crate) triangle_ids: Vec<u32>,
     pub(crate) barycentrics: Vec<[f32; 2]>,
@@ -121,15 +122,16 @@ impl Atlas {
         Point3::from(self.origin)
     }
 
-    /// Sample positions relative to [`Atlas::origin`], m.
-    pub fn local_positions(&self) -> &[[f32; 3]] {
+    /// Sample positions relative to [`Atlas::origin`], m, one array per
+    /// coordinate.
+    pub fn local_positions(&self) -> &Columns {
         &self.local_positions
     }
 
     /// Object-space position of sample `i`, m.
     #[inline]
     pub fn position(&self, i: usize) -> Point3<f64> {
-        let p = self.local_positions[i];
+        let p = self.local_positions.get(i);
         Point3::new(
             self.origin[0] + p[0] as f64,
             self.origin[1] + p[1] as f64,
@@ -137,8 +139,9 @@ impl Atlas {
         )
     }
 
-    /// Area vectors `A_i = a_i n_i`, m², with the outward face normal.
-    pub fn area_vectors(&self) -> &[[f32; 3]] {
+    /// Area vectors `A_i = a_i n_i`, m², with the outward face normal, one
+    /// array per coordinate.
+    pub fn area_vectors(&self) -> &Columns {
         &self.area_vectors
     }
 
@@ -215,7 +218,7 @@ impl Atlas {
     pub fn volume(&self) -> f64 {
         self.local_positions
             .iter()
-            .zip(&self.area_vectors)
+            .zip(self.area_vectors.iter())
             .map(|(x, a)| x[0] as f64 * a[0] as f64 + x[1] as f64 * a[1] as f64 + x[2] as f64 * a[2] as f64)
             .sum::<f64>()
             / 3.0
@@ -271,17 +274,26 @@ impl Atlas {
             })
             .collect();
         use rayon::prelude::*;
-        let radius2 = self
-            .local_positions
-            .par_iter_mut()
-            .zip(self.area_vectors.par_iter_mut().zip(self.areas.par_iter_mut()))
-            .zip(self.triangle_ids.par_iter().zip(self.barycentrics.par_iter()))
-            .map(|((x, (a, area)), (&t, b))| {
+        let [x, y, z] = self.local_positions.columns_mut();
+        let [ax, ay, az] = self.area_vectors.columns_mut();
+        let radius2 = (
+            x.par_iter_mut(),
+            y.par_iter_mut(),
+            z.par_iter_mut(),
+            ax.par_iter_mut(),
+            ay.par_iter_mut(),
+            az.par_iter_mut(),
+            self.areas.par_iter_mut(),
+            self.triangle_ids.par_iter(),
+            self.barycentrics.par_iter(),
+        )
+            .into_par_iter()
+            .map(|(x, y, z, ax, ay, az, area, &t, b)| {
                 let (av, [p0, p1, p2]) = &per_triangle[t as usize];
                 let (l1, l2) = (b[0] as f64, b[1] as f64);
                 let p = p0 * (1.0 - l1 - l2) + p1 * l1 + p2 * l2;
-                *x = [p.x as f32, p.y as f32, p.z as f32];
-                *a = [av.x as f32, av.y as f32, av.z as f32];
+                (*x, *y, *z) = (p.x as f32, p.y as f32, p.z as f32);
+                (*ax, *ay, *az) = (av.x as f32, av.y as f32, av.z as f32);
                 *area = av.norm() as f32;
                 p.norm_squared()
             })

@@ -4,6 +4,7 @@ use nalgebra::{Point2, Point3, Vector3};
 use rayon::prelude::*;
 
 use crate::atlas::{Atlas, Tile};
+use crate::columns::Columns;
 use crate::error::BakeError;
 use crate::mesh::Mesh;
 use crate::validate;
@@ -204,8 +205,8 @@ pub(crate) fn bake_unchecked(mesh: &Mesh, options: BakeOptions) -> Atlas {
         .collect();
 
     let n = samples.len();
-    let mut local_positions = Vec::with_capacity(n);
-    let mut area_vectors = Vec::with_capacity(n);
+    let mut local_positions = Columns::with_capacity(n);
+    let mut area_vectors = Columns::with_capacity(n);
     let mut areas = Vec::with_capacity(n);
     let mut triangle_ids = Vec::with_capacity(n);
     let mut barycentrics = Vec::with_capacity(n);

@@ -32,7 +32,7 @@ impl Atlas {
                     let p = self.position(i);
                     [p.x as f32, p.y as f32, p.z as f32]
                 }
-                AtlasImage::AreaVector => self.area_vectors[i],
+                AtlasImage::AreaVector => self.area_vectors.get(i),
             };
             img.put_pixel(x as u32, y as u32, Rgba([v[0], v[1], v[2], 1.0]));
         }
@@ -65,11 +65,11 @@ impl Atlas {
                     let [x, y] = self.texels[i];
                     let px = match which {
                         AtlasImage::Position => {
-                            let p = self.local_positions[i].map(|c| c as f64 / (2.0 * r) + 0.5);
+                            let p = self.local_positions.get(i).map(|c| c as f64 / (2.0 * r) + 0.5);
                             [q(p[0]), q(p[1]), q(p[2]), 65535]
                         }
                         AtlasImage::AreaVector => {
-                            let a = self.area_vectors[i].map(|c| c as f64);
+                            let a = self.area_vectors.get(i).map(|c| c as f64);
                             let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt().max(1e-300);
                             [
                                 q(a[0] / n * 0.5 + 0.5),

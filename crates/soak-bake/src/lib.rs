@@ -3,6 +3,7 @@
 pub mod atlas;
 pub mod bake;
 pub mod builtin;
+pub mod columns;
 pub mod error;
 pub mod export;
 pub mod load;
@@ -14,6 +15,7 @@ pub mod validate;
 
 pub use atlas::{Atlas, AtlasSummary, Tile};
 pub use bake::{BakeOptions, DEFAULT_TILE_SIZE, MAX_RESOLUTION};
+pub use columns::Columns;
 pub use error::{BakeError, ExportError, LoadError, MeshError, MeshProblem};
 pub use load::load_mesh;
 pub use mesh::Mesh;

@@ -133,7 +133,7 @@ fn samples_lie_on_their_triangles_and_are_in_tile_order() {
         assert!(l1 >= -0.05 && l2 >= -0.05 && l1 + l2 <= 1.05, "{l1} {l2}");
         let q = a + (b - a) * l1 as f64 + (c - a) * l2 as f64;
         assert!((q - p).norm() < 1e-5);
-        let av = atlas.area_vectors()[i];
+        let av = atlas.area_vectors().get(i);
         let av = nalgebra::Vector3::new(av[0] as f64, av[1] as f64, av[2] as f64);
         assert!((av.normalize() - n).norm() < 1e-5);
     }

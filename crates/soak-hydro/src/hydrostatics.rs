@@ -467,8 +467,8 @@ impl Frame {
 
 #[inline]
 pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
-    let x = atlas.local_positions()[i];
-    let a = atlas.area_vectors()[i];
+    let x = atlas.local_positions().get(i);
+    let a = atlas.area_vectors().get(i);
     (
         Vector3::new(x[0] as f64, x[1] as f64, x[2] as f64),
         Vector3::new(a[0] as f64, a[1] as f64, a[2] as f64),
@@ -505,8 +505,8 @@ pub(crate) fn add_planar_range(
     g: &Vector3<f64>,
     pressure: bool,
 ) {
-    let xs = &atlas.local_positions()[range.clone()];
-    let avs = &atlas.area_vectors()[range.clone()];
+    let xs = atlas.local_positions().columns(range.clone());
+    let avs = atlas.area_vectors().columns(range.clone());
     let areas = &atlas.areas()[range];
     let plane = PlaneLanes {
         alpha,
@@ -516,7 +516,7 @@ pub(crate) fn add_planar_range(
     let lanes = planar_lanes(&plane, xs, avs, areas, pressure);
     // Σ ay d r and Σ area; Archimedes: Σ ay d and Σ d² a (Σ ay d² = g · Σ d² a);
     // pressure: Σ d a, Σ r × (d a) (Σ ay d = g · Σ d a) and Σ ay d².
-    let sum = |v: &[f64; LANES]| (v[0] + v[1]) + (v[2] + v[3]);
+    let sum = |v: &Lanes| (v[0] + v[1]) + (v[2] + v[3]);
     s.wr -= Vector3::new(sum(&lanes.wr[0]), sum(&lanes.wr[1]), sum(&lanes.wr[2]));
     if pressure {
         let f = Vector3::new(sum(&lanes.f[0]), sum(&lanes.f[1]), sum(&lanes.f[2]));
@@ -537,6 +537,33 @@ pub(crate) fn add_planar_range(
 /// Texels the planar kernel takes side by side.
 const LANES: usize = 4;
 
+/// Lanes of f64, one per texel of a group.
+type Lanes = [f64; LANES];
+
+/// `a b + c` lane by lane, fused where the processor has FMA.
+#[inline(always)]
+fn lanes_madd<const FMA: bool>(a: &Lanes, b: &Lanes, c: &Lanes) -> Lanes {
+    std::array::from_fn(|k| madd::<FMA>(a[k], b[k], c[k]))
+}
+
+/// `c − a b` lane by lane, fused where the processor has FMA.
+#[inline(always)]
+fn lanes_nmadd<const FMA: bool>(a: &Lanes, b: &Lanes, c: &Lanes) -> Lanes {
+    std::array::from_fn(|k| madd::<FMA>(-a[k], b[k], c[k]))
+}
+
+/// `a b` lane by lane.
+#[inline(always)]
+fn lanes_mul(a: &Lanes, b: &Lanes) -> Lanes {
+    std::array::from_fn(|k| a[k] * b[k])
+}
+
+/// `a + b` lane by lane.
+#[inline(always)]
+fn lanes_add(a: &Lanes, b: &Lanes) -> Lanes {
+    std::array::from_fn(|k| a[k] + b[k])
+}
+
 /// The planar water of [`add_planar_range`] as plain arrays.
 struct PlaneLanes {
     alpha: f64,
@@ -545,35 +572,33 @@ struct PlaneLanes {
 }
 
 impl PlaneLanes {
-    /// The depth `α + β·r` of lane `k`.
+    /// The depths `α + β·r` of a group's lanes.
     #[inline(always)]
-    fn depth<const FMA: bool>(&self, r: &[[f64; LANES]; 3], k: usize) -> f64 {
-        let b = &self.beta;
-        madd::<FMA>(
-            b[2],
-            r[2][k],
-            madd::<FMA>(b[1], r[1][k], madd::<FMA>(b[0], r[0][k], self.alpha)),
-        )
+    fn depths<const FMA: bool>(&self, r: &[Lanes; 3]) -> Lanes {
+        let b = self.beta.map(|b| [b; LANES]);
+        let d = lanes_madd::<FMA>(&b[0], &r[0], &[self.alpha; LANES]);
+        let d = lanes_madd::<FMA>(&b[1], &r[1], &d);
+        lanes_madd::<FMA>(&b[2], &r[2], &d)
     }
 }
 
 /// The planar kernel's sums, one per lane (see [`add_planar_range`]).
 #[derive(Default)]
 struct PlanarLanes {
-    vol: [f64; LANES],
-    wd: [f64; LANES],
-    wr: [[f64; LANES]; 3],
-    f: [[f64; LANES]; 3],
-    rxf: [[f64; LANES]; 3],
-    d2a: [[f64; LANES]; 3],
-    area: [f64; LANES],
+    vol: Lanes,
+    wd: Lanes,
+    wr: [Lanes; 3],
+    f: [Lanes; 3],
+    rxf: [Lanes; 3],
+    d2a: [Lanes; 3],
+    area: Lanes,
     count: usize,
 }
 
 fn planar_lanes(
     p: &PlaneLanes,
-    xs: &[[f32; 3]],
-    avs: &[[f32; 3]],
+    xs: [&[f32]; 3],
+    avs: [&[f32]; 3],
     areas: &[f32],
     pressure: bool,
 ) -> PlanarLanes {
@@ -598,67 +623,172 @@ fn planar_lanes(
     }
 }
 
-/// Four texels' coordinates as one array of four per coordinate, widened.
+/// Lanes `i .. i + LANES` of one coordinate array, widened: one load of
+/// consecutive floats (the atlas stores each coordinate in an array of its
+/// own) and one conversion.
 #[inline(always)]
-fn load_lanes(v: &[[f32; 3]]) -> [[f64; LANES]; 3] {
-    std::array::from_fn(|c| std::array::from_fn(|k| f64::from(v[k][c])))
+fn load_lanes(v: &[f32], i: usize) -> Lanes {
+    let v: &[f32; LANES] = v[i..i + LANES].try_into().expect("a slice of LANES floats");
+    v.map(f64::from)
 }
 
+/// [`planar_lanes_generic`] with fused multiply-adds, written with AVX2
+/// intrinsics: the same operations in the same order on the same lanes, so
+/// the same bits, where the compiler left to itself vectorises the generic
+/// code only in part. The last `len % LANES` texels go through the generic
+/// code.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn planar_lanes_avx2<const PRESSURE: bool>(
     p: &PlaneLanes,
-    xs: &[[f32; 3]],
-    avs: &[[f32; 3]],
+    xs: [&[f32]; 3],
+    avs: [&[f32]; 3],
     areas: &[f32],
 ) -> PlanarLanes {
-    planar_lanes_generic::<true, PRESSURE>(p, xs, avs, areas)
+    use std::arch::x86_64::*;
+
+    /// Lanes `i .. i + LANES` of `v`, widened.
+    #[target_feature(enable = "avx2,fma")]
+    fn load(v: &[f32], i: usize) -> __m256d {
+        let v = &v[i..i + LANES];
+        // SAFETY: `v` holds the four floats an unaligned 128-bit load reads.
+        #[allow(unsafe_code)]
+        _mm256_cvtps_pd(unsafe { _mm_loadu_ps(v.as_ptr()) })
+    }
+    /// The lanes of `v` as an array.
+    #[target_feature(enable = "avx2,fma")]
+    fn lanes(v: __m256d) -> Lanes {
+        let mut out = [0.0; LANES];
+        // SAFETY: `out` holds the four f64 an unaligned 256-bit store writes.
+        #[allow(unsafe_code)]
+        unsafe {
+            _mm256_storeu_pd(out.as_mut_ptr(), v)
+        };
+        out
+    }
+
+    let n = areas.len();
+    let whole = n - n % LANES;
+    let xs = xs.map(|v| &v[..n]);
+    let avs = avs.map(|v| &v[..n]);
+    let zero = _mm256_setzero_pd();
+    let one = _mm256_set1_pd(1.0);
+    let alpha = _mm256_set1_pd(p.alpha);
+    let b = p.beta.map(|b| _mm256_set1_pd(b));
+    let g = p.g.map(|g| _mm256_set1_pd(g));
+    let (mut vol, mut wd, mut area_sum, mut count) = (zero, zero, zero, zero);
+    let (mut wr, mut f, mut rxf, mut d2a) = ([zero; 3], [zero; 3], [zero; 3], [zero; 3]);
+    for i in (0..whole).step_by(LANES) {
+        let r = [load(xs[0], i), load(xs[1], i), load(xs[2], i)];
+        let d = _mm256_fmadd_pd(b[0], r[0], alpha);
+        let d = _mm256_fmadd_pd(b[1], r[1], d);
+        let d = _mm256_fmadd_pd(b[2], r[2], d);
+        let wet = _mm256_cmp_pd::<_CMP_GT_OQ>(d, zero);
+        if _mm256_movemask_pd(wet) == 0 {
+            continue;
+        }
+        // A dry lane adds zeros: its depth and area masked to +0.
+        let d = _mm256_and_pd(d, wet);
+        let area = _mm256_and_pd(load(areas, i), wet);
+        count = _mm256_add_pd(count, _mm256_and_pd(one, wet));
+        let da = [
+            _mm256_mul_pd(d, load(avs[0], i)),
+            _mm256_mul_pd(d, load(avs[1], i)),
+            _mm256_mul_pd(d, load(avs[2], i)),
+        ];
+        let w = _mm256_fmadd_pd(
+            g[2],
+            da[2],
+            _mm256_fmadd_pd(g[1], da[1], _mm256_mul_pd(g[0], da[0])),
+        );
+        for c in 0..3 {
+            wr[c] = _mm256_fmadd_pd(w, r[c], wr[c]);
+        }
+        if PRESSURE {
+            for c in 0..3 {
+                f[c] = _mm256_add_pd(f[c], da[c]);
+            }
+            rxf[0] = _mm256_fmadd_pd(r[1], da[2], _mm256_fnmadd_pd(r[2], da[1], rxf[0]));
+            rxf[1] = _mm256_fmadd_pd(r[2], da[0], _mm256_fnmadd_pd(r[0], da[2], rxf[1]));
+            rxf[2] = _mm256_fmadd_pd(r[0], da[1], _mm256_fnmadd_pd(r[1], da[0], rxf[2]));
+            wd = _mm256_fmadd_pd(w, d, wd);
+        } else {
+            vol = _mm256_add_pd(vol, w);
+            for c in 0..3 {
+                d2a[c] = _mm256_fmadd_pd(d, da[c], d2a[c]);
+            }
+        }
+        area_sum = _mm256_add_pd(area_sum, area);
+    }
+    let tail = planar_lanes_generic::<true, PRESSURE>(
+        p,
+        xs.map(|v| &v[whole..]),
+        avs.map(|v| &v[whole..]),
+        &areas[whole..],
+    );
+    let add = |v: __m256d, t: &Lanes| lanes_add(&lanes(v), t);
+    let add3 = |v: [__m256d; 3], t: &[Lanes; 3]| std::array::from_fn(|c| add(v[c], &t[c]));
+    PlanarLanes {
+        vol: add(vol, &tail.vol),
+        wd: add(wd, &tail.wd),
+        wr: add3(wr, &tail.wr),
+        f: add3(f, &tail.f),
+        rxf: add3(rxf, &tail.rxf),
+        d2a: add3(d2a, &tail.d2a),
+        area: add(area_sum, &tail.area),
+        count: lanes(count).iter().sum::<f64>() as usize + tail.count,
+    }
 }
 
 #[inline(always)]
 fn planar_lanes_generic<const FMA: bool, const PRESSURE: bool>(
     p: &PlaneLanes,
-    xs: &[[f32; 3]],
-    avs: &[[f32; 3]],
+    xs: [&[f32]; 3],
+    avs: [&[f32]; 3],
     areas: &[f32],
 ) -> PlanarLanes {
     let mut acc = PlanarLanes::default();
-    let mut count = [0u64; LANES];
-    let xb = xs.chunks_exact(LANES);
-    let ab = avs.chunks_exact(LANES);
-    let areab = areas.chunks_exact(LANES);
-    let (xt, at, areat) = (xb.remainder(), ab.remainder(), areab.remainder());
-    for ((x, a), area) in xb.zip(ab).zip(areab) {
-        let r = load_lanes(x);
-        let d: [f64; LANES] = std::array::from_fn(|k| p.depth::<FMA>(&r, k));
-        if d.iter().fold(false, |any, &d| any | (d > 0.0)) {
-            let a = load_lanes(a);
-            let wet: [bool; LANES] = std::array::from_fn(|k| d[k] > 0.0);
-            let area: [f64; LANES] = std::array::from_fn(|k| f64::from(area[k]));
-            for k in 0..LANES {
-                count[k] += u64::from(wet[k]);
-            }
+    // Wet texels counted per lane in f64 (exact up to 2⁵³), a vector like
+    // the sums.
+    let mut count: Lanes = [0.0; LANES];
+    let n = areas.len();
+    // Every array cut to the same length, so the loads below need no other
+    // bounds than the loop's.
+    let xs = xs.map(|v| &v[..n]);
+    let avs = avs.map(|v| &v[..n]);
+    let whole = n - n % LANES;
+    for i in (0..whole).step_by(LANES) {
+        let r = [load_lanes(xs[0], i), load_lanes(xs[1], i), load_lanes(xs[2], i)];
+        let d = p.depths::<FMA>(&r);
+        let wet: [bool; LANES] = d.map(|d| d > 0.0);
+        if wet.iter().fold(false, |any, &w| any | w) {
+            let a = [
+                load_lanes(avs[0], i),
+                load_lanes(avs[1], i),
+                load_lanes(avs[2], i),
+            ];
+            let area = load_lanes(areas, i);
+            count = lanes_add(&count, &wet.map(|w| if w { 1.0 } else { 0.0 }));
             add_lanes::<FMA, PRESSURE>(&mut acc, p, &r, &a, &area, &d, &wet);
         }
     }
     // The last texels, each in a lane of its own.
-    for (k, ((x, a), &area)) in xt.iter().zip(at).zip(areat).enumerate() {
+    for (k, i) in (whole..n).enumerate() {
         let mut r = [[0.0; LANES]; 3];
         let mut av = [[0.0; LANES]; 3];
         for c in 0..3 {
-            r[c][k] = f64::from(x[c]);
-            av[c][k] = f64::from(a[c]);
+            r[c][k] = f64::from(xs[c][i]);
+            av[c][k] = f64::from(avs[c][i]);
         }
-        let mut d = [0.0; LANES];
-        d[k] = p.depth::<FMA>(&r, k);
+        let d = p.depths::<FMA>(&r);
         let mut wet = [false; LANES];
         wet[k] = d[k] > 0.0;
         let mut ar = [0.0; LANES];
-        ar[k] = f64::from(area);
-        count[k] += u64::from(wet[k]);
+        ar[k] = f64::from(areas[i]);
+        count[k] += if wet[k] { 1.0 } else { 0.0 };
         add_lanes::<FMA, PRESSURE>(&mut acc, p, &r, &av, &ar, &d, &wet);
     }
-    acc.count = count.iter().sum::<u64>() as usize;
+    acc.count = count.iter().sum::<f64>() as usize;
     acc
 }
 
@@ -670,40 +800,41 @@ fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
 
 /// One group of texels; a dry lane adds zeros. Eight running sums in
 /// Archimedes mode, eleven where `PRESSURE` (see [`add_planar_range`]):
-/// fewer than the processor's vector registers.
+/// fewer than the processor's vector registers. Written as operations on
+/// whole groups of lanes, each of which the compiler turns into one vector
+/// instruction.
 #[inline(always)]
 fn add_lanes<const FMA: bool, const PRESSURE: bool>(
     acc: &mut PlanarLanes,
     p: &PlaneLanes,
-    r: &[[f64; LANES]; 3],
-    a: &[[f64; LANES]; 3],
-    area: &[f64; LANES],
-    d: &[f64; LANES],
+    r: &[Lanes; 3],
+    a: &[Lanes; 3],
+    area: &Lanes,
+    d: &Lanes,
     wet: &[bool; LANES],
 ) {
-    for k in 0..LANES {
-        let (d, area) = if wet[k] { (d[k], area[k]) } else { (0.0, 0.0) };
-        let da = [d * a[0][k], d * a[1][k], d * a[2][k]];
-        let w = madd::<FMA>(p.g[2], da[2], madd::<FMA>(p.g[1], da[1], p.g[0] * da[0]));
-        acc.wr[0][k] = madd::<FMA>(w, r[0][k], acc.wr[0][k]);
-        acc.wr[1][k] = madd::<FMA>(w, r[1][k], acc.wr[1][k]);
-        acc.wr[2][k] = madd::<FMA>(w, r[2][k], acc.wr[2][k]);
-        if PRESSURE {
-            acc.f[0][k] += da[0];
-            acc.f[1][k] += da[1];
-            acc.f[2][k] += da[2];
-            acc.rxf[0][k] = madd::<FMA>(r[1][k], da[2], madd::<FMA>(-r[2][k], da[1], acc.rxf[0][k]));
-            acc.rxf[1][k] = madd::<FMA>(r[2][k], da[0], madd::<FMA>(-r[0][k], da[2], acc.rxf[1][k]));
-            acc.rxf[2][k] = madd::<FMA>(r[0][k], da[1], madd::<FMA>(-r[1][k], da[0], acc.rxf[2][k]));
-            acc.wd[k] = madd::<FMA>(w, d, acc.wd[k]);
-        } else {
-            acc.vol[k] += w;
-            acc.d2a[0][k] = madd::<FMA>(d, da[0], acc.d2a[0][k]);
-            acc.d2a[1][k] = madd::<FMA>(d, da[1], acc.d2a[1][k]);
-            acc.d2a[2][k] = madd::<FMA>(d, da[2], acc.d2a[2][k]);
-        }
-        acc.area[k] += area;
+    let d: Lanes = std::array::from_fn(|k| if wet[k] { d[k] } else { 0.0 });
+    let area: Lanes = std::array::from_fn(|k| if wet[k] { area[k] } else { 0.0 });
+    let da = [lanes_mul(&d, &a[0]), lanes_mul(&d, &a[1]), lanes_mul(&d, &a[2])];
+    let g = p.g.map(|g| [g; LANES]);
+    let w = lanes_madd::<FMA>(
+        &g[2],
+        &da[2],
+        &lanes_madd::<FMA>(&g[1], &da[1], &lanes_mul(&g[0], &da[0])),
+    );
+    acc.wr = std::array::from_fn(|c| lanes_madd::<FMA>(&w, &r[c], &acc.wr[c]));
+    if PRESSURE {
+        acc.f = std::array::from_fn(|c| lanes_add(&acc.f[c], &da[c]));
+        let rxf = &mut acc.rxf;
+        rxf[0] = lanes_madd::<FMA>(&r[1], &da[2], &lanes_nmadd::<FMA>(&r[2], &da[1], &rxf[0]));
+        rxf[1] = lanes_madd::<FMA>(&r[2], &da[0], &lanes_nmadd::<FMA>(&r[0], &da[2], &rxf[1]));
+        rxf[2] = lanes_madd::<FMA>(&r[0], &da[1], &lanes_nmadd::<FMA>(&r[1], &da[0], &rxf[2]));
+        acc.wd = lanes_madd::<FMA>(&w, &d, &acc.wd);
+    } else {
+        acc.vol = lanes_add(&acc.vol, &w);
+        acc.d2a = std::array::from_fn(|c| lanes_madd::<FMA>(&d, &da[c], &acc.d2a[c]));
     }
+    acc.area = lanes_add(&acc.area, &area);
 }
 
 /// Reads every position, area vector and area of the atlas once and folds
@@ -713,14 +844,14 @@ fn add_lanes<const FMA: bool, const PRESSURE: bool>(
 /// Benchmarks compare [`evaluate`]'s time against it.
 pub fn streaming_read(atlas: &Atlas) -> f64 {
     chunked_sum(atlas.len(), 0.0, |range| {
-        let xs = &atlas.local_positions()[range.clone()];
-        let avs = &atlas.area_vectors()[range.clone()];
+        let [x, y, z] = atlas.local_positions().columns(range.clone());
+        let [ax, ay, az] = atlas.area_vectors().columns(range.clone());
         let areas = &atlas.areas()[range];
         // Wrapping integer sums of the bits, one array after the other: no
         // chain of dependent float additions, so the compiler reads with
         // SIMD and the time is the memory's, not an adder's latency.
         let bits = |v: &[f32]| v.iter().fold(0u32, |s, x| s.wrapping_add(x.to_bits()));
-        let s = bits(xs.as_flattened()) ^ bits(avs.as_flattened()) ^ bits(areas);
+        let s = bits(x) ^ bits(y) ^ bits(z) ^ bits(ax) ^ bits(ay) ^ bits(az) ^ bits(areas);
         f64::from(s)
     })
 }
@@ -1007,18 +1138,32 @@ mod tests {
                 g: g.into(),
             };
             let (xs, avs, areas) = (
-                &atlas.local_positions()[..n],
-                &atlas.area_vectors()[..n],
+                atlas.local_positions().columns(0..n),
+                atlas.area_vectors().columns(0..n),
                 &atlas.areas()[..n],
             );
             assert!(plain.count > 0 && plain.count < n, "the waterline cuts the boat");
-            // Both variants, with and without the pressure sums.
-            for (lanes, pressure) in [
+            // Every variant, with and without the pressure sums: plain or
+            // fused, and the AVX2 kernel where the processor has it.
+            #[allow(unused_mut)]
+            let mut variants = vec![
                 (planar_lanes_generic::<false, true>(&p, xs, avs, areas), true),
                 (planar_lanes_generic::<true, true>(&p, xs, avs, areas), true),
                 (planar_lanes_generic::<false, false>(&p, xs, avs, areas), false),
                 (planar_lanes_generic::<true, false>(&p, xs, avs, areas), false),
-            ] {
+            ];
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+                // SAFETY: the processor has AVX2 and FMA, checked just above.
+                #[allow(unsafe_code)]
+                variants.extend(unsafe {
+                    [
+                        (planar_lanes_avx2::<true>(&p, xs, avs, areas), true),
+                        (planar_lanes_avx2::<false>(&p, xs, avs, areas), false),
+                    ]
+                });
+            }
+            for (lanes, pressure) in variants {
                 let sum = |v: &[f64; LANES]| v.iter().sum::<f64>();
                 assert_eq!(lanes.count, plain.count);
                 let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());

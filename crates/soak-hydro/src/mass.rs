@@ -133,8 +133,8 @@ pub fn inertia_from_second_moment(s: &Matrix3<f64>) -> Matrix3<f64> {
 
 #[inline]
 fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
-    let x = atlas.local_positions()[i];
-    let a = atlas.area_vectors()[i];
+    let x = atlas.local_positions().get(i);
+    let a = atlas.area_vectors().get(i);
     (
         Vector3::new(x[0] as f64, x[1] as f64, x[2] as f64),
         Vector3::new(a[0] as f64, a[1] as f64, a[2] as f64),

@@ -662,8 +662,8 @@ fn deformation_on_the_gpu_matches_refresh() {
             let r = cpu_atlas.bounding_radius();
             let mut worst = (0.0f64, 0.0f64);
             for i in 0..cpu_atlas.len() {
-                let (x, y) = (cpu_atlas.local_positions()[i], texels.positions[i]);
-                let (a, c) = (cpu_atlas.area_vectors()[i], texels.area_vectors[i]);
+                let (x, y) = (cpu_atlas.local_positions().get(i), texels.positions[i]);
+                let (a, c) = (cpu_atlas.area_vectors().get(i), texels.area_vectors[i]);
                 let dx = (0..3).map(|k| (x[k] - y[k]).abs() as f64).fold(0.0, f64::max);
                 let na = Vector3::new(a[0], a[1], a[2]).norm() as f64;
                 let da = (0..3).map(|k| (a[k] - c[k]).abs() as f64).fold(0.0, f64::max);

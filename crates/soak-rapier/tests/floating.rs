@@ -211,7 +211,7 @@ fn a_bottom_heavy_body_rights_itself_after_a_30_degree_tilt() {
     let atlas = Atlas::bake(&mesh, BakeOptions::square(128)).unwrap();
     let density: Vec<f32> = (0..atlas.len())
         .map(|i| {
-            if atlas.area_vectors()[i][1] < -1e-9 {
+            if atlas.area_vectors().get(i)[1] < -1e-9 {
                 600.0
             } else {
                 5.0

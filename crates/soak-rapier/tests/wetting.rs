@@ -368,7 +368,7 @@ fn the_wet_crate_scene_soaks_dries_and_snapshots() {
     let top: Vec<usize> = (0..atlas.len())
         .filter(|&i| {
             let p = atlas.position(i);
-            atlas.area_vectors()[i][1] > 0.9 * atlas.areas()[i] && p.x.abs() < 0.25 && p.z.abs() < 0.15
+            atlas.area_vectors().get(i)[1] > 0.9 * atlas.areas()[i] && p.x.abs() < 0.25 && p.z.abs() < 0.15
         })
         .collect();
     assert!(!top.is_empty());

@@ -151,7 +151,7 @@ impl Layout {
                 .zip(self.voxel_of[at..at + len].par_iter_mut())
                 .enumerate()
                 .for_each(|(i, (g, v))| {
-                    let x = local[i];
+                    let x = local.get(i);
                     let q = p.transform
                         * nalgebra::Point3::new(
                             origin.x + x[0] as f64,

@@ -101,7 +101,7 @@ impl BodyField {
 /// Object-space bounds of an atlas' texels, m.
 pub(crate) fn atlas_bounds(atlas: &Atlas) -> (Point3<f64>, Point3<f64>) {
     let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
-    for p in atlas.local_positions() {
+    for p in atlas.local_positions().iter() {
         for k in 0..3 {
             lo[k] = lo[k].min(p[k]);
             hi[k] = hi[k].max(p[k]);
@@ -422,10 +422,15 @@ impl Wetting {
         };
         let local = atlas.local_positions();
         let areas = atlas.areas();
-        let partials: Vec<f64> = local
+        let partials: Vec<f64> = areas
             .par_chunks(CHUNK)
-            .zip(areas.par_chunks(CHUNK))
-            .map(|(x, a)| x.iter().zip(a).map(|(x, &a)| a as f64 * bump(x)).sum())
+            .enumerate()
+            .map(|(c, a)| {
+                a.iter()
+                    .enumerate()
+                    .map(|(k, &a)| a as f64 * bump(&local.get(c * CHUNK + k)))
+                    .sum()
+            })
             .collect();
         let weight: f64 = partials.iter().sum();
         if weight.is_nan() || weight <= 0.0 || splash.volume == 0.0 {
@@ -436,12 +441,12 @@ impl Wetting {
         let stuck: Vec<f64> = self
             .h
             .par_chunks_mut(CHUNK)
-            .zip(local.par_chunks(CHUNK))
             .zip(areas.par_chunks(CHUNK))
-            .map(|((h, x), a)| {
+            .enumerate()
+            .map(|(c, (h, a))| {
                 let mut s = 0.0;
-                for ((h, x), &a) in h.iter_mut().zip(x).zip(a) {
-                    let b = bump(x);
+                for (k, (h, &a)) in h.iter_mut().zip(a).enumerate() {
+                    let b = bump(&local.get(c * CHUNK + k));
                     if b > 0.0 {
                         let next = (*h + per * b).min(hmax);
                         s += (next - *h) * a as f64;
@@ -563,7 +568,7 @@ impl Wetting {
                 let mut acc = [0.0; 4];
                 for (k, h) in hs.iter_mut().enumerate() {
                     let i = c * CHUNK + k;
-                    let x = local[i];
+                    let x = local.get(i);
                     let r = rot * Vector3::new(x[0] as f64, x[1] as f64, x[2] as f64);
                     let p = Point3::from(ow + r);
                     let depth = if !wet_possible || p.y > crest {
@@ -575,7 +580,7 @@ impl Wetting {
                     };
                     let a = areas[i] as f64;
                     let up = if raining && a > 0.0 {
-                        let av = area_vectors[i];
+                        let av = area_vectors.get(i);
                         (rot * Vector3::new(av[0] as f64, av[1] as f64, av[2] as f64)).y / a
                     } else {
                         0.0

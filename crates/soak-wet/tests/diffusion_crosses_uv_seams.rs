@@ -17,7 +17,7 @@ fn sides(atlas: &Atlas, h: &[f64], phi0: f64) -> ([f64; 2], [f64; 2], f64) {
     let (mut m, mut v) = ([0.0; 2], [0.0; 2]);
     for (i, &h) in h.iter().enumerate() {
         let p = atlas.position(i);
-        let n = atlas.area_vectors()[i];
+        let n = atlas.area_vectors().get(i);
         if n[1].abs() > 0.5 * atlas.areas()[i] {
             continue; // caps
         }

@@ -22,7 +22,7 @@ fn spot(atlas: &Atlas, wet: &mut Wetting, r: f64, up: Vector3<f64>) {
     let h: Vec<f64> = (0..atlas.len())
         .map(|i| {
             let p = atlas.position(i);
-            let a = atlas.area_vectors()[i];
+            let a = atlas.area_vectors().get(i);
             let n = Vector3::new(a[0] as f64, a[1] as f64, a[2] as f64);
             if p.coords.norm() < r && n.dot(&up) > 0.0 {
                 sat

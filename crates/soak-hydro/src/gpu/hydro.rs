@@ -350,7 +350,7 @@ impl GpuHydro {
         for ((x, a), &area) in atlas
             .local_positions()
             .iter()
-            .zip(atlas.area_vectors())
+            .zip(atlas.area_vectors().iter())
             .zip(atlas.areas())
         {
             texels.push([x[0], x[1], x[2], area]);
