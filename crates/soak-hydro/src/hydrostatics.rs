@@ -188,7 +188,7 @@ pub(crate) struct BuoyancySums {
     pub wd2: f64,
     /// Σ −d A (the planar kernel sums it, and the next, only in
     /// pressure mode, and `d2a` only in Archimedes mode: see
-    /// [`add_planar_range`]).
+    /// [`add_planar_ranges`]).
     pub f: Vector3<f64>,
     /// Σ r × (−d A).
     pub rxf: Vector3<f64>,
@@ -475,12 +475,13 @@ pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
     )
 }
 
-/// Adds the submerged texels of `range` under planar water, `d(x) = α + β·x`
+/// Adds the submerged texels of `ranges` under planar water, `d(x) = α + β·x`
 /// in object coordinates relative to the atlas origin, `g` the world's up in
 /// object axes (object-frame sums).
 ///
 /// Texels are taken [`LANES`] at a time: their coordinates widened to f64
-/// and laid side by side, a group with no submerged texel costs one test,
+/// and laid side by side (the last texels of a range in a group of their
+/// own, its empty lanes masked), a group with no submerged texel costs one test,
 /// and the others add to sums of [`LANES`] lanes each, a dry lane adding
 /// zeros (its depth clamped to zero). Archimedes' buoyancy needs eight
 /// (`Σ w`, `Σ w r`, `Σ d² a`, `Σ area`); the pressure force and its torque
@@ -496,24 +497,27 @@ pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
 /// [`BuoyancySums`] applied once, so on one machine the result is the same
 /// bits run after run and for any thread count.
 #[inline]
-pub(crate) fn add_planar_range(
+pub(crate) fn add_planar_ranges(
     s: &mut BuoyancySums,
     atlas: &Atlas,
-    range: std::ops::Range<usize>,
+    ranges: &[std::ops::Range<usize>],
     alpha: f64,
     beta: &Vector3<f64>,
     g: &Vector3<f64>,
     pressure: bool,
 ) {
-    let xs = atlas.local_positions().columns(range.clone());
-    let avs = atlas.area_vectors().columns(range.clone());
-    let areas = &atlas.areas()[range];
+    let n = atlas.len();
+    let texels = TexelColumns {
+        xs: atlas.local_positions().columns(0..n),
+        avs: atlas.area_vectors().columns(0..n),
+        areas: atlas.areas(),
+    };
     let plane = PlaneLanes {
         alpha,
         beta: [beta.x, beta.y, beta.z],
         g: [g.x, g.y, g.z],
     };
-    let lanes = planar_lanes(&plane, xs, avs, areas, pressure);
+    let lanes = planar_lanes(&plane, &texels, ranges, pressure);
     // Σ ay d r and Σ area; Archimedes: Σ ay d and Σ d² a (Σ ay d² = g · Σ d² a);
     // pressure: Σ d a, Σ r × (d a) (Σ ay d = g · Σ d a) and Σ ay d².
     let sum = |v: &Lanes| (v[0] + v[1]) + (v[2] + v[3]);
@@ -564,7 +568,14 @@ fn lanes_add(a: &Lanes, b: &Lanes) -> Lanes {
     std::array::from_fn(|k| a[k] + b[k])
 }
 
-/// The planar water of [`add_planar_range`] as plain arrays.
+/// The arrays of an atlas the planar kernel reads, each of the same length.
+struct TexelColumns<'a> {
+    xs: [&'a [f32]; 3],
+    avs: [&'a [f32]; 3],
+    areas: &'a [f32],
+}
+
+/// The planar water of [`add_planar_ranges`] as plain arrays.
 struct PlaneLanes {
     alpha: f64,
     beta: [f64; 3],
@@ -582,7 +593,7 @@ impl PlaneLanes {
     }
 }
 
-/// The planar kernel's sums, one per lane (see [`add_planar_range`]).
+/// The planar kernel's sums, one per lane (see [`add_planar_ranges`]).
 #[derive(Default)]
 struct PlanarLanes {
     vol: Lanes,
@@ -597,9 +608,8 @@ struct PlanarLanes {
 
 fn planar_lanes(
     p: &PlaneLanes,
-    xs: [&[f32]; 3],
-    avs: [&[f32]; 3],
-    areas: &[f32],
+    t: &TexelColumns,
+    ranges: &[std::ops::Range<usize>],
     pressure: bool,
 ) -> PlanarLanes {
     #[cfg(target_arch = "x86_64")]
@@ -609,18 +619,22 @@ fn planar_lanes(
             #[allow(unsafe_code)]
             return unsafe {
                 if pressure {
-                    planar_lanes_avx2::<true>(p, xs, avs, areas)
+                    planar_lanes_avx2::<true>(p, t, ranges)
                 } else {
-                    planar_lanes_avx2::<false>(p, xs, avs, areas)
+                    planar_lanes_avx2::<false>(p, t, ranges)
                 }
             };
         }
     }
-    if pressure {
-        planar_lanes_generic::<false, true>(p, xs, avs, areas)
-    } else {
-        planar_lanes_generic::<false, false>(p, xs, avs, areas)
+    let mut acc = PlanarLanes::default();
+    for r in ranges {
+        if pressure {
+            planar_lanes_generic::<false, true>(&mut acc, p, t, r.clone());
+        } else {
+            planar_lanes_generic::<false, false>(&mut acc, p, t, r.clone());
+        }
     }
+    acc
 }
 
 /// Lanes `i .. i + LANES` of one coordinate array, widened: one load of
@@ -632,18 +646,18 @@ fn load_lanes(v: &[f32], i: usize) -> Lanes {
     v.map(f64::from)
 }
 
-/// [`planar_lanes_generic`] with fused multiply-adds, written with AVX2
-/// intrinsics: the same operations in the same order on the same lanes, so
-/// the same bits, where the compiler left to itself vectorises the generic
-/// code only in part. The last `len % LANES` texels go through the generic
-/// code.
+/// [`planar_lanes_generic`] with fused multiply-adds over several ranges,
+/// written with AVX2 intrinsics: the same operations in the same order on
+/// the same lanes (where the compiler left to itself vectorises the
+/// generic code only in part). The last `len % LANES` texels of a range
+/// make a group of their own, padded with zeros and its empty lanes
+/// masked off like dry ones.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn planar_lanes_avx2<const PRESSURE: bool>(
     p: &PlaneLanes,
-    xs: [&[f32]; 3],
-    avs: [&[f32]; 3],
-    areas: &[f32],
+    t: &TexelColumns,
+    ranges: &[std::ops::Range<usize>],
 ) -> PlanarLanes {
     use std::arch::x86_64::*;
 
@@ -667,10 +681,6 @@ fn planar_lanes_avx2<const PRESSURE: bool>(
         out
     }
 
-    let n = areas.len();
-    let whole = n - n % LANES;
-    let xs = xs.map(|v| &v[..n]);
-    let avs = avs.map(|v| &v[..n]);
     let zero = _mm256_setzero_pd();
     let one = _mm256_set1_pd(1.0);
     let alpha = _mm256_set1_pd(p.alpha);
@@ -678,23 +688,25 @@ fn planar_lanes_avx2<const PRESSURE: bool>(
     let g = p.g.map(|g| _mm256_set1_pd(g));
     let (mut vol, mut wd, mut area_sum, mut count) = (zero, zero, zero, zero);
     let (mut wr, mut f, mut rxf, mut d2a) = ([zero; 3], [zero; 3], [zero; 3], [zero; 3]);
-    for i in (0..whole).step_by(LANES) {
-        let r = [load(xs[0], i), load(xs[1], i), load(xs[2], i)];
+    // One group from where `at` finds it (`xs`, `avs`, `areas`), `valid`
+    // masking the lanes that hold texels.
+    let mut group = |xs: [&[f32]; 3], avs: [&[f32]; 3], areas: &[f32], at: usize, valid: __m256d| {
+        let r = [load(xs[0], at), load(xs[1], at), load(xs[2], at)];
         let d = _mm256_fmadd_pd(b[0], r[0], alpha);
         let d = _mm256_fmadd_pd(b[1], r[1], d);
         let d = _mm256_fmadd_pd(b[2], r[2], d);
-        let wet = _mm256_cmp_pd::<_CMP_GT_OQ>(d, zero);
+        let wet = _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(d, zero), valid);
         if _mm256_movemask_pd(wet) == 0 {
-            continue;
+            return;
         }
         // A dry lane adds zeros: its depth and area masked to +0.
         let d = _mm256_and_pd(d, wet);
-        let area = _mm256_and_pd(load(areas, i), wet);
+        let area = _mm256_and_pd(load(areas, at), wet);
         count = _mm256_add_pd(count, _mm256_and_pd(one, wet));
         let da = [
-            _mm256_mul_pd(d, load(avs[0], i)),
-            _mm256_mul_pd(d, load(avs[1], i)),
-            _mm256_mul_pd(d, load(avs[2], i)),
+            _mm256_mul_pd(d, load(avs[0], at)),
+            _mm256_mul_pd(d, load(avs[1], at)),
+            _mm256_mul_pd(d, load(avs[2], at)),
         ];
         let w = _mm256_fmadd_pd(
             g[2],
@@ -719,77 +731,90 @@ fn planar_lanes_avx2<const PRESSURE: bool>(
             }
         }
         area_sum = _mm256_add_pd(area_sum, area);
+    };
+    let all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+    for range in ranges {
+        let (start, end) = (range.start, range.end);
+        let whole = end - (end - start) % LANES;
+        for i in (start..whole).step_by(LANES) {
+            group(t.xs, t.avs, t.areas, i, all);
+        }
+        if whole < end {
+            let k = end - whole;
+            let pad = |v: &[f32]| {
+                let mut padded = [0.0f32; LANES];
+                padded[..k].copy_from_slice(&v[whole..end]);
+                padded
+            };
+            let (xs, avs, areas) = (t.xs.map(pad), t.avs.map(pad), pad(t.areas));
+            let valid = _mm256_castsi256_pd(_mm256_setr_epi64x(
+                -1,
+                if k > 1 { -1 } else { 0 },
+                if k > 2 { -1 } else { 0 },
+                0,
+            ));
+            group(
+                xs.each_ref().map(|v| &v[..]),
+                avs.each_ref().map(|v| &v[..]),
+                &areas,
+                0,
+                valid,
+            );
+        }
     }
-    let tail = planar_lanes_generic::<true, PRESSURE>(
-        p,
-        xs.map(|v| &v[whole..]),
-        avs.map(|v| &v[whole..]),
-        &areas[whole..],
-    );
-    let add = |v: __m256d, t: &Lanes| lanes_add(&lanes(v), t);
-    let add3 = |v: [__m256d; 3], t: &[Lanes; 3]| std::array::from_fn(|c| add(v[c], &t[c]));
     PlanarLanes {
-        vol: add(vol, &tail.vol),
-        wd: add(wd, &tail.wd),
-        wr: add3(wr, &tail.wr),
-        f: add3(f, &tail.f),
-        rxf: add3(rxf, &tail.rxf),
-        d2a: add3(d2a, &tail.d2a),
-        area: add(area_sum, &tail.area),
-        count: lanes(count).iter().sum::<f64>() as usize + tail.count,
+        vol: lanes(vol),
+        wd: lanes(wd),
+        wr: wr.map(|v| lanes(v)),
+        f: f.map(|v| lanes(v)),
+        rxf: rxf.map(|v| lanes(v)),
+        d2a: d2a.map(|v| lanes(v)),
+        area: lanes(area_sum),
+        count: lanes(count).iter().sum::<f64>() as usize,
     }
 }
 
+/// Adds the texels of `range` to `acc`, [`LANES`] at a time, the last
+/// `len % LANES` each in a lane of its own.
 #[inline(always)]
 fn planar_lanes_generic<const FMA: bool, const PRESSURE: bool>(
+    acc: &mut PlanarLanes,
     p: &PlaneLanes,
-    xs: [&[f32]; 3],
-    avs: [&[f32]; 3],
-    areas: &[f32],
-) -> PlanarLanes {
-    let mut acc = PlanarLanes::default();
+    t: &TexelColumns,
+    range: std::ops::Range<usize>,
+) {
     // Wet texels counted per lane in f64 (exact up to 2⁵³), a vector like
     // the sums.
     let mut count: Lanes = [0.0; LANES];
-    let n = areas.len();
-    // Every array cut to the same length, so the loads below need no other
-    // bounds than the loop's.
-    let xs = xs.map(|v| &v[..n]);
-    let avs = avs.map(|v| &v[..n]);
-    let whole = n - n % LANES;
-    for i in (0..whole).step_by(LANES) {
-        let r = [load_lanes(xs[0], i), load_lanes(xs[1], i), load_lanes(xs[2], i)];
+    let (start, end) = (range.start, range.end);
+    let whole = end - (end - start) % LANES;
+    for i in (start..whole).step_by(LANES) {
+        let r = t.xs.map(|v| load_lanes(v, i));
         let d = p.depths::<FMA>(&r);
         let wet: [bool; LANES] = d.map(|d| d > 0.0);
         if wet.iter().fold(false, |any, &w| any | w) {
-            let a = [
-                load_lanes(avs[0], i),
-                load_lanes(avs[1], i),
-                load_lanes(avs[2], i),
-            ];
-            let area = load_lanes(areas, i);
+            let a = t.avs.map(|v| load_lanes(v, i));
+            let area = load_lanes(t.areas, i);
             count = lanes_add(&count, &wet.map(|w| if w { 1.0 } else { 0.0 }));
-            add_lanes::<FMA, PRESSURE>(&mut acc, p, &r, &a, &area, &d, &wet);
+            add_lanes::<FMA, PRESSURE>(acc, p, &r, &a, &area, &d, &wet);
         }
     }
-    // The last texels, each in a lane of its own.
-    for (k, i) in (whole..n).enumerate() {
+    for (k, i) in (whole..end).enumerate() {
         let mut r = [[0.0; LANES]; 3];
         let mut av = [[0.0; LANES]; 3];
         for c in 0..3 {
-            r[c][k] = f64::from(xs[c][i]);
-            av[c][k] = f64::from(avs[c][i]);
+            r[c][k] = f64::from(t.xs[c][i]);
+            av[c][k] = f64::from(t.avs[c][i]);
         }
         let d = p.depths::<FMA>(&r);
         let mut wet = [false; LANES];
         wet[k] = d[k] > 0.0;
         let mut ar = [0.0; LANES];
-        ar[k] = f64::from(areas[i]);
+        ar[k] = f64::from(t.areas[i]);
         count[k] += if wet[k] { 1.0 } else { 0.0 };
-        add_lanes::<FMA, PRESSURE>(&mut acc, p, &r, &av, &ar, &d, &wet);
+        add_lanes::<FMA, PRESSURE>(acc, p, &r, &av, &ar, &d, &wet);
     }
-    acc.count = count.iter().sum::<f64>() as usize;
-    acc
+    acc.count += count.iter().sum::<f64>() as usize;
 }
 
 /// `a b + c`, fused where the processor has FMA.
@@ -799,7 +824,7 @@ fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
 }
 
 /// One group of texels; a dry lane adds zeros. Eight running sums in
-/// Archimedes mode, eleven where `PRESSURE` (see [`add_planar_range`]):
+/// Archimedes mode, eleven where `PRESSURE` (see [`add_planar_ranges`]):
 /// fewer than the processor's vector registers. Written as operations on
 /// whole groups of lanes, each of which the compiler turns into one vector
 /// instruction.
@@ -894,7 +919,7 @@ pub fn evaluate(
         // and rotate once.
         Some((alpha, beta, g)) => chunked_sum(atlas.len(), BuoyancySums::default(), |range| {
             let mut s = BuoyancySums::default();
-            add_planar_range(&mut s, atlas, range, alpha, &beta, &g, pressure);
+            add_planar_ranges(&mut s, atlas, &[range], alpha, &beta, &g, pressure);
             s
         })
         .rotated(&frame.rot),
@@ -1111,8 +1136,7 @@ mod tests {
     /// The planar kernel, with and without fused multiply-adds and with and
     /// without the pressure sums, against the plain per-texel sums of the
     /// general path ([`BuoyancySums::add_local`]) at poses cutting the boat
-    /// at the waterline, over a range whose length is not a multiple of the
-    /// lanes.
+    /// at the waterline, over ranges of every length modulo the lanes.
     #[test]
     fn the_planar_kernel_adds_what_the_plain_sums_add() {
         let atlas = Atlas::bake(&builtin::boat(4.0, 1.2, 0.6), BakeOptions::square(128)).unwrap();
@@ -1137,20 +1161,34 @@ mod tests {
                 beta: beta.into(),
                 g: g.into(),
             };
-            let (xs, avs, areas) = (
-                atlas.local_positions().columns(0..n),
-                atlas.area_vectors().columns(0..n),
-                &atlas.areas()[..n],
-            );
+            let t = TexelColumns {
+                xs: atlas.local_positions().columns(0..atlas.len()),
+                avs: atlas.area_vectors().columns(0..atlas.len()),
+                areas: atlas.areas(),
+            };
+            // Ranges of every length modulo the lanes, as the tiled path
+            // hands them over, together covering `0..n`.
+            let ranges = [0..5, 5..6, 6..37, 37..39, 39..n / 2, n / 2..n];
             assert!(plain.count > 0 && plain.count < n, "the waterline cuts the boat");
+            fn generic<const FMA: bool, const PRESSURE: bool>(
+                p: &PlaneLanes,
+                t: &TexelColumns,
+                ranges: &[std::ops::Range<usize>],
+            ) -> (PlanarLanes, bool) {
+                let mut acc = PlanarLanes::default();
+                for r in ranges {
+                    planar_lanes_generic::<FMA, PRESSURE>(&mut acc, p, t, r.clone());
+                }
+                (acc, PRESSURE)
+            }
             // Every variant, with and without the pressure sums: plain or
             // fused, and the AVX2 kernel where the processor has it.
             #[allow(unused_mut)]
             let mut variants = vec![
-                (planar_lanes_generic::<false, true>(&p, xs, avs, areas), true),
-                (planar_lanes_generic::<true, true>(&p, xs, avs, areas), true),
-                (planar_lanes_generic::<false, false>(&p, xs, avs, areas), false),
-                (planar_lanes_generic::<true, false>(&p, xs, avs, areas), false),
+                generic::<false, true>(&p, &t, &ranges),
+                generic::<true, true>(&p, &t, &ranges),
+                generic::<false, false>(&p, &t, &ranges),
+                generic::<true, false>(&p, &t, &ranges),
             ];
             #[cfg(target_arch = "x86_64")]
             if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
@@ -1158,8 +1196,8 @@ mod tests {
                 #[allow(unsafe_code)]
                 variants.extend(unsafe {
                     [
-                        (planar_lanes_avx2::<true>(&p, xs, avs, areas), true),
-                        (planar_lanes_avx2::<false>(&p, xs, avs, areas), false),
+                        (planar_lanes_avx2::<true>(&p, &t, &ranges), true),
+                        (planar_lanes_avx2::<false>(&p, &t, &ranges), false),
                     ]
                 });
             }
@@ -1193,7 +1231,7 @@ mod tests {
             // The path this processor takes, with its own loads.
             for pressure in [false, true] {
                 let mut dispatched = BuoyancySums::default();
-                add_planar_range(&mut dispatched, &atlas, 0..n, alpha, &beta, &g, pressure);
+                add_planar_ranges(&mut dispatched, &atlas, &ranges, alpha, &beta, &g, pressure);
                 assert_eq!(dispatched.count, plain.count);
                 let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
                 assert!(close(dispatched.area, plain.area));

@@ -14,7 +14,7 @@ use soak_bake::Atlas;
 
 use crate::error::HydroError;
 use crate::hydrostatics::{
-    BodyState, BuoyancyMode, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, add_planar_range,
+    BodyState, BuoyancyMode, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, add_planar_ranges,
     evaluate, finish, texel,
 };
 use crate::mass::MassProperties;
@@ -42,6 +42,17 @@ pub struct TileMoments {
 }
 
 impl TileMoments {
+    /// Adds the moments of `other` (not its bounds): the sums of the two
+    /// sets of texels, whose closed form is the sum of the two closed forms.
+    fn add_moments(&mut self, other: &TileMoments) {
+        self.s0 += other.s0;
+        self.s1 += other.s1;
+        for j in 0..3 {
+            self.s2[j] += other.s2[j];
+        }
+        self.area += other.area;
+    }
+
     /// No texels yet: zero sums over `range`.
     fn empty(range: (u32, u32)) -> Self {
         Self {
@@ -71,6 +82,30 @@ pub struct TiledAtlas {
     groups: Vec<TileMoments>,
     /// Texels per group.
     group_texels: Vec<u64>,
+    /// The bounds of `tiles` and of `groups`, packed apart from the moments
+    /// so that sorting tiles and groups by their side of the plane reads
+    /// only these.
+    tile_bounds: Vec<Bounds>,
+    group_bounds: Vec<Bounds>,
+}
+
+/// A tile's or group's bounding sphere and box, relative to the atlas
+/// origin, m.
+#[derive(Clone, Copy, Debug)]
+struct Bounds {
+    centre: Vector3<f64>,
+    half_extent: Vector3<f64>,
+    radius: f64,
+}
+
+impl Bounds {
+    fn of(m: &TileMoments) -> Self {
+        Self {
+            centre: m.centre,
+            half_extent: m.half_extent,
+            radius: m.radius,
+        }
+    }
 }
 
 /// How many tiles of each kind the last evaluation met.
@@ -134,12 +169,7 @@ impl TiledAtlas {
             let mut g = TileMoments::empty((start as u32, end as u32));
             let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
             for m in members {
-                g.s0 += m.s0;
-                g.s1 += m.s1;
-                for j in 0..3 {
-                    g.s2[j] += m.s2[j];
-                }
-                g.area += m.area;
+                g.add_moments(m);
                 lo = lo.inf(&(m.centre - m.half_extent));
                 hi = hi.sup(&(m.centre + m.half_extent));
             }
@@ -154,6 +184,8 @@ impl TiledAtlas {
             start = end;
         }
         Self {
+            tile_bounds: tiles.iter().map(Bounds::of).collect(),
+            group_bounds: groups.iter().map(Bounds::of).collect(),
             tiles,
             groups,
             group_texels,
@@ -211,7 +243,7 @@ impl TiledAtlas {
         // sphere or box does, wholly above when either does: the depth
         // varies over it by at most the smaller of |β| r and |β|·h.
         let beta_abs = beta.abs();
-        let classify = |m: &TileMoments| {
+        let classify = |m: &Bounds| {
             let dc = alpha + beta.dot(&m.centre);
             let reach = (bn * m.radius).min(beta_abs.dot(&m.half_extent));
             if dc + reach <= 0.0 {
@@ -222,7 +254,7 @@ impl TiledAtlas {
                 Side::Cut
             }
         };
-        const GROUP_CHUNK: usize = 8;
+        const GROUP_CHUNK: usize = 32;
         let pressure = options.buoyancy == BuoyancyMode::Pressure;
         let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
         let parts: Vec<(BuoyancySums, Option<DragSums>, TileCounts)> = (0..n_chunks)
@@ -247,45 +279,40 @@ impl TiledAtlas {
                         }
                     }
                 };
+                // Tiles and groups wholly under water add their moments up,
+                // and the sum takes one closed form; the cut tiles' texels go
+                // through the planar kernel together.
+                let mut under = TileMoments::empty((0, 0));
+                let mut under_texels = 0u64;
+                let mut cut = Vec::with_capacity(64);
                 let range = c * GROUP_CHUNK..((c + 1) * GROUP_CHUNK).min(self.groups.len());
-                for (group, &texels) in self.groups[range.clone()].iter().zip(&self.group_texels[range]) {
-                    let members = &self.tiles[group.range.0 as usize..group.range.1 as usize];
-                    match classify(group) {
+                for (gi, &texels) in range.clone().zip(&self.group_texels[range]) {
+                    let group = &self.groups[gi];
+                    let members = group.range.0 as usize..group.range.1 as usize;
+                    match classify(&self.group_bounds[gi]) {
                         Side::Dry => {
                             counts.dry += members.len();
                             continue;
                         }
                         Side::Submerged => {
                             counts.submerged += members.len();
-                            add_closed_form(&mut local, group, texels, alpha, &beta, &g);
+                            under.add_moments(group);
+                            under_texels += texels;
                         }
                         Side::Cut => {
-                            for tile in members {
+                            for ti in members.clone() {
+                                let tile = &self.tiles[ti];
                                 let (start, end) = (tile.range.0 as usize, tile.range.1 as usize);
-                                match classify(tile) {
+                                match classify(&self.tile_bounds[ti]) {
                                     Side::Dry => counts.dry += 1,
                                     Side::Submerged => {
                                         counts.submerged += 1;
-                                        add_closed_form(
-                                            &mut local,
-                                            tile,
-                                            (end - start) as u64,
-                                            alpha,
-                                            &beta,
-                                            &g,
-                                        );
+                                        under.add_moments(tile);
+                                        under_texels += (end - start) as u64;
                                     }
                                     Side::Cut => {
                                         counts.cut += 1;
-                                        add_planar_range(
-                                            &mut local,
-                                            atlas,
-                                            start..end,
-                                            alpha,
-                                            &beta,
-                                            &g,
-                                            pressure,
-                                        );
+                                        cut.push(start..end);
                                     }
                                 }
                             }
@@ -293,10 +320,16 @@ impl TiledAtlas {
                     }
                     // Drag is per texel wherever the group is wet.
                     if let Some(ds) = drag.as_mut() {
-                        for tile in members {
+                        for tile in &self.tiles[members] {
                             add_drag(tile.range.0 as usize, tile.range.1 as usize, ds);
                         }
                     }
+                }
+                if under_texels > 0 {
+                    add_closed_form(&mut local, &under, under_texels, alpha, &beta, &g);
+                }
+                if !cut.is_empty() {
+                    add_planar_ranges(&mut local, atlas, &cut, alpha, &beta, &g, pressure);
                 }
                 (local.rotated(&rot), drag, counts)
             })
