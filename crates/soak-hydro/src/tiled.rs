@@ -17,7 +17,7 @@ use crate::hydrostatics::{
     BodyState, BuoyancyMode, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, add_planar_ranges,
     evaluate, finish, texel,
 };
-use crate::mass::MassProperties;
+use crate::mass::{MassProperties, par_map};
 use crate::water::Water;
 
 /// Moments of one tile's texels, relative to the atlas origin.
@@ -257,83 +257,80 @@ impl TiledAtlas {
         const GROUP_CHUNK: usize = 32;
         let pressure = options.buoyancy == BuoyancyMode::Pressure;
         let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
-        let parts: Vec<(BuoyancySums, Option<DragSums>, TileCounts)> = (0..n_chunks)
-            .into_par_iter()
-            .map(|c| {
-                let mut drag = options.drag.map(|_| DragSums::default());
-                let mut counts = TileCounts::default();
-                let mut local = BuoyancySums::default(); // object frame
-                let add_drag = |start: usize, end: usize, ds: &mut DragSums| {
-                    let Some(coefficients) = options.drag.as_ref() else {
-                        return;
-                    };
-                    for i in start..end {
-                        let (x, a) = texel(atlas, i);
-                        let d = alpha + beta.dot(&x);
-                        if d > 0.0 {
-                            let p = frame.ow + rot * x;
-                            let rc = p - frame.com;
-                            let u = water.surface.velocity(&nalgebra::Point3::from(p), t);
-                            let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
-                            ds.add_texel(coefficients, water.density, &rc, &(rot * a), &v, &u);
-                        }
-                    }
+        let parts: Vec<(BuoyancySums, Option<DragSums>, TileCounts)> = par_map(n_chunks, |c| {
+            let mut drag = options.drag.map(|_| DragSums::default());
+            let mut counts = TileCounts::default();
+            let mut local = BuoyancySums::default(); // object frame
+            let add_drag = |start: usize, end: usize, ds: &mut DragSums| {
+                let Some(coefficients) = options.drag.as_ref() else {
+                    return;
                 };
-                // Tiles and groups wholly under water add their moments up,
-                // and the sum takes one closed form; the cut tiles' texels go
-                // through the planar kernel together.
-                let mut under = TileMoments::empty((0, 0));
-                let mut under_texels = 0u64;
-                let mut cut = Vec::with_capacity(64);
-                let range = c * GROUP_CHUNK..((c + 1) * GROUP_CHUNK).min(self.groups.len());
-                for (gi, &texels) in range.clone().zip(&self.group_texels[range]) {
-                    let group = &self.groups[gi];
-                    let members = group.range.0 as usize..group.range.1 as usize;
-                    match classify(&self.group_bounds[gi]) {
-                        Side::Dry => {
-                            counts.dry += members.len();
-                            continue;
-                        }
-                        Side::Submerged => {
-                            counts.submerged += members.len();
-                            under.add_moments(group);
-                            under_texels += texels;
-                        }
-                        Side::Cut => {
-                            for ti in members.clone() {
-                                let tile = &self.tiles[ti];
-                                let (start, end) = (tile.range.0 as usize, tile.range.1 as usize);
-                                match classify(&self.tile_bounds[ti]) {
-                                    Side::Dry => counts.dry += 1,
-                                    Side::Submerged => {
-                                        counts.submerged += 1;
-                                        under.add_moments(tile);
-                                        under_texels += (end - start) as u64;
-                                    }
-                                    Side::Cut => {
-                                        counts.cut += 1;
-                                        cut.push(start..end);
-                                    }
+                for i in start..end {
+                    let (x, a) = texel(atlas, i);
+                    let d = alpha + beta.dot(&x);
+                    if d > 0.0 {
+                        let p = frame.ow + rot * x;
+                        let rc = p - frame.com;
+                        let u = water.surface.velocity(&nalgebra::Point3::from(p), t);
+                        let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
+                        ds.add_texel(coefficients, water.density, &rc, &(rot * a), &v, &u);
+                    }
+                }
+            };
+            // Tiles and groups wholly under water add their moments up,
+            // and the sum takes one closed form; the cut tiles' texels go
+            // through the planar kernel together.
+            let mut under = TileMoments::empty((0, 0));
+            let mut under_texels = 0u64;
+            let mut cut = Vec::with_capacity(64);
+            let range = c * GROUP_CHUNK..((c + 1) * GROUP_CHUNK).min(self.groups.len());
+            for (gi, &texels) in range.clone().zip(&self.group_texels[range]) {
+                let group = &self.groups[gi];
+                let members = group.range.0 as usize..group.range.1 as usize;
+                match classify(&self.group_bounds[gi]) {
+                    Side::Dry => {
+                        counts.dry += members.len();
+                        continue;
+                    }
+                    Side::Submerged => {
+                        counts.submerged += members.len();
+                        under.add_moments(group);
+                        under_texels += texels;
+                    }
+                    Side::Cut => {
+                        for ti in members.clone() {
+                            let tile = &self.tiles[ti];
+                            let (start, end) = (tile.range.0 as usize, tile.range.1 as usize);
+                            match classify(&self.tile_bounds[ti]) {
+                                Side::Dry => counts.dry += 1,
+                                Side::Submerged => {
+                                    counts.submerged += 1;
+                                    under.add_moments(tile);
+                                    under_texels += (end - start) as u64;
+                                }
+                                Side::Cut => {
+                                    counts.cut += 1;
+                                    cut.push(start..end);
                                 }
                             }
                         }
                     }
-                    // Drag is per texel wherever the group is wet.
-                    if let Some(ds) = drag.as_mut() {
-                        for tile in &self.tiles[members] {
-                            add_drag(tile.range.0 as usize, tile.range.1 as usize, ds);
-                        }
+                }
+                // Drag is per texel wherever the group is wet.
+                if let Some(ds) = drag.as_mut() {
+                    for tile in &self.tiles[members] {
+                        add_drag(tile.range.0 as usize, tile.range.1 as usize, ds);
                     }
                 }
-                if under_texels > 0 {
-                    add_closed_form(&mut local, &under, under_texels, alpha, &beta, &g);
-                }
-                if !cut.is_empty() {
-                    add_planar_ranges(&mut local, atlas, &cut, alpha, &beta, &g, pressure);
-                }
-                (local.rotated(&rot), drag, counts)
-            })
-            .collect();
+            }
+            if under_texels > 0 {
+                add_closed_form(&mut local, &under, under_texels, alpha, &beta, &g);
+            }
+            if !cut.is_empty() {
+                add_planar_ranges(&mut local, atlas, &cut, alpha, &beta, &g, pressure);
+            }
+            (local.rotated(&rot), drag, counts)
+        });
         let mut sums = BuoyancySums::default();
         let mut drag = options.drag.map(|_| DragSums::default());
         let mut counts = TileCounts::default();
