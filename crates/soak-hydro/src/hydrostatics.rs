@@ -489,10 +489,11 @@ pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
 /// `Σ w d`, `Σ area`, `Σ w` being `g · Σ d a`). `pressure` chooses; the
 /// sums of [`BuoyancySums`] the other mode needs are left alone
 /// ([`BuoyancySums::f`] and [`BuoyancySums::rxf`] in Archimedes mode,
-/// [`BuoyancySums::d2a`] in pressure mode). Written so the compiler maps
-/// a group onto SIMD registers; where the processor has AVX2 and FMA the
-/// same code runs compiled for them, with fused multiply-adds (chosen at
-/// run time: the two differ in the last bits, 1e-16 relative). The lanes
+/// [`BuoyancySums::d2a`] in pressure mode). Where the processor has AVX2
+/// and FMA (chosen at run time) a group is a few vector instructions
+/// written with intrinsics; elsewhere the same operations in portable code
+/// without fused multiply-adds (the two differ in the last bits, 1e-16
+/// relative). The lanes
 /// are summed in a fixed order at the end, and the signs and the ½ of
 /// [`BuoyancySums`] applied once, so on one machine the result is the same
 /// bits run after run and for any thread count.

@@ -82,30 +82,6 @@ pub struct TiledAtlas {
     groups: Vec<TileMoments>,
     /// Texels per group.
     group_texels: Vec<u64>,
-    /// The bounds of `tiles` and of `groups`, packed apart from the moments
-    /// so that sorting tiles and groups by their side of the plane reads
-    /// only these.
-    tile_bounds: Vec<Bounds>,
-    group_bounds: Vec<Bounds>,
-}
-
-/// A tile's or group's bounding sphere and box, relative to the atlas
-/// origin, m.
-#[derive(Clone, Copy, Debug)]
-struct Bounds {
-    centre: Vector3<f64>,
-    half_extent: Vector3<f64>,
-    radius: f64,
-}
-
-impl Bounds {
-    fn of(m: &TileMoments) -> Self {
-        Self {
-            centre: m.centre,
-            half_extent: m.half_extent,
-            radius: m.radius,
-        }
-    }
 }
 
 /// How many tiles of each kind the last evaluation met.
@@ -184,8 +160,6 @@ impl TiledAtlas {
             start = end;
         }
         Self {
-            tile_bounds: tiles.iter().map(Bounds::of).collect(),
-            group_bounds: groups.iter().map(Bounds::of).collect(),
             tiles,
             groups,
             group_texels,
@@ -243,7 +217,7 @@ impl TiledAtlas {
         // sphere or box does, wholly above when either does: the depth
         // varies over it by at most the smaller of |β| r and |β|·h.
         let beta_abs = beta.abs();
-        let classify = |m: &Bounds| {
+        let classify = |m: &TileMoments| {
             let dc = alpha + beta.dot(&m.centre);
             let reach = (bn * m.radius).min(beta_abs.dot(&m.half_extent));
             if dc + reach <= 0.0 {
@@ -287,7 +261,7 @@ impl TiledAtlas {
             for (gi, &texels) in range.clone().zip(&self.group_texels[range]) {
                 let group = &self.groups[gi];
                 let members = group.range.0 as usize..group.range.1 as usize;
-                match classify(&self.group_bounds[gi]) {
+                match classify(group) {
                     Side::Dry => {
                         counts.dry += members.len();
                         continue;
@@ -301,7 +275,7 @@ impl TiledAtlas {
                         for ti in members.clone() {
                             let tile = &self.tiles[ti];
                             let (start, end) = (tile.range.0 as usize, tile.range.1 as usize);
-                            match classify(&self.tile_bounds[ti]) {
+                            match classify(tile) {
                                 Side::Dry => counts.dry += 1,
                                 Side::Submerged => {
                                     counts.submerged += 1;
