@@ -497,7 +497,14 @@ pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
 /// are summed in a fixed order at the end, and the signs and the ½ of
 /// [`BuoyancySums`] applied once, so on one machine the result is the same
 /// bits run after run and for any thread count.
+///
+/// With [`PlanarTexels::Dry`] the kernel takes the other texels, those at
+/// or above the surface (`d ≤ 0`), with their depths as they are, and
+/// subtracts their sums: where the closed form of a tile's moments has
+/// added the affine depth's sums over all its texels, this leaves the
+/// submerged texels' sums, for the work of the dry ones.
 #[inline]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn add_planar_ranges(
     s: &mut BuoyancySums,
     atlas: &Atlas,
@@ -506,6 +513,7 @@ pub(crate) fn add_planar_ranges(
     beta: &Vector3<f64>,
     g: &Vector3<f64>,
     pressure: bool,
+    texels_summed: PlanarTexels,
 ) {
     let n = atlas.len();
     let texels = TexelColumns {
@@ -518,10 +526,13 @@ pub(crate) fn add_planar_ranges(
         beta: [beta.x, beta.y, beta.z],
         g: [g.x, g.y, g.z],
     };
-    let lanes = planar_lanes(&plane, &texels, ranges, pressure);
+    let dry = texels_summed == PlanarTexels::Dry;
+    let lanes = planar_lanes(&plane, &texels, ranges, pressure, dry);
     // Σ ay d r and Σ area; Archimedes: Σ ay d and Σ d² a (Σ ay d² = g · Σ d² a);
     // pressure: Σ d a, Σ r × (d a) (Σ ay d = g · Σ d a) and Σ ay d².
-    let sum = |v: &Lanes| (v[0] + v[1]) + (v[2] + v[3]);
+    // The dry texels' sums are subtracted: every sign turns.
+    let sign = if dry { -1.0 } else { 1.0 };
+    let sum = |v: &Lanes| sign * ((v[0] + v[1]) + (v[2] + v[3]));
     s.wr -= Vector3::new(sum(&lanes.wr[0]), sum(&lanes.wr[1]), sum(&lanes.wr[2]));
     if pressure {
         let f = Vector3::new(sum(&lanes.f[0]), sum(&lanes.f[1]), sum(&lanes.f[2]));
@@ -536,7 +547,21 @@ pub(crate) fn add_planar_ranges(
         s.d2a += 0.5 * dda;
     }
     s.area += sum(&lanes.area);
-    s.count += lanes.count;
+    if dry {
+        s.count -= lanes.count;
+    } else {
+        s.count += lanes.count;
+    }
+}
+
+/// Which texels [`add_planar_ranges`] sums.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum PlanarTexels {
+    /// The submerged texels (`d > 0`), added.
+    Wet,
+    /// The others (`d ≤ 0`), subtracted: for ranges whose closed form has
+    /// been added already, and which are mostly under water.
+    Dry,
 }
 
 /// Texels the planar kernel takes side by side.
@@ -607,11 +632,14 @@ struct PlanarLanes {
     count: usize,
 }
 
+/// The planar kernel over `ranges`: the sums of the wet texels (`d > 0`),
+/// or where `dry` of the others (`d ≤ 0`, their depths as they are).
 fn planar_lanes(
     p: &PlaneLanes,
     t: &TexelColumns,
     ranges: &[std::ops::Range<usize>],
     pressure: bool,
+    dry: bool,
 ) -> PlanarLanes {
     #[cfg(target_arch = "x86_64")]
     {
@@ -619,20 +647,23 @@ fn planar_lanes(
             // SAFETY: the processor has AVX2 and FMA, checked just above.
             #[allow(unsafe_code)]
             return unsafe {
-                if pressure {
-                    planar_lanes_avx2::<true>(p, t, ranges)
-                } else {
-                    planar_lanes_avx2::<false>(p, t, ranges)
+                match (pressure, dry) {
+                    (true, false) => planar_lanes_avx2::<true, false>(p, t, ranges),
+                    (false, false) => planar_lanes_avx2::<false, false>(p, t, ranges),
+                    (true, true) => planar_lanes_avx2::<true, true>(p, t, ranges),
+                    (false, true) => planar_lanes_avx2::<false, true>(p, t, ranges),
                 }
             };
         }
     }
     let mut acc = PlanarLanes::default();
     for r in ranges {
-        if pressure {
-            planar_lanes_generic::<false, true>(&mut acc, p, t, r.clone());
-        } else {
-            planar_lanes_generic::<false, false>(&mut acc, p, t, r.clone());
+        let r = r.clone();
+        match (pressure, dry) {
+            (true, false) => planar_lanes_generic::<false, true, false>(&mut acc, p, t, r),
+            (false, false) => planar_lanes_generic::<false, false, false>(&mut acc, p, t, r),
+            (true, true) => planar_lanes_generic::<false, true, true>(&mut acc, p, t, r),
+            (false, true) => planar_lanes_generic::<false, false, true>(&mut acc, p, t, r),
         }
     }
     acc
@@ -655,7 +686,7 @@ fn load_lanes(v: &[f32], i: usize) -> Lanes {
 /// masked off like dry ones.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-fn planar_lanes_avx2<const PRESSURE: bool>(
+fn planar_lanes_avx2<const PRESSURE: bool, const DRY: bool>(
     p: &PlaneLanes,
     t: &TexelColumns,
     ranges: &[std::ops::Range<usize>],
@@ -696,14 +727,19 @@ fn planar_lanes_avx2<const PRESSURE: bool>(
         let d = _mm256_fmadd_pd(b[0], r[0], alpha);
         let d = _mm256_fmadd_pd(b[1], r[1], d);
         let d = _mm256_fmadd_pd(b[2], r[2], d);
-        let wet = _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(d, zero), valid);
-        if _mm256_movemask_pd(wet) == 0 {
+        let side = if DRY {
+            _mm256_cmp_pd::<_CMP_LE_OQ>(d, zero)
+        } else {
+            _mm256_cmp_pd::<_CMP_GT_OQ>(d, zero)
+        };
+        let taken = _mm256_and_pd(side, valid);
+        if _mm256_movemask_pd(taken) == 0 {
             return;
         }
-        // A dry lane adds zeros: its depth and area masked to +0.
-        let d = _mm256_and_pd(d, wet);
-        let area = _mm256_and_pd(load(areas, at), wet);
-        count = _mm256_add_pd(count, _mm256_and_pd(one, wet));
+        // A lane not taken adds zeros: its depth and area masked to +0.
+        let d = _mm256_and_pd(d, taken);
+        let area = _mm256_and_pd(load(areas, at), taken);
+        count = _mm256_add_pd(count, _mm256_and_pd(one, taken));
         let da = [
             _mm256_mul_pd(d, load(avs[0], at)),
             _mm256_mul_pd(d, load(avs[1], at)),
@@ -778,7 +814,7 @@ fn planar_lanes_avx2<const PRESSURE: bool>(
 /// Adds the texels of `range` to `acc`, [`LANES`] at a time, the last
 /// `len % LANES` each in a lane of its own.
 #[inline(always)]
-fn planar_lanes_generic<const FMA: bool, const PRESSURE: bool>(
+fn planar_lanes_generic<const FMA: bool, const PRESSURE: bool, const DRY: bool>(
     acc: &mut PlanarLanes,
     p: &PlaneLanes,
     t: &TexelColumns,
@@ -792,12 +828,12 @@ fn planar_lanes_generic<const FMA: bool, const PRESSURE: bool>(
     for i in (start..whole).step_by(LANES) {
         let r = t.xs.map(|v| load_lanes(v, i));
         let d = p.depths::<FMA>(&r);
-        let wet: [bool; LANES] = d.map(|d| d > 0.0);
-        if wet.iter().fold(false, |any, &w| any | w) {
+        let taken: [bool; LANES] = d.map(taken::<DRY>);
+        if taken.iter().fold(false, |any, &w| any | w) {
             let a = t.avs.map(|v| load_lanes(v, i));
             let area = load_lanes(t.areas, i);
-            count = lanes_add(&count, &wet.map(|w| if w { 1.0 } else { 0.0 }));
-            add_lanes::<FMA, PRESSURE>(acc, p, &r, &a, &area, &d, &wet);
+            count = lanes_add(&count, &taken.map(|w| if w { 1.0 } else { 0.0 }));
+            add_lanes::<FMA, PRESSURE>(acc, p, &r, &a, &area, &d, &taken);
         }
     }
     for (k, i) in (whole..end).enumerate() {
@@ -808,14 +844,21 @@ fn planar_lanes_generic<const FMA: bool, const PRESSURE: bool>(
             av[c][k] = f64::from(t.avs[c][i]);
         }
         let d = p.depths::<FMA>(&r);
-        let mut wet = [false; LANES];
-        wet[k] = d[k] > 0.0;
+        let mut taken = [false; LANES];
+        taken[k] = self::taken::<DRY>(d[k]);
         let mut ar = [0.0; LANES];
         ar[k] = f64::from(t.areas[i]);
-        count[k] += if wet[k] { 1.0 } else { 0.0 };
-        add_lanes::<FMA, PRESSURE>(acc, p, &r, &av, &ar, &d, &wet);
+        count[k] += if taken[k] { 1.0 } else { 0.0 };
+        add_lanes::<FMA, PRESSURE>(acc, p, &r, &av, &ar, &d, &taken);
     }
     acc.count += count.iter().sum::<f64>() as usize;
+}
+
+/// Whether the planar kernel takes a texel at depth `d`: a wet one
+/// (`d > 0`), or where `DRY` one at or above the surface.
+#[inline(always)]
+fn taken<const DRY: bool>(d: f64) -> bool {
+    if DRY { d <= 0.0 } else { d > 0.0 }
 }
 
 /// `a b + c`, fused where the processor has FMA.
@@ -824,7 +867,7 @@ fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
     if FMA { a.mul_add(b, c) } else { a * b + c }
 }
 
-/// One group of texels; a dry lane adds zeros. Eight running sums in
+/// One group of texels; a lane not taken adds zeros. Eight running sums in
 /// Archimedes mode, eleven where `PRESSURE` (see [`add_planar_ranges`]):
 /// fewer than the processor's vector registers. Written as operations on
 /// whole groups of lanes, each of which the compiler turns into one vector
@@ -837,10 +880,10 @@ fn add_lanes<const FMA: bool, const PRESSURE: bool>(
     a: &[Lanes; 3],
     area: &Lanes,
     d: &Lanes,
-    wet: &[bool; LANES],
+    taken: &[bool; LANES],
 ) {
-    let d: Lanes = std::array::from_fn(|k| if wet[k] { d[k] } else { 0.0 });
-    let area: Lanes = std::array::from_fn(|k| if wet[k] { area[k] } else { 0.0 });
+    let d: Lanes = std::array::from_fn(|k| if taken[k] { d[k] } else { 0.0 });
+    let area: Lanes = std::array::from_fn(|k| if taken[k] { area[k] } else { 0.0 });
     let da = [lanes_mul(&d, &a[0]), lanes_mul(&d, &a[1]), lanes_mul(&d, &a[2])];
     let g = p.g.map(|g| [g; LANES]);
     let w = lanes_madd::<FMA>(
@@ -931,7 +974,16 @@ pub fn evaluate(
         // and rotate once.
         Some((alpha, beta, g)) => chunked_sum(atlas.len(), BuoyancySums::default(), |range| {
             let mut s = BuoyancySums::default();
-            add_planar_ranges(&mut s, atlas, &[range], alpha, &beta, &g, pressure);
+            add_planar_ranges(
+                &mut s,
+                atlas,
+                &[range],
+                alpha,
+                &beta,
+                &g,
+                pressure,
+                PlanarTexels::Wet,
+            );
             s
         })
         .rotated(&frame.rot),
@@ -1145,10 +1197,11 @@ mod tests {
     use nalgebra::UnitQuaternion;
     use soak_bake::{BakeOptions, builtin};
 
-    /// The planar kernel, with and without fused multiply-adds and with and
-    /// without the pressure sums, against the plain per-texel sums of the
-    /// general path ([`BuoyancySums::add_local`]) at poses cutting the boat
-    /// at the waterline, over ranges of every length modulo the lanes.
+    /// The planar kernel, with and without fused multiply-adds, with and
+    /// without the pressure sums, over the wet texels and over the dry ones,
+    /// against the plain per-texel sums of the general path
+    /// ([`BuoyancySums::add_local`]) at poses cutting the boat at the
+    /// waterline, over ranges of every length modulo the lanes.
     #[test]
     fn the_planar_kernel_adds_what_the_plain_sums_add() {
         let atlas = Atlas::bake(&builtin::boat(4.0, 1.2, 0.6), BakeOptions::square(128)).unwrap();
@@ -1160,14 +1213,16 @@ mod tests {
                 .into_inner();
             let g = rot.transpose() * Vector3::y();
             let (alpha, beta) = (y, -g);
-            let mut plain = BuoyancySums::default();
+            // The wet texels' sums, and the dry ones' with their depths as
+            // they are (not clamped).
+            let (mut wet, mut dry) = (BuoyancySums::default(), BuoyancySums::default());
             for i in 0..n {
                 let (r, a) = texel(&atlas, i);
                 let d = alpha + beta.dot(&r);
-                if d > 0.0 {
-                    plain.add_local(&r, &a, a.dot(&g), f64::from(atlas.areas()[i]), d);
-                }
+                let side = if d > 0.0 { &mut wet } else { &mut dry };
+                side.add_local(&r, &a, a.dot(&g), f64::from(atlas.areas()[i]), d);
             }
+            assert!(wet.count > 0 && dry.count > 0, "the waterline cuts the boat");
             let p = PlaneLanes {
                 alpha,
                 beta: beta.into(),
@@ -1181,26 +1236,30 @@ mod tests {
             // Ranges of every length modulo the lanes, as the tiled path
             // hands them over, together covering `0..n`.
             let ranges = [0..5, 5..6, 6..37, 37..39, 39..n / 2, n / 2..n];
-            assert!(plain.count > 0 && plain.count < n, "the waterline cuts the boat");
-            fn generic<const FMA: bool, const PRESSURE: bool>(
+            fn generic<const FMA: bool, const PRESSURE: bool, const DRY: bool>(
                 p: &PlaneLanes,
                 t: &TexelColumns,
                 ranges: &[std::ops::Range<usize>],
-            ) -> (PlanarLanes, bool) {
+            ) -> (PlanarLanes, bool, bool) {
                 let mut acc = PlanarLanes::default();
                 for r in ranges {
-                    planar_lanes_generic::<FMA, PRESSURE>(&mut acc, p, t, r.clone());
+                    planar_lanes_generic::<FMA, PRESSURE, DRY>(&mut acc, p, t, r.clone());
                 }
-                (acc, PRESSURE)
+                (acc, PRESSURE, DRY)
             }
-            // Every variant, with and without the pressure sums: plain or
-            // fused, and the AVX2 kernel where the processor has it.
+            // Every variant, with and without the pressure sums, of either
+            // side: plain or fused, and the AVX2 kernel where the processor
+            // has it.
             #[allow(unused_mut)]
             let mut variants = vec![
-                generic::<false, true>(&p, &t, &ranges),
-                generic::<true, true>(&p, &t, &ranges),
-                generic::<false, false>(&p, &t, &ranges),
-                generic::<true, false>(&p, &t, &ranges),
+                generic::<false, true, false>(&p, &t, &ranges),
+                generic::<true, true, false>(&p, &t, &ranges),
+                generic::<false, false, false>(&p, &t, &ranges),
+                generic::<true, false, false>(&p, &t, &ranges),
+                generic::<false, true, true>(&p, &t, &ranges),
+                generic::<true, true, true>(&p, &t, &ranges),
+                generic::<false, false, true>(&p, &t, &ranges),
+                generic::<true, false, true>(&p, &t, &ranges),
             ];
             #[cfg(target_arch = "x86_64")]
             if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
@@ -1208,15 +1267,18 @@ mod tests {
                 #[allow(unsafe_code)]
                 variants.extend(unsafe {
                     [
-                        (planar_lanes_avx2::<true>(&p, &t, &ranges), true),
-                        (planar_lanes_avx2::<false>(&p, &t, &ranges), false),
+                        (planar_lanes_avx2::<true, false>(&p, &t, &ranges), true, false),
+                        (planar_lanes_avx2::<false, false>(&p, &t, &ranges), false, false),
+                        (planar_lanes_avx2::<true, true>(&p, &t, &ranges), true, true),
+                        (planar_lanes_avx2::<false, true>(&p, &t, &ranges), false, true),
                     ]
                 });
             }
-            for (lanes, pressure) in variants {
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
+            for (lanes, pressure, on_dry) in variants {
+                let plain = if on_dry { &dry } else { &wet };
                 let sum = |v: &[f64; LANES]| v.iter().sum::<f64>();
                 assert_eq!(lanes.count, plain.count);
-                let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
                 assert!(close(sum(&lanes.area), plain.area));
                 for c in 0..3 {
                     assert!(close(-sum(&lanes.wr[c]), plain.wr[c]), "wr {c}");
@@ -1240,22 +1302,59 @@ mod tests {
                     assert!(close(-0.5 * g.dot(&dda), plain.wd2));
                 }
             }
-            // The path this processor takes, with its own loads.
+            // The path this processor takes, with its own loads: the wet
+            // texels added to nothing give their sums; the dry ones taken
+            // from their sums leave nothing.
             for pressure in [false, true] {
-                let mut dispatched = BuoyancySums::default();
-                add_planar_ranges(&mut dispatched, &atlas, &ranges, alpha, &beta, &g, pressure);
-                assert_eq!(dispatched.count, plain.count);
-                let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
-                assert!(close(dispatched.area, plain.area));
-                assert!(close(dispatched.vol, plain.vol));
-                assert!(close(dispatched.wd2, plain.wd2));
-                for c in 0..3 {
-                    assert!(close(dispatched.wr[c], plain.wr[c]), "wr {c}");
-                    if pressure {
-                        assert!(close(dispatched.f[c], plain.f[c]), "f {c}");
-                        assert!(close(dispatched.rxf[c], plain.rxf[c]), "rxf {c}");
-                    } else {
-                        assert!(close(dispatched.d2a[c], plain.d2a[c]), "d2a {c}");
+                for side in [PlanarTexels::Wet, PlanarTexels::Dry] {
+                    let (mut dispatched, expected) = match side {
+                        PlanarTexels::Wet => (BuoyancySums::default(), wet),
+                        PlanarTexels::Dry => (dry, BuoyancySums::default()),
+                    };
+                    add_planar_ranges(&mut dispatched, &atlas, &ranges, alpha, &beta, &g, pressure, side);
+                    assert_eq!(dispatched.count, expected.count);
+                    // Against the sums' own size: what is left of the dry
+                    // sums is their rounding.
+                    let close = |a: f64, b: f64, size: f64| (a - b).abs() <= 1e-12 * (1.0 + size.abs());
+                    assert!(close(
+                        dispatched.area,
+                        expected.area,
+                        wet.area.abs() + dry.area.abs()
+                    ));
+                    assert!(close(dispatched.vol, expected.vol, wet.vol.abs() + dry.vol.abs()));
+                    assert!(close(dispatched.wd2, expected.wd2, wet.wd2.abs() + dry.wd2.abs()));
+                    for c in 0..3 {
+                        assert!(
+                            close(
+                                dispatched.wr[c],
+                                expected.wr[c],
+                                wet.wr[c].abs() + dry.wr[c].abs()
+                            ),
+                            "wr {c}"
+                        );
+                        if pressure {
+                            assert!(
+                                close(dispatched.f[c], expected.f[c], wet.f[c].abs() + dry.f[c].abs()),
+                                "f {c}"
+                            );
+                            assert!(
+                                close(
+                                    dispatched.rxf[c],
+                                    expected.rxf[c],
+                                    wet.rxf[c].abs() + dry.rxf[c].abs()
+                                ),
+                                "rxf {c}"
+                            );
+                        } else {
+                            assert!(
+                                close(
+                                    dispatched.d2a[c],
+                                    expected.d2a[c],
+                                    wet.d2a[c].abs() + dry.d2a[c].abs()
+                                ),
+                                "d2a {c}"
+                            );
+                        }
                     }
                 }
             }

@@ -5,7 +5,13 @@
 //! `d(x) = α + β·x`, so a tile of texels that lies wholly under water
 //! contributes a closed form of its precomputed moments `Σ A`, `Σ A⊗x` and
 //! `Σ A⊗x⊗x`; a tile wholly above water contributes nothing (a bounding-sphere
-//! test decides); only tiles cut by the waterline are summed texel by texel.
+//! and bounding-box test decides); only tiles cut by the waterline are
+//! summed texel by texel. The closed form is linear in the moments, so
+//! consecutive tiles under water take theirs from a running sum, two
+//! entries for the whole run, and one closed form serves them all. A cut
+//! tile whose centre is under water joins the run, and the planar kernel
+//! takes its dry texels' sums back out: either way the kernel does full
+//! work only on the smaller side of the waterline.
 //! Any other surface falls back to the per-texel path.
 
 use nalgebra::{Matrix3, Vector3};
@@ -14,8 +20,8 @@ use soak_bake::Atlas;
 
 use crate::error::HydroError;
 use crate::hydrostatics::{
-    BodyState, BuoyancyMode, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, add_planar_ranges,
-    evaluate, finish, texel,
+    BodyState, BuoyancyMode, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, PlanarTexels,
+    add_planar_ranges, evaluate, finish, texel,
 };
 use crate::mass::{MassProperties, par_map};
 use crate::water::Water;
@@ -42,17 +48,6 @@ pub struct TileMoments {
 }
 
 impl TileMoments {
-    /// Adds the moments of `other` (not its bounds): the sums of the two
-    /// sets of texels, whose closed form is the sum of the two closed forms.
-    fn add_moments(&mut self, other: &TileMoments) {
-        self.s0 += other.s0;
-        self.s1 += other.s1;
-        for j in 0..3 {
-            self.s2[j] += other.s2[j];
-        }
-        self.area += other.area;
-    }
-
     /// No texels yet: zero sums over `range`.
     fn empty(range: (u32, u32)) -> Self {
         Self {
@@ -66,22 +61,83 @@ impl TileMoments {
             range,
         }
     }
+
+    /// Where the tile lies: its bounding sphere and box.
+    fn bounds(&self) -> Bounds {
+        Bounds {
+            centre: self.centre,
+            radius: self.radius,
+            half_extent: self.half_extent,
+        }
+    }
+}
+
+/// A bounding sphere and a bounding box about the same centre (object
+/// axes, relative to the atlas origin), m.
+#[derive(Clone, Copy, Debug)]
+struct Bounds {
+    centre: Vector3<f64>,
+    radius: f64,
+    half_extent: Vector3<f64>,
+}
+
+/// The moments the closed form takes, summed over a set of texels (a run
+/// of tiles): the closed form of a union of tiles is the closed form of
+/// the sums of their moments.
+#[derive(Clone, Copy, Debug, Default)]
+struct Sums {
+    /// Σ A, m².
+    s0: Vector3<f64>,
+    /// `s1[(j, k)] = Σ A_j x_k`, m³.
+    s1: Matrix3<f64>,
+    /// `s2[j][(k, l)] = Σ A_j x_k x_l`, m⁴.
+    s2: [Matrix3<f64>; 3],
+    /// Σ a, m².
+    area: f64,
+    /// Number of texels.
+    texels: u64,
+}
+
+impl Sums {
+    /// Adds `to − from`: the sums of the texels counted in `to` and not in
+    /// `from` (two entries of a running sum).
+    fn add_difference(&mut self, to: &Sums, from: &Sums) {
+        self.s0 += to.s0 - from.s0;
+        self.s1 += to.s1 - from.s1;
+        for j in 0..3 {
+            self.s2[j] += to.s2[j] - from.s2[j];
+        }
+        self.area += to.area - from.area;
+        self.texels += to.texels - from.texels;
+    }
+}
+
+/// Tiles `tiles` of the atlas' tile list, settled together.
+#[derive(Clone, Debug)]
+struct Group {
+    bounds: Bounds,
+    tiles: std::ops::Range<usize>,
 }
 
 /// An atlas with per-tile moments, for fast hydrostatics under planar water.
 ///
 /// Two levels: the atlas' tiles (`tile_size`² texels), and groups of
-/// [`TiledAtlas::GROUP`]² neighbouring tiles with the sums of their moments.
-/// A group wholly under or above water is settled by one test; only the
-/// tiles of groups the waterline cuts are looked at one by one.
+/// [`TiledAtlas::GROUP`]² neighbouring tiles, consecutive in the tile
+/// list, with bounds around them all. A group wholly under or above water
+/// is settled by one test; only the tiles of groups the waterline cuts are
+/// looked at one by one. Running sums of the tiles' moments give any run
+/// of consecutive tiles its moments from two entries.
 #[derive(Clone, Debug)]
 pub struct TiledAtlas {
     /// Tile moments, ordered group by group.
     tiles: Vec<TileMoments>,
-    /// Group moments (their `range` is the group's range in `tiles`).
-    groups: Vec<TileMoments>,
-    /// Texels per group.
-    group_texels: Vec<u64>,
+    /// The tiles' bounds, in the same order (what classifying reads).
+    tile_bounds: Vec<Bounds>,
+    /// Groups of consecutive tiles.
+    groups: Vec<Group>,
+    /// `prefix[i]` holds the sums of the moments of `tiles[..i]`: a run of
+    /// tiles under water takes its sums from two entries, however long.
+    prefix: Vec<Sums>,
 }
 
 /// How many tiles of each kind the last evaluation met.
@@ -136,33 +192,49 @@ impl TiledAtlas {
         let mut tiles = tiles;
         tiles.sort_by_key(|m| (group_of(m), m.range.0));
         let mut groups = Vec::new();
-        let mut group_texels = Vec::new();
         let mut start = 0;
         while start < tiles.len() {
             let key = group_of(&tiles[start]);
             let end = start + tiles[start..].iter().take_while(|m| group_of(m) == key).count();
             let members = &tiles[start..end];
-            let mut g = TileMoments::empty((start as u32, end as u32));
             let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
             for m in members {
-                g.add_moments(m);
                 lo = lo.inf(&(m.centre - m.half_extent));
                 hi = hi.sup(&(m.centre + m.half_extent));
             }
-            g.centre = (lo + hi) * 0.5;
-            g.half_extent = (hi - lo) * 0.5;
-            g.radius = members
+            let centre = (lo + hi) * 0.5;
+            let radius = members
                 .iter()
-                .map(|m| (m.centre - g.centre).norm() + m.radius)
+                .map(|m| (m.centre - centre).norm() + m.radius)
                 .fold(0.0, f64::max);
-            groups.push(g);
-            group_texels.push(members.iter().map(|m| u64::from(m.range.1 - m.range.0)).sum());
+            groups.push(Group {
+                bounds: Bounds {
+                    centre,
+                    radius,
+                    half_extent: (hi - lo) * 0.5,
+                },
+                tiles: start..end,
+            });
             start = end;
         }
+        let mut prefix = Vec::with_capacity(tiles.len() + 1);
+        let mut running = Sums::default();
+        prefix.push(running);
+        for m in &tiles {
+            running.s0 += m.s0;
+            running.s1 += m.s1;
+            for j in 0..3 {
+                running.s2[j] += m.s2[j];
+            }
+            running.area += m.area;
+            running.texels += u64::from(m.range.1 - m.range.0);
+            prefix.push(running);
+        }
         Self {
+            tile_bounds: tiles.iter().map(TileMoments::bounds).collect(),
             tiles,
             groups,
-            group_texels,
+            prefix,
         }
     }
 
@@ -217,7 +289,7 @@ impl TiledAtlas {
         // sphere or box does, wholly above when either does: the depth
         // varies over it by at most the smaller of |β| r and |β|·h.
         let beta_abs = beta.abs();
-        let classify = |m: &TileMoments| {
+        let classify = |m: &Bounds| {
             let dc = alpha + beta.dot(&m.centre);
             let reach = (bn * m.radius).min(beta_abs.dot(&m.half_extent));
             if dc + reach <= 0.0 {
@@ -225,13 +297,13 @@ impl TiledAtlas {
             } else if dc - reach > 0.0 {
                 Side::Submerged
             } else {
-                Side::Cut
+                Side::Cut { centre_wet: dc > 0.0 }
             }
         };
         const GROUP_CHUNK: usize = 32;
         let pressure = options.buoyancy == BuoyancyMode::Pressure;
         let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
-        let parts: Vec<(BuoyancySums, Option<DragSums>, TileCounts)> = par_map(n_chunks, |c| {
+        let work = |c: usize| {
             let mut drag = options.drag.map(|_| DragSums::default());
             let mut counts = TileCounts::default();
             let mut local = BuoyancySums::default(); // object frame
@@ -251,40 +323,50 @@ impl TiledAtlas {
                     }
                 }
             };
-            // Tiles and groups wholly under water add their moments up,
-            // and the sum takes one closed form; the cut tiles' texels go
-            // through the planar kernel together.
-            let mut under = TileMoments::empty((0, 0));
-            let mut under_texels = 0u64;
-            let mut cut = Vec::with_capacity(64);
-            let range = c * GROUP_CHUNK..((c + 1) * GROUP_CHUNK).min(self.groups.len());
-            for (gi, &texels) in range.clone().zip(&self.group_texels[range]) {
-                let group = &self.groups[gi];
-                let members = group.range.0 as usize..group.range.1 as usize;
-                match classify(group) {
+            // Runs of consecutive tiles and groups wholly under water take
+            // their moments from the running sums, and their sum takes one
+            // closed form. A cut tile whose centre is under water joins
+            // them, and the kernel then takes away its dry texels' sums;
+            // the other cut tiles' wet texels go through the kernel.
+            let mut under = Sums::default();
+            let mut run: Option<std::ops::Range<usize>> = None;
+            let mut submerge = |tiles: std::ops::Range<usize>, under: &mut Sums| match run.as_mut() {
+                Some(open) if open.end == tiles.start => open.end = tiles.end,
+                _ => {
+                    if let Some(done) = run.replace(tiles) {
+                        under.add_difference(&self.prefix[done.end], &self.prefix[done.start]);
+                    }
+                }
+            };
+            let (mut cut, mut cut_wet) = (Vec::with_capacity(64), Vec::with_capacity(64));
+            for group in &self.groups[c * GROUP_CHUNK..((c + 1) * GROUP_CHUNK).min(self.groups.len())] {
+                let members = group.tiles.clone();
+                match classify(&group.bounds) {
                     Side::Dry => {
                         counts.dry += members.len();
                         continue;
                     }
                     Side::Submerged => {
                         counts.submerged += members.len();
-                        under.add_moments(group);
-                        under_texels += texels;
+                        submerge(members.clone(), &mut under);
                     }
-                    Side::Cut => {
-                        for ti in members.clone() {
-                            let tile = &self.tiles[ti];
-                            let (start, end) = (tile.range.0 as usize, tile.range.1 as usize);
-                            match classify(tile) {
+                    Side::Cut { .. } => {
+                        for (ti, bounds) in members.clone().zip(&self.tile_bounds[members.clone()]) {
+                            match classify(bounds) {
                                 Side::Dry => counts.dry += 1,
                                 Side::Submerged => {
                                     counts.submerged += 1;
-                                    under.add_moments(tile);
-                                    under_texels += (end - start) as u64;
+                                    submerge(ti..ti + 1, &mut under);
                                 }
-                                Side::Cut => {
+                                Side::Cut { centre_wet } => {
                                     counts.cut += 1;
-                                    cut.push(start..end);
+                                    let (start, end) = self.tiles[ti].range;
+                                    if centre_wet {
+                                        submerge(ti..ti + 1, &mut under);
+                                        cut_wet.push(start as usize..end as usize);
+                                    } else {
+                                        cut.push(start as usize..end as usize);
+                                    }
                                 }
                             }
                         }
@@ -297,14 +379,20 @@ impl TiledAtlas {
                     }
                 }
             }
-            if under_texels > 0 {
-                add_closed_form(&mut local, &under, under_texels, alpha, &beta, &g);
+            if let Some(done) = run {
+                under.add_difference(&self.prefix[done.end], &self.prefix[done.start]);
             }
-            if !cut.is_empty() {
-                add_planar_ranges(&mut local, atlas, &cut, alpha, &beta, &g, pressure);
+            if under.texels > 0 {
+                add_closed_form(&mut local, &under, alpha, &beta, &g);
+            }
+            for (ranges, side) in [(cut_wet, PlanarTexels::Dry), (cut, PlanarTexels::Wet)] {
+                if !ranges.is_empty() {
+                    add_planar_ranges(&mut local, atlas, &ranges, alpha, &beta, &g, pressure, side);
+                }
             }
             (local.rotated(&rot), drag, counts)
-        });
+        };
+        let parts: Vec<(BuoyancySums, Option<DragSums>, TileCounts)> = par_map(n_chunks, work);
         let mut sums = BuoyancySums::default();
         let mut drag = options.drag.map(|_| DragSums::default());
         let mut counts = TileCounts::default();
@@ -329,19 +417,15 @@ impl TiledAtlas {
 enum Side {
     Dry,
     Submerged,
-    Cut,
+    /// Cut by the waterline, its centre under water or not.
+    Cut {
+        centre_wet: bool,
+    },
 }
 
-/// Adds a wholly submerged tile (or group) of `texels` samples to
-/// object-frame sums (`wr`, `f`, `rxf` in object axes; rotated by the caller).
-fn add_closed_form(
-    s: &mut BuoyancySums,
-    m: &TileMoments,
-    texels: u64,
-    alpha: f64,
-    beta: &Vector3<f64>,
-    g: &Vector3<f64>,
-) {
+/// Adds texels wholly under water, of moments `m`, to object-frame sums
+/// (`wr`, `f`, `rxf` in object axes; rotated by the caller).
+fn add_closed_form(s: &mut BuoyancySums, m: &Sums, alpha: f64, beta: &Vector3<f64>, g: &Vector3<f64>) {
     // Σ A d = α S0 + S1 β
     let ad = alpha * m.s0 + m.s1 * beta;
     // T1 = Σ (g·A) x = S1ᵀ g ; T2 = Σ (g·A) x xᵀ = Σ_j g_j S2_j
@@ -368,5 +452,5 @@ fn add_closed_form(
     let bsb = Vector3::new(beta.dot(&b0), beta.dot(&b1), beta.dot(&b2));
     s.d2a += 0.5 * (alpha * alpha * m.s0 + 2.0 * alpha * (m.s1 * beta) + bsb);
     s.area += m.area;
-    s.count += texels as usize;
+    s.count += m.texels as usize;
 }
