@@ -3,7 +3,8 @@
 //! read of the same atlas (the bandwidth floor), exact clipping and the
 //! per-triangle baseline; and on a Gerstner sea, per texel, in Archimedes
 //! mode (which also takes the surface's slope for its torque) and in
-//! pressure mode.
+//! pressure mode; the boat at 1024², per texel and tiled; the sphere at
+//! 2048², beyond the cache.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
@@ -116,5 +117,35 @@ fn beyond_the_cache(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, hydro, beyond_the_cache);
+/// The boat at 1024², heeled 15° and trimmed 4° with the water at half its
+/// height (the pose of `soak accuracy`): its waterline is long for its
+/// surface, so the tiled path has the most cut tiles of the builtins.
+fn boat(c: &mut Criterion) {
+    let mesh = builtin::boat(4.0, 1.2, 0.6);
+    let atlas = Atlas::bake(&mesh, BakeOptions::square(1024)).unwrap();
+    let tiled = TiledAtlas::new(&atlas);
+    let mass = MassModel::Solid { density: 500.0 }
+        .mass_properties(&atlas)
+        .unwrap();
+    let rotation = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 4f64.to_radians())
+        * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 15f64.to_radians());
+    let ys = mesh.positions.iter().map(|p| (rotation * p).y);
+    let (lo, hi) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), y| {
+        (l.min(y), h.max(y))
+    });
+    let water = Water::calm(0.5 * (lo + hi));
+    let state = BodyState::at_rest(Isometry3::from_parts(Vector3::zeros().into(), rotation));
+    let opts = HydroOptions::default();
+    let mut g = c.benchmark_group("boat_1024");
+    g.bench_function("streaming_read", |b| b.iter(|| streaming_read(&atlas)));
+    g.bench_function("per_texel", |b| {
+        b.iter(|| evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap())
+    });
+    g.bench_function("tiled", |b| {
+        b.iter(|| tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, hydro, boat, beyond_the_cache);
 criterion_main!(benches);

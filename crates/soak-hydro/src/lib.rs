@@ -5,6 +5,7 @@ pub mod error;
 pub mod gpu;
 pub mod hydrostatics;
 pub mod mass;
+mod parallel;
 pub mod reference;
 pub mod tiled;
 pub mod water;

@@ -147,50 +147,9 @@ where
     T: Send + Sync + Copy + std::ops::Add<Output = T>,
     F: Fn(std::ops::Range<usize>) -> T + Sync,
 {
-    par_map(n.div_ceil(CHUNK), |c| f(c * CHUNK..((c + 1) * CHUNK).min(n)))
+    crate::parallel::par_map(n.div_ceil(CHUNK), |c| f(c * CHUNK..((c + 1) * CHUNK).min(n)))
         .into_iter()
         .fold(zero, |a, b| a + b)
-}
-
-/// `[f(0), …, f(n − 1)]`, computed in parallel on rayon's pool with the
-/// calling thread taking part: every thread claims the next index from one
-/// counter until none is left. A call from outside the pool (a game loop,
-/// a benchmark) so starts at once instead of waiting for a worker to wake,
-/// which is most of the cost of a pass of a few tens of microseconds; the
-/// result does not depend on which thread computed which item.
-pub(crate) fn par_map<T, F>(n: usize, f: F) -> Vec<T>
-where
-    T: Send + Sync,
-    F: Fn(usize) -> T + Sync,
-{
-    use std::sync::OnceLock;
-    use std::sync::atomic::{AtomicUsize, Ordering};
-
-    let helpers = rayon::current_num_threads().min(n).saturating_sub(1);
-    if helpers == 0 {
-        return (0..n).map(f).collect();
-    }
-    let next = AtomicUsize::new(0);
-    let slots: Vec<OnceLock<T>> = (0..n).map(|_| OnceLock::new()).collect();
-    let work = || {
-        loop {
-            let i = next.fetch_add(1, Ordering::Relaxed);
-            if i >= n {
-                break;
-            }
-            // Each index is claimed once, so its slot is empty.
-            let _ = slots[i].set(f(i));
-        }
-    };
-    rayon::in_place_scope(|s| {
-        for _ in 0..helpers {
-            s.spawn(|_| work());
-        }
-        work();
-    });
-    // The scope returns once every thread has left the loop, after the
-    // counter passed `n`: every slot is set.
-    slots.into_iter().filter_map(OnceLock::into_inner).collect()
 }
 
 #[derive(Clone, Copy)]

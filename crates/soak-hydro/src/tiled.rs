@@ -23,7 +23,8 @@ use crate::hydrostatics::{
     BodyState, BuoyancyMode, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, PlanarTexels,
     add_planar_ranges, evaluate, finish, texel,
 };
-use crate::mass::{MassProperties, par_map};
+use crate::mass::MassProperties;
+use crate::parallel::par_map;
 use crate::water::Water;
 
 /// Moments of one tile's texels, relative to the atlas origin.
