@@ -747,8 +747,8 @@ fn markdown(report: &Report, path: &Path) -> String {
          matching (each triangle's samples nudged so their mean and covariance are the triangle's).\n\
          - **texels**: samples in the atlas, including one centroid sample per triangle too small to cover a \
          texel centre.\n\
-         - **per-texel**: `evaluate`; **tiled**: `TiledAtlas::evaluate` (closed forms for groups of tiles and \
-         tiles wholly under water, same sums); **GPU**: `gpu::GpuHydro::evaluate` (one body per submission, \
+         - **per-texel**: `evaluate`; **tiled**: `TiledAtlas::evaluate` (one closed form for the runs of \
+         tiles wholly under water, the per-texel kernel on the smaller side of each cut tile; same sums); **GPU**: `gpu::GpuHydro::evaluate` (one body per submission, \
          readback included; `--gpu`); **exact**: `reference::submerged_part`; **per-tri**: the per-triangle \
          game method (AQUAS-style water columns, the baseline of the thesis' Fig. 7.10) and its volume \
          error.\n\n",
