@@ -8,20 +8,27 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
-use soak_bake::{Atlas, BakeOptions, builtin};
+use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::reference::{self, ClipPlane};
 use soak_hydro::{
-    BodyState, BuoyancyMode, Gerstner, GerstnerWave, HydroOptions, MassModel, TiledAtlas, Water, evaluate,
-    streaming_read,
+    BodyState, BuoyancyMode, Gerstner, GerstnerWave, HydroOptions, MassModel, MassProperties, TiledAtlas,
+    Water, evaluate, streaming_read,
 };
 
-fn hydro(c: &mut Criterion) {
-    let mesh = builtin::sphere(0.5, 64, 32);
-    let atlas = Atlas::bake(&mesh, BakeOptions::square(1024)).unwrap();
-    let tiled = TiledAtlas::new(&atlas);
+/// `mesh` baked at `n`², and the mass properties of a solid of half the
+/// water's density.
+fn baked(mesh: &Mesh, n: u32) -> (Atlas, MassProperties) {
+    let atlas = Atlas::bake(mesh, BakeOptions::square(n)).unwrap();
     let mass = MassModel::Solid { density: 500.0 }
         .mass_properties(&atlas)
         .unwrap();
+    (atlas, mass)
+}
+
+fn hydro(c: &mut Criterion) {
+    let mesh = builtin::sphere(0.5, 64, 32);
+    let (atlas, mass) = baked(&mesh, 1024);
+    let tiled = TiledAtlas::new(&atlas);
     let pose = Isometry3::from_parts(
         Vector3::new(0.0, 0.1, 0.0).into(),
         UnitQuaternion::from_euler_angles(0.3, 0.2, 0.1),
@@ -95,10 +102,7 @@ fn hydro(c: &mut Criterion) {
 /// (about 90 MB) no longer fits a processor's cache and the floor is the
 /// memory's bandwidth; at 1024² (about 22 MB) it is the last-level cache's.
 fn beyond_the_cache(c: &mut Criterion) {
-    let atlas = Atlas::bake(&builtin::sphere(0.5, 64, 32), BakeOptions::square(2048)).unwrap();
-    let mass = MassModel::Solid { density: 500.0 }
-        .mass_properties(&atlas)
-        .unwrap();
+    let (atlas, mass) = baked(&builtin::sphere(0.5, 64, 32), 2048);
     let rotation = UnitQuaternion::from_euler_angles(0.3, 0.2, 0.1);
     let water = Water::calm(0.0);
     let opts = HydroOptions::default();
@@ -122,11 +126,8 @@ fn beyond_the_cache(c: &mut Criterion) {
 /// surface, so the tiled path has the most cut tiles of the builtins.
 fn boat(c: &mut Criterion) {
     let mesh = builtin::boat(4.0, 1.2, 0.6);
-    let atlas = Atlas::bake(&mesh, BakeOptions::square(1024)).unwrap();
+    let (atlas, mass) = baked(&mesh, 1024);
     let tiled = TiledAtlas::new(&atlas);
-    let mass = MassModel::Solid { density: 500.0 }
-        .mass_properties(&atlas)
-        .unwrap();
     let rotation = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 4f64.to_radians())
         * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 15f64.to_radians());
     let ys = mesh.positions.iter().map(|p| (rotation * p).y);

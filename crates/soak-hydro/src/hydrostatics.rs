@@ -1315,45 +1315,24 @@ mod tests {
                     assert_eq!(dispatched.count, expected.count);
                     // Against the sums' own size: what is left of the dry
                     // sums is their rounding.
-                    let close = |a: f64, b: f64, size: f64| (a - b).abs() <= 1e-12 * (1.0 + size.abs());
-                    assert!(close(
-                        dispatched.area,
-                        expected.area,
-                        wet.area.abs() + dry.area.abs()
-                    ));
-                    assert!(close(dispatched.vol, expected.vol, wet.vol.abs() + dry.vol.abs()));
-                    assert!(close(dispatched.wd2, expected.wd2, wet.wd2.abs() + dry.wd2.abs()));
-                    for c in 0..3 {
+                    let check = |name: &str, get: &dyn Fn(&BuoyancySums) -> f64| {
+                        let size = get(&wet).abs() + get(&dry).abs();
+                        let (got, want) = (get(&dispatched), get(&expected));
                         assert!(
-                            close(
-                                dispatched.wr[c],
-                                expected.wr[c],
-                                wet.wr[c].abs() + dry.wr[c].abs()
-                            ),
-                            "wr {c}"
+                            (got - want).abs() <= 1e-12 * (1.0 + size),
+                            "{side:?} {name}: {got} against {want}"
                         );
+                    };
+                    check("area", &|s| s.area);
+                    check("vol", &|s| s.vol);
+                    check("wd2", &|s| s.wd2);
+                    for c in 0..3 {
+                        check("wr", &|s| s.wr[c]);
                         if pressure {
-                            assert!(
-                                close(dispatched.f[c], expected.f[c], wet.f[c].abs() + dry.f[c].abs()),
-                                "f {c}"
-                            );
-                            assert!(
-                                close(
-                                    dispatched.rxf[c],
-                                    expected.rxf[c],
-                                    wet.rxf[c].abs() + dry.rxf[c].abs()
-                                ),
-                                "rxf {c}"
-                            );
+                            check("f", &|s| s.f[c]);
+                            check("rxf", &|s| s.rxf[c]);
                         } else {
-                            assert!(
-                                close(
-                                    dispatched.d2a[c],
-                                    expected.d2a[c],
-                                    wet.d2a[c].abs() + dry.d2a[c].abs()
-                                ),
-                                "d2a {c}"
-                            );
+                            check("d2a", &|s| s.d2a[c]);
                         }
                     }
                 }
