@@ -132,8 +132,6 @@ struct Group {
 pub struct TiledAtlas {
     /// Tile moments, ordered group by group.
     tiles: Vec<TileMoments>,
-    /// The tiles' bounds, in the same order (what classifying reads).
-    tile_bounds: Vec<Bounds>,
     /// Groups of consecutive tiles.
     groups: Vec<Group>,
     /// `prefix[i]` holds the sums of the moments of `tiles[..i]`: a run of
@@ -232,7 +230,6 @@ impl TiledAtlas {
             prefix.push(running);
         }
         Self {
-            tile_bounds: tiles.iter().map(TileMoments::bounds).collect(),
             tiles,
             groups,
             prefix,
@@ -352,8 +349,8 @@ impl TiledAtlas {
                         submerge(members.clone(), &mut under);
                     }
                     Side::Cut { .. } => {
-                        for (ti, bounds) in members.clone().zip(&self.tile_bounds[members.clone()]) {
-                            match classify(bounds) {
+                        for ti in members.clone() {
+                            match classify(&self.tiles[ti].bounds()) {
                                 Side::Dry => counts.dry += 1,
                                 Side::Submerged => {
                                     counts.submerged += 1;
