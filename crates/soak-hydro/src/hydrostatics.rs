@@ -156,6 +156,13 @@ pub struct HydroForces {
     pub wetted_area: f64,
     /// Submerged texels.
     pub submerged_texels: usize,
+    /// The water columns' potential `ρ_w g Σ (−A_{i,y}) d_i²/2` over the
+    /// submerged texels, J (zero dry; summed whatever the buoyancy mode).
+    /// Minus its derivative along a vertical displacement is the vertical
+    /// buoyancy, and in Archimedes mode minus its derivative along a turn
+    /// is the torque wherever the body is partly dry, so that on calm water
+    /// `½ m v² + ½ ωᵀIω + m g y_G + potential` is conserved.
+    pub potential: f64,
     /// The buoyancy of the mode [`HydroOptions::buoyancy`] selects, N and
     /// N·m about the centre of mass: in Archimedes mode `ρ g V_s` up at the
     /// centre of buoyancy (its torque with the terms that make it the
@@ -1147,6 +1154,7 @@ pub(crate) fn finish(
         center_of_buoyancy: Point3::from(cb),
         wetted_area: s.area,
         submerged_texels: s.count,
+        potential: rg * s.wd2,
         buoyancy,
         drag,
         drag_explicit,

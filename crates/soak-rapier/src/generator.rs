@@ -3,7 +3,7 @@
 //! [`soak_wet::Wetting`], absorbing through the submerged texels,
 //! evaporating and diffusing with each step.
 
-use nalgebra::{Isometry3, Matrix3, Point3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Matrix3, Point3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::{
     ColliderSet, IntegrationParameters, PhysicsWorld, RigidBody, RigidBodyHandle, RigidBodySet,
 };
@@ -993,6 +993,15 @@ impl Shape {
 /// same step (`drag`, already implicit in the velocity) is part of `a` and
 /// of the angular acceleration: without it, a light stiff body's drag and
 /// buoyancy each stopped the same motion and together overshot it.
+///
+/// Last, the step is checked for energy ([`Step::without_energy_gain`]):
+/// the generator predicts Rapier's step from the pose now under the
+/// wrench, and where the body would end it with more energy than it began
+/// with (kinetic, gravity's and the columns' [`HydroForces::potential`],
+/// less the drag's work), the velocity it would end with is scaled down
+/// until it does not. A step whose linearisation is far from the truth
+/// (a rod pitched with one end in the water, a square rod rolling over)
+/// then damps the motion instead of flinging the body.
 #[allow(clippy::too_many_arguments)]
 fn implicit_heave(
     b: &SoakBody,
@@ -1033,13 +1042,16 @@ fn implicit_heave(
             rotation,
         )
     };
-    let at_pose = |pose: Isometry3<f64>| {
+    let at_forces = |pose: Isometry3<f64>| {
         let shifted = BodyState { pose, ..*state };
         let r = match &b.tiled {
             Some(tiled) => tiled.evaluate(&b.atlas, water, &shifted, &b.mass, t, &options),
             None => soak_hydro::evaluate(&b.atlas, water, &shifted, &b.mass, t, &options),
         };
         r.ok()
+    };
+    let at_pose = |pose: Isometry3<f64>| {
+        at_forces(pose)
             .map(|f| f.buoyancy)
             .filter(|w| w.is_finite() && (0.0..=limit).contains(&w.force.y))
     };
@@ -1122,12 +1134,230 @@ fn implicit_heave(
     // torque applied is what is left of I α.
     let rhs = best.torque + drag.torque - theta * (1.0 - beta) * dt * (k * state.angular_velocity);
     let system = inertia + theta * c * dt * dt * k;
-    match system.lu().solve(&rhs) {
+    let implicit = match system.lu().solve(&rhs) {
         Some(alpha) if alpha.iter().all(|a| a.is_finite()) => Wrench {
             force: best.force,
             torque: inertia * alpha - drag.torque,
         },
         _ => best,
+    };
+    let Some(step) = Step::new(
+        state,
+        &com,
+        m,
+        g,
+        &inertia,
+        drag,
+        dt,
+        substeps,
+        rb.is_fast_rotation_allowed(),
+    ) else {
+        return implicit;
+    };
+    // The columns' potential at a pose, and whether the body is partly dry
+    // there.
+    let potential = |pose: Isometry3<f64>| {
+        at_forces(pose)
+            .filter(|f| f.potential.is_finite())
+            .map(|f| (f.potential, f.submerged_texels < b.atlas.len()))
+    };
+    step.without_energy_gain(implicit, potential)
+}
+
+/// Rapier's step of one body as the generator predicts it: from the pose
+/// now, under a constant buoyancy wrench, the drag and gravity, over
+/// `substeps` substeps of symplectic Euler (`y' = y + dt v + c dt² a`,
+/// `v' = v + dt a`, `c = (s + 1)/(2s)`; the same for the turn, without the
+/// gyroscopic term).
+struct Step<'a> {
+    dt: f64,
+    m: f64,
+    /// Gravity along −y, m/s² (the body's gravity scale included).
+    g: f64,
+    /// World inertia tensor about the centre of mass, and its inverse.
+    inertia: &'a Matrix3<f64>,
+    inverse: Matrix3<f64>,
+    /// Velocities and the pose now (the generator evaluated at a lookahead
+    /// pose `β dt` ahead: back from it along the same velocities).
+    v0: Vector3<f64>,
+    w0: Vector3<f64>,
+    com0: Point3<f64>,
+    rot0: UnitQuaternion<f64>,
+    /// Centre of mass, object frame.
+    com: &'a Point3<f64>,
+    drag: Wrench,
+    substeps: usize,
+    /// Rapier's cap on the angular speed, rad/s (`None` where the body
+    /// allows fast rotation).
+    max_angular_speed: Option<f64>,
+}
+
+/// Where a predicted [`Step`] ends.
+struct StepEnd {
+    /// Linear and angular velocity, m/s and rad/s.
+    v: Vector3<f64>,
+    w: Vector3<f64>,
+    /// Displacement of the centre of mass, m, and the sum of the substeps'
+    /// turns `h ω`, rad.
+    dx: Vector3<f64>,
+    turn: Vector3<f64>,
+    rotation: UnitQuaternion<f64>,
+}
+
+impl<'a> Step<'a> {
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        state: &BodyState,
+        com: &'a Point3<f64>,
+        m: f64,
+        g: f64,
+        inertia: &'a Matrix3<f64>,
+        drag: Wrench,
+        dt: f64,
+        substeps: f64,
+        fast_rotation: bool,
+    ) -> Option<Self> {
+        let lookahead = (substeps - 1.0) / (2.0 * substeps) * dt;
+        let (v0, w0) = (state.linear_velocity, state.angular_velocity);
+        Some(Self {
+            dt,
+            m,
+            g,
+            inertia,
+            inverse: inertia.try_inverse()?,
+            v0,
+            w0,
+            com0: state.pose * com - v0 * lookahead,
+            rot0: UnitQuaternion::from_scaled_axis(-w0 * lookahead) * state.pose.rotation,
+            com,
+            drag,
+            substeps: substeps as usize,
+            max_angular_speed: (!fast_rotation).then(|| std::f64::consts::FRAC_PI_4 / dt),
+        })
+    }
+
+    /// Linear and angular velocity at the end of the step under `w`,
+    /// uncapped.
+    fn end_velocities(&self, w: &Wrench) -> (Vector3<f64>, Vector3<f64>) {
+        let a = (w.force + self.drag.force) / self.m - Vector3::y() * self.g;
+        let alpha = self.inverse * (w.torque + self.drag.torque);
+        (self.v0 + self.dt * a, self.w0 + self.dt * alpha)
+    }
+
+    /// The buoyancy wrench that ends the step with velocities `v1`, `w1`.
+    fn wrench_for(&self, v1: &Vector3<f64>, w1: &Vector3<f64>) -> Wrench {
+        Wrench {
+            force: self.m * ((v1 - self.v0) / self.dt + Vector3::y() * self.g) - self.drag.force,
+            torque: self.inertia * ((w1 - self.w0) / self.dt) - self.drag.torque,
+        }
+    }
+
+    /// The energy the step under `w` creates, J: kinetic energy, gravity's
+    /// potential and the columns' potential `u` at the end, less the
+    /// same now (`u0`), less the work of the drag and of the buoyancy's
+    /// sideways force. The columns' potential is taken at the end pose
+    /// moved back sideways: Archimedes' force is vertical, so moving
+    /// sideways over a surface that is not flat changes the potential
+    /// without its force doing that work (see `soak stress`' energy
+    /// allowance); what the check follows is heave, pitch and roll.
+    fn energy_gain(
+        &self,
+        w: &Wrench,
+        u0: f64,
+        u: &impl Fn(Isometry3<f64>) -> Option<(f64, bool)>,
+    ) -> Option<f64> {
+        let end = self.end(w);
+        let centre = self.com0 + Vector3::y() * end.dx.y;
+        let u1 = u(Isometry3::from_parts(
+            Translation3::from(centre.coords - end.rotation * self.com.coords),
+            end.rotation,
+        ))?
+        .0;
+        let kinetic = 0.5 * self.m * (end.v.norm_squared() - self.v0.norm_squared())
+            + 0.5 * (end.w.dot(&(self.inertia * end.w)) - self.w0.dot(&(self.inertia * self.w0)));
+        let sideways = Vector3::new(end.dx.x, 0.0, end.dx.z);
+        let gain = kinetic + self.m * self.g * end.dx.y + u1
+            - u0
+            - self.drag.force.dot(&end.dx)
+            - self.drag.torque.dot(&end.turn)
+            - w.force.dot(&sideways);
+        gain.is_finite().then_some(gain)
+    }
+
+    /// Where the step under `w` ends: Rapier's substeps of symplectic
+    /// Euler, each turning by `h ω` through `(1, h ω/2)` normalised, with
+    /// the angular speed capped at `π/4` per step unless the body allows
+    /// fast rotation.
+    fn end(&self, w: &Wrench) -> StepEnd {
+        let a = (w.force + self.drag.force) / self.m - Vector3::y() * self.g;
+        let alpha = self.inverse * (w.torque + self.drag.torque);
+        let h = self.dt / self.substeps as f64;
+        let (mut v, mut omega) = (self.v0, self.w0);
+        let (mut dx, mut turn, mut rotation) = (Vector3::zeros(), Vector3::zeros(), self.rot0);
+        for _ in 0..self.substeps {
+            v += h * a;
+            omega += h * alpha;
+            let speed = omega.norm();
+            if let Some(cap) = self.max_angular_speed
+                && speed > cap
+            {
+                omega *= cap / speed;
+            }
+            dx += h * v;
+            turn += h * omega;
+            let half = 0.5 * h * omega;
+            rotation = UnitQuaternion::new_normalize(Quaternion::new(1.0, half.x, half.y, half.z)) * rotation;
+        }
+        StepEnd {
+            v,
+            w: omega,
+            dx,
+            turn,
+            rotation,
+        }
+    }
+
+    /// `w`, or where the step under it would create energy the same step
+    /// with its end velocities scaled by the largest `s ∈ [0, 1]` (to 2⁻⁸)
+    /// for which it creates none. `s = 0` ends the step at rest, a
+    /// fraction `1 − c` of it along the velocity it began with; if even
+    /// that creates energy, it is taken.
+    ///
+    /// The stiff step cannot be exact: the buoyancy of a body whose heave,
+    /// pitch or roll period is shorter than the step changes far more over
+    /// the step than its linearisation says (a rod pitched 5° with one end
+    /// under water, a square rod rolling over to float on an edge: the
+    /// pitch–roll stiffness has a negative eigenvalue, and backward Euler
+    /// with it divides by `I − c dt² |K|`). The check keeps such a step
+    /// from ever handing the body energy the water did not: where the
+    /// prediction says the step gains, the motion it would end with is
+    /// damped instead. Where the pose now is wholly under water or its
+    /// potential cannot be evaluated, `w` is returned.
+    fn without_energy_gain(&self, w: Wrench, u: impl Fn(Isometry3<f64>) -> Option<(f64, bool)>) -> Wrench {
+        // Wholly under water now, the buoyancy has no stiffness, and the
+        // potential's terms grow with the depth squared: no check.
+        let Some((u0, true)) = u(Isometry3::from_parts(
+            Translation3::from(self.com0.coords - self.rot0 * self.com.coords),
+            self.rot0,
+        )) else {
+            return w;
+        };
+        match self.energy_gain(&w, u0, &u) {
+            Some(gain) if gain > 0.0 => {}
+            _ => return w,
+        }
+        let (v1, w1) = self.end_velocities(&w);
+        let scaled = |s: f64| self.wrench_for(&(s * v1), &(s * w1));
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..8 {
+            let s = 0.5 * (lo + hi);
+            match self.energy_gain(&scaled(s), u0, &u) {
+                Some(gain) if gain <= 0.0 => lo = s,
+                _ => hi = s,
+            }
+        }
+        let damped = scaled(lo);
+        if damped.is_finite() { damped } else { w }
     }
 }
 
