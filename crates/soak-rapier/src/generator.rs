@@ -10,8 +10,8 @@ use rapier3d::prelude::{
 use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
 use soak_hydro::{
-    BodyState, BuoyancyMode, Drag, HydroForces, HydroOptions, MassModel, MassProperties, SurfaceKind,
-    TiledAtlas, Water, Wrench,
+    BodyState, BuoyancyMode, Drag, HydroForces, HydroOptions, MassModel, MassProperties, PrincipalInertia,
+    SurfaceKind, TiledAtlas, Water, Wrench,
 };
 use soak_wet::{Environment, StepReport, Wetting};
 
@@ -1055,102 +1055,106 @@ fn implicit_heave(
             .map(|f| f.buoyancy)
             .filter(|w| w.is_finite() && (0.0..=limit).contains(&w.force.y))
     };
-    let at = |dy: f64| at_pose(posed(dy, Vector3::zeros()));
-    // The shift the step would make with vertical buoyancy f.
-    let target = |f: f64| theta * ((1.0 - beta) * dt * v + c * dt * dt * ((f + drag.force.y) / m - g));
-    let residual = |dy: f64, f: f64| dy - target(f);
-    // Bracket: no buoyancy (residual ≤ 0) and the most there can be (≥ 0).
-    let (mut lo, mut hi) = (target(0.0), target(limit));
-    let (mut r_lo, mut r_hi) = (f64::NAN, f64::NAN);
-    let tolerance = 1e-6 * radius;
-    let mut best = buoyancy;
-    let mut solved_dy = None;
-    let mut best_residual = residual(0.0, buoyancy.force.y).abs();
-    let mut side = 0i8;
-    for _ in 0..64 {
-        let dy = if r_lo.is_finite() && r_hi.is_finite() && r_hi > r_lo {
-            lo - r_lo * (hi - lo) / (r_hi - r_lo)
-        } else {
-            0.5 * (lo + hi)
-        };
-        let Some(wrench) = at(dy) else {
-            return buoyancy;
-        };
-        let r = residual(dy, wrench.force.y);
-        if r.abs() < best_residual {
-            best = wrench;
-            solved_dy = Some(dy);
-            best_residual = r.abs();
-        }
-        if r.abs() <= tolerance || (hi - lo).abs() <= tolerance {
-            break;
-        }
-        // Illinois: halve the stale end's residual when one side repeats.
-        if r < 0.0 {
-            lo = dy;
-            r_lo = r;
-            if side == -1 && r_hi.is_finite() {
-                r_hi *= 0.5;
-            }
-            side = -1;
-        } else {
-            hi = dy;
-            r_hi = r;
-            if side == 1 && r_lo.is_finite() {
-                r_lo *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    // Pitch and roll, linearised about the solved heave: the torque's
-    // stiffness `K` from central differences of small turns about the
-    // horizontal axes through the centre of mass, and the same blend,
-    // `τ = τ₀ − θ K ((1 − β) dt ω + c dt² α)` with `α = I⁻¹ τ`, that is
-    // `α = (I + θ c dt² K)⁻¹ (τ₀ − θ (1 − β) dt K ω)`, `τ = I α`.
-    let Some(solved) = solved_dy else {
-        return best;
-    };
-    // A turn that moves no point by more than a tenth of the body's
-    // thickness 3V/A (its radius for a sphere; a 200:1 rod's width), so
-    // that the difference sees the torque's slope, not its saturation.
-    let turn = (0.1 * b.shape.thickness / radius).min(0.01);
-    // Yaw too where the surface is not flat: a slope makes a yaw torque
-    // that can be as stiff as pitch and roll (over a flat surface there is
-    // none, and its difference would only be noise).
-    let flat = matches!(water.surface.kind(t), SurfaceKind::Plane { normal, .. } if normal.x == 0.0 && normal.z == 0.0);
-    let axes: &[usize] = if flat { &[0, 2] } else { &[0, 1, 2] };
-    let mut k = Matrix3::zeros();
-    for &axis in axes {
-        let mut e = Vector3::zeros();
-        e[axis] = turn;
-        let (Some(plus), Some(minus)) = (at_pose(posed(solved, e)), at_pose(posed(solved, -e))) else {
-            return best;
-        };
-        k.set_column(axis, &(-(plus.torque - minus.torque) / (2.0 * turn)));
-    }
     let rot = state.pose.rotation.to_rotation_matrix().into_inner();
     let inertia = rot * b.mass.inertia * rot.transpose();
-    // The drag's torque acts over the step too: α counts it, the buoyancy
-    // torque applied is what is left of I α.
-    let rhs = best.torque + drag.torque - theta * (1.0 - beta) * dt * (k * state.angular_velocity);
-    let system = inertia + theta * c * dt * dt * k;
-    let implicit = match system.lu().solve(&rhs) {
-        Some(alpha) if alpha.iter().all(|a| a.is_finite()) => Wrench {
-            force: best.force,
-            torque: inertia * alpha - drag.torque,
-        },
-        _ => best,
-    };
+    // The implicit wrench; every way out of it goes through the energy
+    // check below.
+    let implicit = (|| {
+        let at = |dy: f64| at_pose(posed(dy, Vector3::zeros()));
+        // The shift the step would make with vertical buoyancy f.
+        let target = |f: f64| theta * ((1.0 - beta) * dt * v + c * dt * dt * ((f + drag.force.y) / m - g));
+        let residual = |dy: f64, f: f64| dy - target(f);
+        // Bracket: no buoyancy (residual ≤ 0) and the most there can be (≥ 0).
+        let (mut lo, mut hi) = (target(0.0), target(limit));
+        let (mut r_lo, mut r_hi) = (f64::NAN, f64::NAN);
+        let tolerance = 1e-6 * radius;
+        let mut best = buoyancy;
+        let mut solved_dy = None;
+        let mut best_residual = residual(0.0, buoyancy.force.y).abs();
+        let mut side = 0i8;
+        for _ in 0..64 {
+            let dy = if r_lo.is_finite() && r_hi.is_finite() && r_hi > r_lo {
+                lo - r_lo * (hi - lo) / (r_hi - r_lo)
+            } else {
+                0.5 * (lo + hi)
+            };
+            let Some(wrench) = at(dy) else {
+                return buoyancy;
+            };
+            let r = residual(dy, wrench.force.y);
+            if r.abs() < best_residual {
+                best = wrench;
+                solved_dy = Some(dy);
+                best_residual = r.abs();
+            }
+            if r.abs() <= tolerance || (hi - lo).abs() <= tolerance {
+                break;
+            }
+            // Illinois: halve the stale end's residual when one side repeats.
+            if r < 0.0 {
+                lo = dy;
+                r_lo = r;
+                if side == -1 && r_hi.is_finite() {
+                    r_hi *= 0.5;
+                }
+                side = -1;
+            } else {
+                hi = dy;
+                r_hi = r;
+                if side == 1 && r_lo.is_finite() {
+                    r_lo *= 0.5;
+                }
+                side = 1;
+            }
+        }
+        // Pitch and roll, linearised about the solved heave: the torque's
+        // stiffness `K` from central differences of small turns about the
+        // horizontal axes through the centre of mass, and the same blend,
+        // `τ = τ₀ − θ K ((1 − β) dt ω + c dt² α)` with `α = I⁻¹ τ`, that is
+        // `α = (I + θ c dt² K)⁻¹ (τ₀ − θ (1 − β) dt K ω)`, `τ = I α`.
+        let Some(solved) = solved_dy else {
+            return best;
+        };
+        // A turn that moves no point by more than a tenth of the body's
+        // thickness 3V/A (its radius for a sphere; a 200:1 rod's width), so
+        // that the difference sees the torque's slope, not its saturation.
+        let turn = (0.1 * b.shape.thickness / radius).min(0.01);
+        // Yaw too where the surface is not flat: a slope makes a yaw torque
+        // that can be as stiff as pitch and roll (over a flat surface there is
+        // none, and its difference would only be noise).
+        let flat = matches!(water.surface.kind(t), SurfaceKind::Plane { normal, .. } if normal.x == 0.0 && normal.z == 0.0);
+        let axes: &[usize] = if flat { &[0, 2] } else { &[0, 1, 2] };
+        let mut k = Matrix3::zeros();
+        for &axis in axes {
+            let mut e = Vector3::zeros();
+            e[axis] = turn;
+            let (Some(plus), Some(minus)) = (at_pose(posed(solved, e)), at_pose(posed(solved, -e))) else {
+                return best;
+            };
+            k.set_column(axis, &(-(plus.torque - minus.torque) / (2.0 * turn)));
+        }
+        // The drag's torque acts over the step too: α counts it, the buoyancy
+        // torque applied is what is left of I α.
+        let rhs = best.torque + drag.torque - theta * (1.0 - beta) * dt * (k * state.angular_velocity);
+        let system = inertia + theta * c * dt * dt * k;
+        match system.lu().solve(&rhs) {
+            Some(alpha) if alpha.iter().all(|a| a.is_finite()) => Wrench {
+                force: best.force,
+                torque: inertia * alpha - drag.torque,
+            },
+            _ => best,
+        }
+    })();
     let Some(step) = Step::new(
         state,
-        &com,
+        &b.mass,
         m,
         g,
-        &inertia,
         drag,
         dt,
         substeps,
         rb.is_fast_rotation_allowed(),
+        rb.gyroscopic_forces_enabled(),
     ) else {
         return implicit;
     };
@@ -1171,12 +1175,18 @@ fn implicit_heave(
 /// gyroscopic term).
 struct Step<'a> {
     dt: f64,
+    /// `(s + 1)/(2s)` for `s` substeps: the step moves the centre by
+    /// `dt ((1 − c) v₀ + c v₁)`.
+    c: f64,
     m: f64,
     /// Gravity along −y, m/s² (the body's gravity scale included).
     g: f64,
-    /// World inertia tensor about the centre of mass, and its inverse.
-    inertia: &'a Matrix3<f64>,
+    /// World inertia tensor about the centre of mass at the pose now, and
+    /// its inverse.
+    inertia: Matrix3<f64>,
     inverse: Matrix3<f64>,
+    /// Inertia tensor in the object's axes.
+    body_inertia: Matrix3<f64>,
     /// Velocities and the pose now (the generator evaluated at a lookahead
     /// pose `β dt` ahead: back from it along the same velocities).
     v0: Vector3<f64>,
@@ -1190,6 +1200,30 @@ struct Step<'a> {
     /// Rapier's cap on the angular speed, rad/s (`None` where the body
     /// allows fast rotation).
     max_angular_speed: Option<f64>,
+    /// The body's principal inertia, where Rapier applies gyroscopic forces.
+    gyroscopic: Option<PrincipalInertia>,
+}
+
+/// Rapier's gyroscopic correction, once per substep: the explicit term
+/// `−ω × Iω h` added to the angular momentum in the principal frame, its
+/// length kept.
+trait Gyroscopic {
+    fn corrected(&self, omega: &Vector3<f64>, rotation: &UnitQuaternion<f64>, h: f64) -> Vector3<f64>;
+}
+
+impl Gyroscopic for PrincipalInertia {
+    fn corrected(&self, omega: &Vector3<f64>, rotation: &UnitQuaternion<f64>, h: f64) -> Vector3<f64> {
+        let axes = rotation * self.frame;
+        let w = axes.inverse() * omega;
+        let momentum = self.moments.component_mul(&w);
+        let total = momentum - w.cross(&momentum) * h;
+        let squared = total.norm_squared();
+        if squared == 0.0 || self.moments.iter().any(|&m| m <= 0.0) {
+            return *omega;
+        }
+        let kept = total * (momentum.norm_squared() / squared).sqrt();
+        axes * kept.component_div(&self.moments)
+    }
 }
 
 /// Where a predicted [`Step`] ends.
@@ -1208,31 +1242,38 @@ impl<'a> Step<'a> {
     #[allow(clippy::too_many_arguments)]
     fn new(
         state: &BodyState,
-        com: &'a Point3<f64>,
+        mass: &'a MassProperties,
         m: f64,
         g: f64,
-        inertia: &'a Matrix3<f64>,
         drag: Wrench,
         dt: f64,
         substeps: f64,
         fast_rotation: bool,
+        gyroscopic: bool,
     ) -> Option<Self> {
         let lookahead = (substeps - 1.0) / (2.0 * substeps) * dt;
         let (v0, w0) = (state.linear_velocity, state.angular_velocity);
+        let com = &mass.center_of_mass;
+        let rot0 = UnitQuaternion::from_scaled_axis(-w0 * lookahead) * state.pose.rotation;
+        let r = rot0.to_rotation_matrix().into_inner();
+        let inertia = r * mass.inertia * r.transpose();
         Some(Self {
             dt,
+            c: (substeps + 1.0) / (2.0 * substeps),
             m,
             g,
             inertia,
             inverse: inertia.try_inverse()?,
+            body_inertia: mass.inertia,
             v0,
             w0,
             com0: state.pose * com - v0 * lookahead,
-            rot0: UnitQuaternion::from_scaled_axis(-w0 * lookahead) * state.pose.rotation,
+            rot0,
             com,
             drag,
             substeps: substeps as usize,
             max_angular_speed: (!fast_rotation).then(|| std::f64::consts::FRAC_PI_4 / dt),
+            gyroscopic: gyroscopic.then(|| mass.principal()),
         })
     }
 
@@ -1273,8 +1314,15 @@ impl<'a> Step<'a> {
             end.rotation,
         ))?
         .0;
+        // The spin's energy in the body's own axes: ½ ωᵀ I ω with I turned
+        // to each end's pose.
+        let spin = |rotation: &UnitQuaternion<f64>, w: &Vector3<f64>| {
+            let local = rotation.inverse() * w;
+            0.5 * local.dot(&(self.body_inertia * local))
+        };
         let kinetic = 0.5 * self.m * (end.v.norm_squared() - self.v0.norm_squared())
-            + 0.5 * (end.w.dot(&(self.inertia * end.w)) - self.w0.dot(&(self.inertia * self.w0)));
+            + spin(&end.rotation, &end.w)
+            - spin(&self.rot0, &self.w0);
         let sideways = Vector3::new(end.dx.x, 0.0, end.dx.z);
         let gain = kinetic + self.m * self.g * end.dx.y + u1
             - u0
@@ -1285,9 +1333,10 @@ impl<'a> Step<'a> {
     }
 
     /// Where the step under `w` ends: Rapier's substeps of symplectic
-    /// Euler, each turning by `h ω` through `(1, h ω/2)` normalised, with
-    /// the angular speed capped at `π/4` per step unless the body allows
-    /// fast rotation.
+    /// Euler, each correcting ω for the gyroscopic forces (where the body
+    /// has them), capping the angular speed at `π/4` per step (unless the
+    /// body allows fast rotation) and turning by `h ω` through `(1, h ω/2)`
+    /// normalised.
     fn end(&self, w: &Wrench) -> StepEnd {
         let a = (w.force + self.drag.force) / self.m - Vector3::y() * self.g;
         let alpha = self.inverse * (w.torque + self.drag.torque);
@@ -1297,6 +1346,9 @@ impl<'a> Step<'a> {
         for _ in 0..self.substeps {
             v += h * a;
             omega += h * alpha;
+            if let Some(gyro) = &self.gyroscopic {
+                omega = gyro.corrected(&omega, &rotation, h);
+            }
             let speed = omega.norm();
             if let Some(cap) = self.max_angular_speed
                 && speed > cap
@@ -1317,11 +1369,16 @@ impl<'a> Step<'a> {
         }
     }
 
-    /// `w`, or where the step under it would create energy the same step
-    /// with its end velocities scaled by the largest `s ∈ [0, 1]` (to 2⁻⁸)
-    /// for which it creates none. `s = 0` ends the step at rest, a
-    /// fraction `1 − c` of it along the velocity it began with; if even
-    /// that creates energy, it is taken.
+    /// `w`, or where the step under it would create energy, the step whose
+    /// end velocities `q(s) = q_h + s (q₁ − q_h)` are the largest blend
+    /// `s ∈ [0, 1]` (to 2⁻⁸) that creates none, between the velocities
+    /// `q₁` the step under `w` ends with and those that leave the body
+    /// where it is, `q_h = −(1 − c) q₀ / c` (Rapier moves the centre by
+    /// `dt ((1 − c) q₀ + c q₁)`). Held in place, the body keeps its
+    /// potential and ends with `((1 − c)/c)²` of its kinetic energy (0.36
+    /// at four substeps); if even that step would create energy (the turn
+    /// is not exactly nil where Rapier caps the spin), the one of the two
+    /// that creates less is taken.
     ///
     /// The stiff step cannot be exact: the buoyancy of a body whose heave,
     /// pitch or roll period is shorter than the step changes far more over
@@ -1346,17 +1403,32 @@ impl<'a> Step<'a> {
             Some(gain) if gain > 0.0 => {}
             _ => return w,
         }
+        // The end velocities that leave the body where it is: Rapier moves
+        // it by dt ((1 − c) q₀ + c q₁), zero for q₁ = −(1 − c) q₀ / c.
+        let hold = -(1.0 - self.c) / self.c;
         let (v1, w1) = self.end_velocities(&w);
-        let scaled = |s: f64| self.wrench_for(&(s * v1), &(s * w1));
+        let (vh, wh) = (hold * self.v0, hold * self.w0);
+        let blend = |s: f64| self.wrench_for(&(vh + s * (v1 - vh)), &(wh + s * (w1 - wh)));
+        let gain = |s: f64| self.energy_gain(&blend(s), u0, &u);
+        if !matches!(gain(0.0), Some(g) if g <= 0.0) {
+            // Even held in place the step would create energy (the
+            // potential's sampling, or a velocity Rapier caps): whichever
+            // of the two creates less.
+            let held = blend(0.0);
+            return match (gain(0.0), gain(1.0)) {
+                (Some(h), Some(g)) if h < g && held.is_finite() => held,
+                _ => w,
+            };
+        }
         let (mut lo, mut hi) = (0.0, 1.0);
         for _ in 0..8 {
             let s = 0.5 * (lo + hi);
-            match self.energy_gain(&scaled(s), u0, &u) {
-                Some(gain) if gain <= 0.0 => lo = s,
+            match gain(s) {
+                Some(g) if g <= 0.0 => lo = s,
                 _ => hi = s,
             }
         }
-        let damped = scaled(lo);
+        let damped = blend(lo);
         if damped.is_finite() { damped } else { w }
     }
 }
@@ -1407,4 +1479,96 @@ fn push_mass(
     rb.set_additional_mass_properties(props, true);
     rb.recompute_mass_properties_from_colliders(colliders);
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rapier3d::prelude::RigidBodyBuilder;
+
+    /// The energy check judges the step Rapier will take: its prediction
+    /// (substeps, the turn through `(1, h ω/2)` normalised, the cap on the
+    /// angular speed) against Rapier's own step, at an ordinary step and at
+    /// one whose spin Rapier caps at π/4.
+    #[test]
+    fn the_predicted_step_is_the_one_rapier_takes() {
+        for (spin, dt) in [(0.7, 1.0 / 60.0), (60.0, 1.0 / 10.0)] {
+            let mut world = PhysicsWorld::new();
+            world.integration_parameters.dt = dt as f32;
+            let pose = Isometry3::from_parts(
+                Translation3::new(0.3, -0.2, 0.1),
+                UnitQuaternion::from_euler_angles(0.2, -0.1, 0.4),
+            );
+            let (v0, w0) = (Vector3::new(0.4, -1.1, 0.2), Vector3::new(0.3, -0.5, 1.0) * spin);
+            let handle = world.bodies.insert(
+                RigidBodyBuilder::dynamic()
+                    .pose(convert::to_pose(&pose))
+                    .linvel(convert::to_vector(&v0))
+                    .angvel(convert::to_vector(&w0)),
+            );
+            let mass = MassProperties {
+                mass: 2.0,
+                center_of_mass: Point3::new(0.05, -0.02, 0.01),
+                inertia: Matrix3::new(0.3, 0.01, 0.0, 0.01, 0.5, 0.02, 0.0, 0.02, 0.7),
+            };
+            push_mass("test", &mut world.bodies[handle], &world.colliders, &mass).unwrap();
+            let wrench = Wrench {
+                force: Vector3::new(1.0, 25.0, -2.0),
+                torque: Vector3::new(0.2, -0.1, 0.3),
+            };
+            apply_wrench(&mut world.bodies[handle], &wrench);
+            // The state the generator evaluates at: β dt ahead.
+            let substeps = world.integration_parameters.num_solver_iterations.max(1) as f64;
+            let lookahead = (substeps - 1.0) / (2.0 * substeps) * dt;
+            let rotation = UnitQuaternion::from_scaled_axis(w0 * lookahead) * pose.rotation;
+            let com = (pose * mass.center_of_mass).coords + v0 * lookahead;
+            let state = BodyState {
+                pose: Isometry3::from_parts(
+                    Translation3::from(com - rotation * mass.center_of_mass.coords),
+                    rotation,
+                ),
+                linear_velocity: v0,
+                angular_velocity: w0,
+            };
+            let g = -world.gravity.y as f64;
+            let step = Step::new(
+                &state,
+                &mass,
+                2.0,
+                g,
+                Wrench::default(),
+                dt,
+                substeps,
+                false,
+                true,
+            )
+            .unwrap();
+            let end = step.end(&wrench);
+            world.step();
+            let rb = &world.bodies[handle];
+            let close = |a: Vector3<f64>, b: Vector3<f64>, what: &str| {
+                assert!(
+                    (a - b).norm() <= 1e-4 * (1.0 + b.norm()),
+                    "spin {spin}: {what} {a:?} != {b:?}"
+                );
+            };
+            close(end.v, convert::vector(rb.linvel()), "linear velocity");
+            close(end.w, convert::vector(rb.angvel()), "angular velocity");
+            let after = convert::pose(rb.position());
+            close(
+                (step.com0 + end.dx).coords,
+                (after * mass.center_of_mass).coords,
+                "centre of mass",
+            );
+            assert!(
+                end.rotation.angle_to(&after.rotation) <= 1e-4,
+                "spin {spin}: rotation off by {}",
+                end.rotation.angle_to(&after.rotation)
+            );
+            if spin > 10.0 {
+                // The cap was reached: |ω| = π/(4 dt).
+                assert!((end.w.norm() - std::f64::consts::FRAC_PI_4 / dt).abs() < 1e-9);
+            }
+        }
+    }
 }
