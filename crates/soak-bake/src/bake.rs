@@ -53,10 +53,6 @@ struct Sample {
     triangle: u32,
     bary: [f64; 2],
     centroid: bool,
-    /// Share of its triangle's area, relative to the triangle's other
-    /// samples: 1 for a texel, the slice's fraction of the area for the
-    /// samples of a triangle that covers no texel centre.
-    weight: f64,
 }
 
 /// Edge function of `c` against the directed edge `p → q`, computed with the
@@ -156,60 +152,14 @@ fn rasterise(mesh: &Mesh, t: usize, o: &BakeOptions, out: &mut Vec<Sample>) {
         }
     }
     if out.len() == before {
-        // No texel centre inside: samples along the triangle carry its area.
-        for (bary, weight) in slice_samples(&p) {
-            let c = p[0] + (p[1] - p[0]) * bary[0] + (p[2] - p[0]) * bary[1];
-            let x = (c.x.floor().max(0.0) as u32).min(o.width - 1);
-            let y = (c.y.floor().max(0.0) as u32).min(o.height - 1);
-            let mut s = sample(x, y, t, bary, ts, tiles_x);
-            s.centroid = true;
-            s.weight = weight;
-            out.push(s);
-        }
+        // No texel centre inside: one sample at the centroid carries the area.
+        let c = Point2::from((p[0].coords + p[1].coords + p[2].coords) / 3.0);
+        let x = (c.x.floor().max(0.0) as u32).min(o.width - 1);
+        let y = (c.y.floor().max(0.0) as u32).min(o.height - 1);
+        let mut s = sample(x, y, t, [1.0 / 3.0, 1.0 / 3.0], ts, tiles_x);
+        s.centroid = true;
+        out.push(s);
     }
-}
-
-/// Most samples a triangle that covers no texel centre gets.
-const MAX_SLICES: usize = 64;
-
-/// Samples for a triangle (corners `p`, in texels) that covers no texel
-/// centre: barycentric weights `[λ1, λ2]` of corners 1 and 2, and each
-/// sample's share of the area.
-///
-/// A triangle shorter than a texel gets one sample at its centroid. A
-/// longer one (a sliver thinner than a texel) is cut, parallel to its
-/// shortest side, into `m` slices of equal length, one per texel of its
-/// length (at most [`MAX_SLICES`]): slice `i` holds the points whose
-/// distance from the sharpest corner, along the median to the shortest
-/// side, is between `f_a = i/m` and `f_b = (i + 1)/m` of it. Its area is
-/// `f_b² − f_a²` of the triangle's and its centroid lies on that median at
-/// `f = (2/3)(f_b³ − f_a³)/(f_b² − f_a²)`, where the sample sits with that
-/// share of the area. Every first moment stays exact, and the samples of a
-/// long face split along its diagonal line up across the face, slice by
-/// slice, where one centroid sample per triangle put them a sixth of the
-/// face's width off its middle line, a third of its length apart.
-fn slice_samples(p: &[Point2<f64>; 3]) -> impl Iterator<Item = ([f64; 2], f64)> {
-    // The sharpest corner is the one opposite the shortest side.
-    let side = |k: usize| (p[(k + 2) % 3] - p[(k + 1) % 3]).norm();
-    let apex = (0..3).min_by(|&a, &b| side(a).total_cmp(&side(b))).unwrap_or(0);
-    let centroid = (p[0].coords + p[1].coords + p[2].coords) / 3.0;
-    // The median from the apex to the middle of the opposite side is 3/2 of
-    // the way to the centroid.
-    let length = 1.5 * (centroid - p[apex].coords).norm();
-    let m = if length.is_finite() {
-        (length.ceil() as usize).clamp(1, MAX_SLICES)
-    } else {
-        1
-    };
-    (0..m).map(move |i| {
-        let (a, b) = (i as f64 / m as f64, (i + 1) as f64 / m as f64);
-        let share = b * b - a * a;
-        let f = 2.0 / 3.0 * (b * b * b - a * a * a) / share;
-        // On the median at f: 1 − f at the apex, f/2 at each other corner.
-        let mut w = [0.5 * f; 3];
-        w[apex] = 1.0 - f;
-        ([w[1], w[2]], share)
-    })
 }
 
 #[inline]
@@ -222,7 +172,6 @@ fn sample(x: u32, y: u32, t: usize, bary: [f64; 2], ts: u32, tiles_x: u64) -> Sa
         triangle: t as u32,
         bary,
         centroid: false,
-        weight: 1.0,
     }
 }
 
@@ -242,10 +191,8 @@ pub(crate) fn bake_unchecked(mesh: &Mesh, options: BakeOptions) -> Atlas {
     let origin = nalgebra::center(&lo, &hi);
     let n_tri = mesh.triangles.len();
     let mut texels_per_triangle = vec![0u32; n_tri];
-    let mut weights = vec![0.0f64; n_tri];
     for s in &samples {
         texels_per_triangle[s.triangle as usize] += 1;
-        weights[s.triangle as usize] += s.weight;
     }
     if options.moment_matching {
         match_moments(&mut samples, n_tri);
@@ -253,7 +200,7 @@ pub(crate) fn bake_unchecked(mesh: &Mesh, options: BakeOptions) -> Atlas {
     let per_triangle: Vec<(Vector3<f64>, [Vector3<f64>; 3])> = (0..n_tri)
         .map(|t| {
             let pts = mesh.triangle_points(t).map(|p: Point3<f64>| p - origin);
-            (mesh.triangle_area_vector(t) / weights[t], pts)
+            (mesh.triangle_area_vector(t) / texels_per_triangle[t] as f64, pts)
         })
         .collect();
 
@@ -268,8 +215,7 @@ pub(crate) fn bake_unchecked(mesh: &Mesh, options: BakeOptions) -> Atlas {
     let mut tiles: Vec<Tile> = Vec::new();
     let mut radius2 = 0.0f64;
     for (i, s) in samples.iter().enumerate() {
-        let (unit, [p0, p1, p2]) = &per_triangle[s.triangle as usize];
-        let av = unit * s.weight;
+        let (av, [p0, p1, p2]) = &per_triangle[s.triangle as usize];
         let [l1, l2] = s.bary;
         let p = p0 * (1.0 - l1 - l2) + p1 * l1 + p2 * l2;
         radius2 = radius2.max(p.norm_squared());
@@ -376,76 +322,5 @@ fn match_moments(samples: &mut [Sample], n_tri: usize) {
         let (m, l) = &maps[s.triangle as usize];
         let d = l * nalgebra::Vector2::new(s.bary[0] - m[0], s.bary[1] - m[1]);
         s.bary = [1.0 / 3.0 + d.x, 1.0 / 3.0 + d.y];
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The samples of a triangle that covers no texel centre: their shares
-    /// make its area, their weighted mean is its centroid (the first
-    /// moments exact), each lies inside it, and a sliver gets one per
-    /// texel of its length (at most 64) where a small triangle gets one.
-    #[test]
-    fn slice_samples_keep_the_area_and_the_centroid() {
-        let cases: [([Point2<f64>; 3], usize); 4] = [
-            // Smaller than a texel: its centroid.
-            (
-                [
-                    Point2::new(0.1, 0.1),
-                    Point2::new(0.4, 0.2),
-                    Point2::new(0.2, 0.45),
-                ],
-                1,
-            ),
-            // 12.5 texels long, 0.3 wide, corners in either order.
-            (
-                [
-                    Point2::new(0.0, 0.2),
-                    Point2::new(12.5, 0.2),
-                    Point2::new(12.5, 0.5),
-                ],
-                13,
-            ),
-            (
-                [
-                    Point2::new(12.5, 0.5),
-                    Point2::new(0.0, 0.5),
-                    Point2::new(0.0, 0.2),
-                ],
-                13,
-            ),
-            // Longer than the cap, at a slant.
-            (
-                [
-                    Point2::new(3.0, 1.0),
-                    Point2::new(103.0, 71.0),
-                    Point2::new(103.2, 70.8),
-                ],
-                64,
-            ),
-        ];
-        for (p, count) in cases {
-            let samples: Vec<([f64; 2], f64)> = slice_samples(&p).collect();
-            assert_eq!(samples.len(), count, "{p:?}");
-            let total: f64 = samples.iter().map(|(_, w)| w).sum();
-            assert!((total - 1.0).abs() < 1e-12, "{p:?}: shares sum to {total}");
-            let at = |[l1, l2]: [f64; 2]| p[0] + (p[1] - p[0]) * l1 + (p[2] - p[0]) * l2;
-            let mean = samples
-                .iter()
-                .fold(nalgebra::Vector2::zeros(), |m, (b, w)| m + at(*b).coords * *w);
-            let centroid = (p[0].coords + p[1].coords + p[2].coords) / 3.0;
-            assert!(
-                (mean - centroid).norm() < 1e-9,
-                "{p:?}: mean {mean:?}, centroid {centroid:?}"
-            );
-            for ([l1, l2], w) in &samples {
-                assert!(
-                    *w > 0.0 && *l1 >= 0.0 && *l2 >= 0.0 && l1 + l2 <= 1.0,
-                    "{p:?}: {l1} {l2} {w}"
-                );
-            }
-        }
     }
 }
