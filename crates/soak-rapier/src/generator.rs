@@ -998,10 +998,11 @@ impl Shape {
 /// the generator predicts Rapier's step from the pose now under the
 /// wrench, and where the body would end it with more energy than it began
 /// with (kinetic, gravity's and the columns' [`HydroForces::potential`],
-/// less the drag's work), the velocity it would end with is scaled down
-/// until it does not. A step whose linearisation is far from the truth
-/// (a rod pitched with one end in the water, a square rod rolling over)
-/// then damps the motion instead of flinging the body.
+/// less the drag's work), the velocities it would end with are blended
+/// towards those that hold the body where it is until it does not. A step
+/// whose linearisation is far from the truth (a rod pitched with one end
+/// in the water, a square rod rolling over) then damps the motion instead
+/// of flinging the body.
 #[allow(clippy::too_many_arguments)]
 fn implicit_heave(
     b: &SoakBody,
@@ -1171,8 +1172,8 @@ fn implicit_heave(
 /// Rapier's step of one body as the generator predicts it: from the pose
 /// now, under a constant buoyancy wrench, the drag and gravity, over
 /// `substeps` substeps of symplectic Euler (`y' = y + dt v + c dt² a`,
-/// `v' = v + dt a`, `c = (s + 1)/(2s)`; the same for the turn, without the
-/// gyroscopic term).
+/// `v' = v + dt a`, `c = (s + 1)/(2s)`; the turn with Rapier's
+/// gyroscopic correction and cap on the spin, see [`Step::end`]).
 struct Step<'a> {
     dt: f64,
     /// `(s + 1)/(2s)` for `s` substeps: the step moves the centre by
@@ -1204,26 +1205,26 @@ struct Step<'a> {
     gyroscopic: Option<PrincipalInertia>,
 }
 
-/// Rapier's gyroscopic correction, once per substep: the explicit term
+/// Rapier's gyroscopic correction of `omega`, once per substep `h` of a
+/// body turned by `rotation` with principal inertia `p`: the explicit term
 /// `−ω × Iω h` added to the angular momentum in the principal frame, its
 /// length kept.
-trait Gyroscopic {
-    fn corrected(&self, omega: &Vector3<f64>, rotation: &UnitQuaternion<f64>, h: f64) -> Vector3<f64>;
-}
-
-impl Gyroscopic for PrincipalInertia {
-    fn corrected(&self, omega: &Vector3<f64>, rotation: &UnitQuaternion<f64>, h: f64) -> Vector3<f64> {
-        let axes = rotation * self.frame;
-        let w = axes.inverse() * omega;
-        let momentum = self.moments.component_mul(&w);
-        let total = momentum - w.cross(&momentum) * h;
-        let squared = total.norm_squared();
-        if squared == 0.0 || self.moments.iter().any(|&m| m <= 0.0) {
-            return *omega;
-        }
-        let kept = total * (momentum.norm_squared() / squared).sqrt();
-        axes * kept.component_div(&self.moments)
+fn gyroscopic(
+    p: &PrincipalInertia,
+    omega: &Vector3<f64>,
+    rotation: &UnitQuaternion<f64>,
+    h: f64,
+) -> Vector3<f64> {
+    let axes = rotation * p.frame;
+    let w = axes.inverse() * omega;
+    let momentum = p.moments.component_mul(&w);
+    let total = momentum - w.cross(&momentum) * h;
+    let squared = total.norm_squared();
+    if squared == 0.0 || p.moments.iter().any(|&m| m <= 0.0) {
+        return *omega;
     }
+    let kept = total * (momentum.norm_squared() / squared).sqrt();
+    axes * kept.component_div(&p.moments)
 }
 
 /// Where a predicted [`Step`] ends.
@@ -1277,11 +1278,18 @@ impl<'a> Step<'a> {
         })
     }
 
+    /// Linear and angular acceleration under `w`, the drag and gravity.
+    fn accelerations(&self, w: &Wrench) -> (Vector3<f64>, Vector3<f64>) {
+        (
+            (w.force + self.drag.force) / self.m - Vector3::y() * self.g,
+            self.inverse * (w.torque + self.drag.torque),
+        )
+    }
+
     /// Linear and angular velocity at the end of the step under `w`,
     /// uncapped.
     fn end_velocities(&self, w: &Wrench) -> (Vector3<f64>, Vector3<f64>) {
-        let a = (w.force + self.drag.force) / self.m - Vector3::y() * self.g;
-        let alpha = self.inverse * (w.torque + self.drag.torque);
+        let (a, alpha) = self.accelerations(w);
         (self.v0 + self.dt * a, self.w0 + self.dt * alpha)
     }
 
@@ -1338,16 +1346,15 @@ impl<'a> Step<'a> {
     /// body allows fast rotation) and turning by `h ω` through `(1, h ω/2)`
     /// normalised.
     fn end(&self, w: &Wrench) -> StepEnd {
-        let a = (w.force + self.drag.force) / self.m - Vector3::y() * self.g;
-        let alpha = self.inverse * (w.torque + self.drag.torque);
+        let (a, alpha) = self.accelerations(w);
         let h = self.dt / self.substeps as f64;
         let (mut v, mut omega) = (self.v0, self.w0);
         let (mut dx, mut turn, mut rotation) = (Vector3::zeros(), Vector3::zeros(), self.rot0);
         for _ in 0..self.substeps {
             v += h * a;
             omega += h * alpha;
-            if let Some(gyro) = &self.gyroscopic {
-                omega = gyro.corrected(&omega, &rotation, h);
+            if let Some(p) = &self.gyroscopic {
+                omega = gyroscopic(p, &omega, &rotation, h);
             }
             let speed = omega.norm();
             if let Some(cap) = self.max_angular_speed
