@@ -148,7 +148,11 @@ impl Wrench {
 /// Everything the fluid does to a body in one evaluation, world frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct HydroForces {
-    /// Submerged volume `V_s`, m³.
+    /// Submerged volume `V_s`, m³: `Σ −A_y d` over the submerged texels,
+    /// but in Archimedes mode, for a body wholly under a surface that is
+    /// not a plane, moved towards the enclosed volume as it goes deeper
+    /// (by the weight [`HydroForces::deep`]), which takes out the sampling
+    /// error of `∮ h n_y dA = 0`.
     pub submerged_volume: f64,
     /// Centre of buoyancy, world, m (the body's centre of mass when dry).
     pub center_of_buoyancy: Point3<f64>,
@@ -163,6 +167,14 @@ pub struct HydroForces {
     /// is the torque wherever the body is partly dry, so that on calm water
     /// `½ m v² + ½ ωᵀIω + m g y_G + potential` is conserved.
     pub potential: f64,
+    /// How deep the body is: 0 while any texel is dry, 1 once every texel
+    /// is under water; but in Archimedes mode under a surface that is not
+    /// a plane, `φ = Π min(d_i/r, 1)` over the texels (`r` the bounding
+    /// radius), 1 only once every texel is deeper than `r`: the weight with
+    /// which the force's volume has moved from `Σ −A_y d` to the enclosed
+    /// volume (see [`HydroForces::submerged_volume`]). Below 1 the body is
+    /// at the surface, where its buoyancy changes with its pose.
+    pub deep: f64,
     /// The buoyancy of the mode [`HydroOptions::buoyancy`] selects, N and
     /// N·m about the centre of mass: in Archimedes mode `ρ g V_s` up at the
     /// centre of buoyancy (its torque with the terms that make it the
@@ -265,15 +277,24 @@ impl BuoyancySums {
     }
 }
 
-/// The sum that, with [`BuoyancySums::d2a`], makes Archimedes' torque the
-/// derivative of the water's potential where the surface over a body is
-/// not a plane, with `s = (∂h/∂x, 0, ∂h/∂z)` the surface's slope over a
-/// submerged texel, `w = −A_y d`, and `ρ` the texel's position relative to
-/// the centre of mass (see [`slope_torque`]).
+/// The sums Archimedes' buoyancy takes where the surface over a body is not
+/// a plane, over the submerged texels: with [`BuoyancySums::d2a`], what
+/// makes its torque the derivative of the water's potential (`wrs`, with
+/// `s = (∂h/∂x, 0, ∂h/∂z)` the surface's slope over a texel, `w = −A_y d`,
+/// and `ρ` the texel's position relative to the centre of mass; see
+/// [`slope_torque`]), and what takes the sampling error out of the force on
+/// a body deep under water (`ayr`, `shallow`; see [`deep_volume`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct SlopeSums {
     /// Σ w ρ × s.
     pub wrs: Vector3<f64>,
+    /// Σ A_y r_y, `r` the texel's position from the atlas origin: once
+    /// every texel is under water, the enclosed volume the samples give.
+    pub ayr: f64,
+    /// Σ ln min(d/δ, 1), `δ` the body's bounding radius: `exp` of it is 1
+    /// for a body whose every texel is deeper than `δ` and falls to 0 as
+    /// any one of them comes up to the surface.
+    pub shallow: f64,
 }
 
 impl std::ops::Add for SlopeSums {
@@ -281,17 +302,33 @@ impl std::ops::Add for SlopeSums {
     fn add(self, o: Self) -> Self {
         Self {
             wrs: self.wrs + o.wrs,
+            ayr: self.ayr + o.ayr,
+            shallow: self.shallow + o.shallow,
         }
     }
 }
 
 impl SlopeSums {
     /// Adds a submerged texel (world axes): `rho` from the centre of mass,
-    /// `a` its area vector, `d` its depth and `slope` the surface's over it.
+    /// `ry` the vertical part of its offset from the atlas origin, `a` its
+    /// area vector, `d` its depth, `slope` the surface's over it and
+    /// `delta` the depth past which it counts as deep.
     #[inline]
-    pub(crate) fn add(&mut self, rho: &Vector3<f64>, a: &Vector3<f64>, d: f64, slope: [f64; 2]) {
+    pub(crate) fn add(
+        &mut self,
+        rho: &Vector3<f64>,
+        ry: f64,
+        a: &Vector3<f64>,
+        d: f64,
+        slope: [f64; 2],
+        delta: f64,
+    ) {
         let s = Vector3::new(slope[0], 0.0, slope[1]);
         self.wrs += (-a.y * d) * rho.cross(&s);
+        self.ayr += a.y * ry;
+        if d < delta {
+            self.shallow += (d / delta).ln();
+        }
     }
 }
 
@@ -417,6 +454,9 @@ pub(crate) struct Frame {
     pub com: Vector3<f64>,
     pub plane: Option<(Vector3<f64>, f64)>,
     pub texels: usize,
+    /// Depth past which a texel counts as deep (the bounding radius), m:
+    /// see [`deep_volume`].
+    pub depth_scale: f64,
 }
 
 impl Frame {
@@ -443,6 +483,7 @@ impl Frame {
             com,
             plane,
             texels: atlas.len(),
+            depth_scale: atlas.bounding_radius(),
         }
     }
 
@@ -1012,7 +1053,8 @@ pub fn evaluate(
                         s.b.add_texel(&r, &aw, atlas.areas()[i] as f64, d);
                         if options.buoyancy == BuoyancyMode::Archimedes {
                             let slope = water.surface.slope(p.x, p.z, t, &hint);
-                            s.b.slope.add(&(p - frame.com), &aw, d, slope);
+                            s.b.slope
+                                .add(&(p - frame.com), r.y, &aw, d, slope, frame.depth_scale);
                         }
                         if let Some(drag) = &options.drag {
                             let rc = p - frame.com;
@@ -1107,6 +1149,45 @@ fn slope_torque(frame: &Frame, s: &BuoyancySums) -> Vector3<f64> {
     }
 }
 
+/// The submerged volume Archimedes' force takes, m³: `Σ −A_y d`, but for a
+/// body wholly under a surface that is not a plane, where that sum carries
+/// the sampling error of a zero integral, it tends to the enclosed volume
+/// as the body goes deeper.
+///
+/// Wholly under water, `Σ −A_y d = Σ −A_y (h − Y) + Σ A_y (y − Y)` with `h`
+/// the surface's height over each texel and `Y` the atlas origin's: the
+/// second sum is the volume the samples enclose (`Σ A_y r_y`, exact for
+/// samples whose first moments are their triangles'), the first samples
+/// `−∮ (h − Y) n_y dA`, which is zero for any closed surface since `h`
+/// does not depend on `y`. Under a plane the samples integrate the affine
+/// `h` exactly; under waves or a height field whose features are no
+/// larger than the spacing of the samples (a 200:1 rod's few samples
+/// straddling a step) it is not zero, and a sinking or neutral body feels
+/// it as a force the water's potential does not have, all the way down.
+/// The volume taken is `Σ −A_y d − φ E`, `E` that error, with
+/// `φ = Π min(d_i/δ, 1)` over the texels (`δ` the bounding radius): 0
+/// while any texel is dry and continuous as the last one goes under,
+/// 1 once every texel is deeper than `δ`. The force then differs from the
+/// derivative of the columns' potential only within `δ` of the surface, by
+/// at most `ρ_w g |E|`, so a body that sinks far gains at most
+/// `ρ_w g |E| δ` from it.
+///
+/// Returns the volume and `φ` ([`HydroForces::deep`]).
+fn deep_volume(frame: &Frame, s: &BuoyancySums, archimedes: bool) -> (f64, f64) {
+    if frame.texels == 0 || s.count < frame.texels {
+        return (s.vol, 0.0);
+    }
+    if frame.plane.is_some() || !archimedes {
+        return (s.vol, 1.0);
+    }
+    let phi = s.slope.shallow.exp().clamp(0.0, 1.0);
+    let error = s.vol - s.slope.ayr;
+    if !(phi > 0.0 && error.is_finite()) {
+        return (s.vol, phi);
+    }
+    (s.vol - phi * error, phi)
+}
+
 /// Turns the sums into forces.
 pub(crate) fn finish(
     frame: &Frame,
@@ -1120,7 +1201,8 @@ pub(crate) fn finish(
     let rg = water.density * water.gravity;
     let com = frame.com;
     let ow = frame.ow;
-    let volume = s.vol.max(0.0);
+    let (volume, deep) = deep_volume(frame, s, options.buoyancy == BuoyancyMode::Archimedes);
+    let volume = volume.max(0.0);
     let cb = if s.vol > 0.0 {
         ow + (s.wr + Vector3::y() * s.wd2) / s.vol
     } else {
@@ -1155,6 +1237,7 @@ pub(crate) fn finish(
         wetted_area: s.area,
         submerged_texels: s.count,
         potential: rg * s.wd2,
+        deep,
         buoyancy,
         drag,
         drag_explicit,

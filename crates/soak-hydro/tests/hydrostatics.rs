@@ -733,3 +733,118 @@ fn on_calm_water_archimedes_torque_is_the_derivative_of_the_sampled_potential() 
     let whole = (f.buoyancy.torque - fd).norm() / (RHO * G * f.submerged_volume);
     assert!(whole < 1e-3, "error {whole:.2e} of ρ g V_s · 1 m");
 }
+
+/// A height field with a step: `high` for x < 0 and `-high` for x > 0, the
+/// change between two samples `spacing` apart (bilinear between them).
+fn cliff(high: f64, spacing: f64) -> Water {
+    let n = 41;
+    let origin = -spacing * ((n - 1) / 2) as f64 - 0.5 * spacing;
+    let heights = (0..n * n)
+        .map(|k| if k % n < n / 2 { high } else { -high })
+        .collect();
+    Water::new(soak_hydro::HeightField::new([origin, origin], [spacing, spacing], n, n, heights).unwrap())
+}
+
+/// `Σ −A_y d` over the texels under water and the smallest depth of any
+/// texel, summed here from the surface's depths alone.
+fn sampled_volume(atlas: &Atlas, water: &Water, pose: &Isometry3<f64>) -> (f64, f64) {
+    let mut volume = 0.0;
+    let mut shallowest = f64::INFINITY;
+    for (i, a) in atlas.area_vectors().iter().enumerate() {
+        let p = pose * atlas.position(i);
+        let d = water.surface.depth(&p, 0.0);
+        shallowest = shallowest.min(d);
+        if d > 0.0 {
+            let ay = (pose.rotation * Vector3::new(a[0] as f64, a[1] as f64, a[2] as f64)).y;
+            volume -= ay * d;
+        }
+    }
+    (volume, shallowest)
+}
+
+/// Wholly under a surface that is not a plane, `Σ −A_y d` carries the
+/// sampling error of `∮ h n_y dA`, which is zero for a closed surface: a
+/// 200:1 rod at 32² (one centroid sample per long triangle) pitched across
+/// a cliff's step as tall as its length sums a volume 9 % over its own.
+/// Once every texel is deeper than its bounding radius, Archimedes' force
+/// takes the rod's volume, `2 × 0.01 × 0.01` m³; where the last texel has
+/// only just gone under, it takes the sum as it is (no jump), and in
+/// between it moves from one to the other.
+#[test]
+fn deep_under_a_step_archimedes_takes_the_enclosed_volume() {
+    let mesh = builtin::cuboid(2.0, 0.01, 0.01);
+    let atlas = bake(&mesh, 32);
+    let exact = 2.0 * 0.01 * 0.01;
+    let r = atlas.bounding_radius();
+    let water = cliff(r, 0.1 * r);
+    let turn = UnitQuaternion::from_euler_angles(0.05, 0.0, 0.09);
+    let posed = |y: f64| Isometry3::from_parts(Translation3::new(0.02, y, 0.01), turn);
+    // Deep: every texel more than r under its surface.
+    let (deep_sum, shallowest) = sampled_volume(&atlas, &water, &posed(-3.0 * r));
+    assert!(shallowest > 1.01 * r, "shallowest texel {shallowest} m deep");
+    assert!(
+        (deep_sum - exact).abs() > 0.05 * exact,
+        "the samples' sum {deep_sum} is already the volume {exact}: the case does not test the correction"
+    );
+    eprintln!(
+        "deep: the samples' sum is {:+.2} % off the volume",
+        100.0 * (deep_sum / exact - 1.0)
+    );
+    let f = at(&atlas, &water, posed(-3.0 * r), &HydroOptions::default());
+    assert_eq!(f.deep, 1.0);
+    assert!(
+        (f.submerged_volume - exact).abs() < 1e-6 * exact,
+        "deep: {} m³ against {exact}",
+        f.submerged_volume
+    );
+    assert!((f.buoyancy.force.y - RHO * G * exact).abs() < 1e-6 * RHO * G * exact);
+    // Just under: the last texel 10⁻⁹ r under its surface.
+    let (_, at_zero) = sampled_volume(&atlas, &water, &posed(0.0));
+    let y = at_zero - 1e-9 * r;
+    let (sum, shallowest) = sampled_volume(&atlas, &water, &posed(y));
+    assert!(shallowest > 0.0 && shallowest < 1e-8 * r, "{shallowest}");
+    let f = at(&atlas, &water, posed(y), &HydroOptions::default());
+    assert!(f.deep < 1e-8, "just under: φ = {}", f.deep);
+    assert!(
+        (f.submerged_volume - sum).abs() < 1e-6 * exact,
+        "just under: {} m³ against the samples' {sum}",
+        f.submerged_volume
+    );
+    // In between, the volume lies between the two and φ grows with depth.
+    let mut last = 0.0;
+    for k in 1..10 {
+        let pose = posed(y - 0.2 * r * k as f64);
+        let (sum, _) = sampled_volume(&atlas, &water, &pose);
+        let f = at(&atlas, &water, pose, &HydroOptions::default());
+        assert!(
+            f.deep >= last && f.deep <= 1.0,
+            "{k}: φ = {} after {last}",
+            f.deep
+        );
+        let (lo, hi) = (sum.min(exact), sum.max(exact));
+        assert!(
+            f.submerged_volume >= lo - 1e-6 * exact && f.submerged_volume <= hi + 1e-6 * exact,
+            "{k}: {} outside [{lo}, {hi}]",
+            f.submerged_volume
+        );
+        last = f.deep;
+    }
+    // Partly dry, and under a plane, the sum is taken as it is.
+    let f = at(&atlas, &water, posed(0.0), &HydroOptions::default());
+    assert_eq!(f.deep, 0.0);
+    let (sum, _) = sampled_volume(&atlas, &water, &posed(0.0));
+    assert!(
+        (f.submerged_volume - sum.max(0.0)).abs() < 1e-12,
+        "{} {sum}",
+        f.submerged_volume
+    );
+    let calm = Water::calm(0.0);
+    let f = at(&atlas, &calm, posed(-0.2), &HydroOptions::default());
+    let (sum, _) = sampled_volume(&atlas, &calm, &posed(-0.2));
+    assert_eq!(f.deep, 1.0);
+    assert!(
+        (f.submerged_volume - sum).abs() < 1e-12 * exact,
+        "{} {sum}",
+        f.submerged_volume
+    );
+}

@@ -160,6 +160,8 @@ impl GpuHydro {
                 com,
                 plane,
                 texels: entry.len,
+                // The kernel takes the bounding radius itself (`shallow`).
+                depth_scale: 0.0,
             });
             let first = partials;
             for s in &entry.segments {
@@ -327,7 +329,11 @@ fn decode(q: &[f32]) -> (BuoyancySums, DragSums) {
         area: f(11),
         count: q[12].to_bits() as usize,
         d2a: v(40),
-        slope: SlopeSums { wrs: v(44) },
+        slope: SlopeSums {
+            wrs: v(44),
+            ayr: f(43),
+            shallow: f(47),
+        },
     };
     let kvv = Matrix3::new(f(13), f(14), f(15), f(14), f(16), f(17), f(15), f(17), f(18));
     let kvw = Matrix3::new(f(25), f(26), f(27), f(28), f(29), f(30), f(31), f(32), f(33));

@@ -10,11 +10,12 @@
 //   5: b1, b2, b3, b4       6: b5, Kvw00, Kvw01, Kvw02
 //   7: Kvw10, Kvw11, Kvw12, Kvw20                   8: Kvw21, Kvw22, Kww00, Kww01
 //   9: Kww02, Kww11, Kww12, Kww22
-//  10: d2a.xyz, 0                                11: wrs.xyz, 0
+//  10: d2a.xyz, ayr                              11: wrs.xyz, shallow
 // (K = [[Kvv, Kvw], [Kvwᵀ, Kww]] is symmetric; d2a = Σ (d²/2) A and
 // wrs = Σ w ρ × s are Archimedes' torque sums, `BuoyancySums::d2a` and
-// `SlopeSums` of hydrostatics.rs; wrs only in Archimedes mode under a
-// surface that is not a plane.)
+// `SlopeSums` of hydrostatics.rs, as are ayr = Σ A_y r_y and
+// shallow = Σ ln min(d/δ, 1), δ the bounding radius; those three only in
+// Archimedes mode under a surface that is not a plane.)
 
 const SLOTS: u32 = 12u;
 
@@ -54,6 +55,7 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) l
     let rho = b.linear_velocity.w;
     let cd = b.angular_velocity.w;
     let linear = b.drag.x;
+    let delta = sqrt(bitcast<f32>(radii[b.slot.x]));
 
     // Twelve accumulators indexed by constants only, so compilers keep them in registers.
     var acc: array<vec4<f32>, 12>;
@@ -79,7 +81,12 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) l
             if (b.drag.z > 0.5) {
                 let s2 = surface_slope(b, r, sp);
                 let rho = r - b.com.xyz;
-                acc[11] += vec4<f32>(w * cross(rho, vec3<f32>(s2.x, 0.0, s2.y)), 0.0);
+                var shallow = 0.0;
+                if (d < delta) {
+                    shallow = log(d / delta);
+                }
+                acc[10].w += a.y * r.y;
+                acc[11] += vec4<f32>(w * cross(rho, vec3<f32>(s2.x, 0.0, s2.y)), shallow);
             }
             if (drag_on) {
                 let rc = r - b.com.xyz;
