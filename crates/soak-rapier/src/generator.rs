@@ -1159,12 +1159,13 @@ fn implicit_heave(
     ) else {
         return implicit;
     };
-    // The columns' potential at a pose, and whether the body is partly dry
-    // there.
+    // The columns' potential at a pose, and whether the body is at the
+    // surface there (partly dry, or within its radius of a surface that is
+    // not a plane: see `HydroForces::deep`).
     let potential = |pose: Isometry3<f64>| {
         at_forces(pose)
             .filter(|f| f.potential.is_finite())
-            .map(|f| (f.potential, f.submerged_texels < b.atlas.len()))
+            .map(|f| (f.potential, f.deep < 1.0))
     };
     step.without_energy_gain(implicit, potential)
 }
@@ -1395,11 +1396,15 @@ impl<'a> Step<'a> {
     /// with it divides by `I − c dt² |K|`). The check keeps such a step
     /// from ever handing the body energy the water did not: where the
     /// prediction says the step gains, the motion it would end with is
-    /// damped instead. Where the pose now is wholly under water or its
-    /// potential cannot be evaluated, `w` is returned.
+    /// damped instead. Where the body is deep now (`u` says it is not at
+    /// the surface: see `HydroForces::deep`) or its potential cannot be
+    /// evaluated, `w` is returned.
     fn without_energy_gain(&self, w: Wrench, u: impl Fn(Isometry3<f64>) -> Option<(f64, bool)>) -> Wrench {
-        // Wholly under water now, the buoyancy has no stiffness, and the
-        // potential's terms grow with the depth squared: no check.
+        // Deep under water now, the buoyancy has no stiffness, and the
+        // potential's terms grow with the depth squared: no check. Wholly
+        // under a surface that is not a plane but within the body's radius
+        // of it, the samples can see the surface's steps (a rod across a
+        // cliff), and the step is checked.
         let Some((u0, true)) = u(Isometry3::from_parts(
             Translation3::from(self.com0.coords - self.rot0 * self.com.coords),
             self.rot0,
