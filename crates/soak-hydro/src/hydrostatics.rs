@@ -165,7 +165,9 @@ pub struct HydroForces {
     /// Minus its derivative along a vertical displacement is the vertical
     /// buoyancy, and in Archimedes mode minus its derivative along a turn
     /// is the torque wherever the body is partly dry, so that on calm water
-    /// `½ m v² + ½ ωᵀIω + m g y_G + potential` is conserved.
+    /// `½ m v² + ½ ωᵀIω + m g y_G + potential` is conserved. (0 when read
+    /// from a saved state that predates it.)
+    #[serde(default)]
     pub potential: f64,
     /// How deep the body is: 0 while any texel is dry, 1 once every texel
     /// is under water; but in Archimedes mode under a surface that is not
@@ -173,7 +175,9 @@ pub struct HydroForces {
     /// radius), 1 only once every texel is deeper than `r`: the weight with
     /// which the force's volume has moved from `Σ −A_y d` to the enclosed
     /// volume (see [`HydroForces::submerged_volume`]). Below 1 the body is
-    /// at the surface, where its buoyancy changes with its pose.
+    /// at the surface, where its buoyancy changes with its pose. (0 when
+    /// read from a saved state that predates it.)
+    #[serde(default)]
     pub deep: f64,
     /// The buoyancy of the mode [`HydroOptions::buoyancy`] selects, N and
     /// N·m about the centre of mass: in Archimedes mode `ρ g V_s` up at the

@@ -848,3 +848,22 @@ fn deep_under_a_step_archimedes_takes_the_enclosed_volume() {
         f.submerged_volume
     );
 }
+
+/// Saved forces from before `potential` and `deep` were reported still
+/// load, with those two at 0; the rest round-trips.
+#[test]
+fn forces_saved_without_the_newer_fields_still_load() {
+    let atlas = bake(&builtin::cuboid(1.0, 0.5, 0.8), 32);
+    let pose = Isometry3::translation(0.0, -0.1, 0.0);
+    let f = at(&atlas, &Water::calm(0.0), pose, &HydroOptions::default());
+    assert!(f.potential > 0.0 && f.deep == 0.0);
+    let mut json: serde_json::Value = serde_json::to_value(f).unwrap();
+    let map = json.as_object_mut().unwrap();
+    assert!(map.remove("potential").is_some() && map.remove("deep").is_some());
+    let back: HydroForces = serde_json::from_value(json).unwrap();
+    assert_eq!(back.potential, 0.0);
+    assert_eq!(back.deep, 0.0);
+    assert_eq!(back.submerged_texels, f.submerged_texels);
+    assert!((back.submerged_volume - f.submerged_volume).abs() <= 1e-15 * f.submerged_volume);
+    assert!((back.buoyancy.force - f.buoyancy.force).norm() <= 1e-12 * f.buoyancy.force.norm());
+}
