@@ -150,6 +150,25 @@ fn in_the_sea_a_filling_hull_is_judged_on_going_down() {
     assert_cells_pass(&["sliver/1e3m/0.9/1/240/sea/+ingress"]);
 }
 
+/// The 200:1 rod across the cliff's step with buoyancy alone, its twelve
+/// samples at 32² on either side of a step 60 times its thickness: the
+/// columns they sampled held another body's volume even with the rod
+/// wholly under water, and it gained 1.06–11.8 times its energy allowance
+/// sinking or hanging there (the neutral 1 mm rod ended sinking at
+/// 10 √(g V^(1/3))). Deep under the surface Archimedes' force now takes
+/// the enclosed volume (`HydroForces::deep` in soak-hydro), and within
+/// its radius of the surface the step is checked for energy.
+#[test]
+fn across_the_cliff_the_sliver_keeps_its_energy() {
+    assert_cells_pass(&[
+        "sliver/1m/2/1/10/cliff/buoyancy",
+        "sliver/1m/1/1/10/cliff/buoyancy",
+        "sliver/1m/0.9/1/10/cliff/buoyancy",
+        "sliver/1e-3m/1/1/240/cliff/buoyancy",
+        "sliver/1e-3m/0.5/1/60/cliff/buoyancy",
+    ]);
+}
+
 /// Runs each named cell of the full matrix and requires it to pass.
 fn assert_cells_pass(names: &[&str]) {
     for cell in names {
