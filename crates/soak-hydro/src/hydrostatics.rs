@@ -1184,11 +1184,14 @@ fn deep_volume(frame: &Frame, s: &BuoyancySums, archimedes: bool) -> (f64, f64) 
     if frame.plane.is_some() || !archimedes {
         return (s.vol, 1.0);
     }
-    let phi = s.slope.shallow.exp().clamp(0.0, 1.0);
+    let phi = s.slope.shallow.exp();
     let error = s.vol - s.slope.ayr;
     if !(phi > 0.0 && error.is_finite()) {
-        return (s.vol, phi);
+        // At the surface (φ = 0, or a sum that is not a number): the sum
+        // as it is.
+        return (s.vol, 0.0);
     }
+    let phi = phi.min(1.0);
     (s.vol - phi * error, phi)
 }
 
