@@ -479,7 +479,7 @@ fn balloon(seconds: f64, out: &Path) -> anyhow::Result<String> {
 fn sinking_boats(seconds: f64, out: &Path) -> anyhow::Result<String> {
     use soak_graph::{Flooding, FlowOptions, Format, Permeability, parse_graph};
     use soak_rapier::liquid::{self, LiquidBody, pitch_degrees};
-    let graph_text = include_str!("../../../data/graphs/boat.toml");
+    let graph_text = include_str!("../graphs/boat.toml");
     let mesh = builtin::boat(4.0, 1.2, 0.6);
     let atlas = Atlas::bake(&mesh, BakeOptions::square(128))?;
     let mut world = World::new(Water::calm(0.0), 1.0 / 30.0);

@@ -32,7 +32,7 @@ pub fn render_stills(out: &Path, quick: bool) -> Result<Vec<String>> {
     lines.push(scene_still(
         out,
         "buoy",
-        include_str!("../../../data/scenes/buoy_on_waves.toml"),
+        include_str!("../scenes/buoy_on_waves.toml"),
         "data/scenes/buoy_on_waves.toml",
         0.5,
         true,
@@ -40,7 +40,7 @@ pub fn render_stills(out: &Path, quick: bool) -> Result<Vec<String>> {
     lines.push(scene_still(
         out,
         "sinking_boat",
-        include_str!("../../../data/scenes/sinking_boat.toml"),
+        include_str!("../scenes/sinking_boat.toml"),
         "data/scenes/sinking_boat.toml",
         if quick { 0.1 } else { 0.35 },
         false,

@@ -13,7 +13,7 @@ use std::sync::OnceLock;
 
 use nalgebra::{Isometry3, Point3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
-use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuError, GpuHydro, GpuOptions, adapter_label, headless_device};
+use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuError, GpuHydro, GpuHydroError, GpuOptions, adapter_label};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HeightField, HydroForces, HydroOptions, MassModel,
     MassProperties, Plane, Surface, Unbounded, Water, evaluate,
@@ -42,20 +42,7 @@ type Device = (wgpu::Device, wgpu::Queue, wgpu::AdapterInfo);
 /// on after 6 s: tests running in parallel on one GL device could trip it).
 /// `None` (with a notice) when there is no adapter, a failure under `CI=true`.
 fn device() -> Option<Device> {
-    static ANNOUNCE: std::sync::Once = std::sync::Once::new();
-    match headless_device() {
-        Ok(d) => {
-            ANNOUNCE.call_once(|| eprintln!("GPU tests on {}", adapter_label(&d.2)));
-            Some(d)
-        }
-        Err(e) => {
-            if std::env::var("CI").as_deref() == Ok("true") {
-                panic!("no GPU adapter under CI=true: {e}");
-            }
-            eprintln!("no GPU adapter: skipping ({e})");
-            None
-        }
-    }
+    soak_hydro::gpu::test_device()
 }
 
 fn hydro(d: &Device) -> GpuHydro {
@@ -710,18 +697,24 @@ fn deformation_on_the_gpu_matches_refresh() {
     let b = &baked(256)[0];
     let plain = gpu.upload(&b.atlas).unwrap();
     let positions = b.mesh.positions.clone();
-    assert_eq!(gpu.deform(plain, &positions), Err(GpuError::NotDeformable(plain)));
+    assert_eq!(
+        gpu.deform(plain, &positions),
+        Err(GpuHydroError::NotDeformable(plain))
+    );
     let id = gpu.upload_deformable(&b.atlas, &b.mesh.triangles).unwrap();
     assert!(matches!(
         gpu.deform(id, &positions[1..]),
-        Err(GpuError::VertexCount { .. })
+        Err(GpuHydroError::VertexCount { .. })
     ));
     let mut bad = positions.clone();
     bad[7].y = f64::NAN;
-    assert_eq!(gpu.deform(id, &bad), Err(GpuError::NonFiniteVertex { vertex: 7 }));
+    assert_eq!(
+        gpu.deform(id, &bad),
+        Err(GpuHydroError::NonFiniteVertex { vertex: 7 })
+    );
     assert!(matches!(
         gpu.upload_deformable(&b.atlas, &b.mesh.triangles[1..]),
-        Err(GpuError::Triangles { .. })
+        Err(GpuHydroError::Triangles { .. })
     ));
 }
 
@@ -828,7 +821,7 @@ fn an_atlas_larger_than_the_binding_limit_is_split_and_agrees() {
         })
         .collect();
     match small.evaluate_batch(&many, 0.0) {
-        Err(e @ GpuError::TooLarge { needed, limit: l, .. }) => {
+        Err(e @ GpuHydroError::Gpu(GpuError::TooLarge { needed, limit: l, .. })) => {
             assert!(needed > l && l == limit);
             eprintln!("refused as expected: {e}");
         }
@@ -836,7 +829,7 @@ fn an_atlas_larger_than_the_binding_limit_is_split_and_agrees() {
     }
     assert!(matches!(
         GpuHydro::with_options(&d.0, &d.1, GpuOptions::default().with_max_storage_binding(1000)),
-        Err(GpuError::LimitTooSmall { .. })
+        Err(GpuHydroError::Gpu(GpuError::LimitTooSmall { .. }))
     ));
 }
 
@@ -862,13 +855,13 @@ fn a_custom_surface_is_a_typed_error() {
     let options = HydroOptions::default();
     assert_eq!(
         gpu.hydro.evaluate(id, &custom, &state, &b.mass, 0.0, &options),
-        Err(GpuError::UnsupportedSurface { body: 0 })
+        Err(GpuHydroError::UnsupportedSurface { body: 0 })
     );
     let batch: Vec<GpuBody> = (0..5)
         .map(|k| GpuBody::from((id, if k == 3 { &custom } else { &calm }, state, b.mass, options)))
         .collect();
     let e = gpu.hydro.evaluate_batch(&batch, 0.0).unwrap_err();
-    assert_eq!(e, GpuError::UnsupportedSurface { body: 3 });
+    assert_eq!(e, GpuHydroError::UnsupportedSurface { body: 3 });
     eprintln!("{e}");
     // The CPU evaluates it.
     assert!(evaluate(&b.atlas, &custom, &state, &b.mass, 0.0, &options).is_ok());
@@ -891,7 +884,7 @@ fn non_finite_input_is_a_typed_error() {
     s.pose.translation.vector.x = f64::NAN;
     assert_eq!(
         eval(&s, &b.mass, 0.0, &water),
-        Err(GpuError::NonFiniteState {
+        Err(GpuHydroError::NonFiniteState {
             body: 0,
             field: "pose"
         })
@@ -900,7 +893,7 @@ fn non_finite_input_is_a_typed_error() {
     s.linear_velocity.z = f64::INFINITY;
     assert_eq!(
         eval(&s, &b.mass, 0.0, &water),
-        Err(GpuError::NonFiniteState {
+        Err(GpuHydroError::NonFiniteState {
             body: 0,
             field: "linear_velocity"
         })
@@ -909,7 +902,7 @@ fn non_finite_input_is_a_typed_error() {
     s.angular_velocity.y = f64::NAN;
     assert_eq!(
         eval(&s, &b.mass, 0.0, &water),
-        Err(GpuError::NonFiniteState {
+        Err(GpuHydroError::NonFiniteState {
             body: 0,
             field: "angular_velocity"
         })
@@ -918,23 +911,23 @@ fn non_finite_input_is_a_typed_error() {
     m.inertia[(1, 1)] = f64::NAN;
     assert_eq!(
         eval(&ok, &m, 0.0, &water),
-        Err(GpuError::NonFiniteState {
+        Err(GpuHydroError::NonFiniteState {
             body: 0,
             field: "mass"
         })
     );
     assert_eq!(
         eval(&ok, &b.mass, f64::NAN, &water),
-        Err(GpuError::NonFiniteState { body: 0, field: "t" })
+        Err(GpuHydroError::NonFiniteState { body: 0, field: "t" })
     );
     assert!(matches!(
         eval(&ok, &b.mass, 0.0, &plane().with_density(-1.0)),
-        Err(GpuError::Water { body: 0, .. })
+        Err(GpuHydroError::Water { body: 0, .. })
     ));
     assert!(matches!(
         gpu.hydro
             .mass_properties(id, &MassModel::Solid { density: f64::NAN }),
-        Err(GpuError::Mass(_))
+        Err(GpuHydroError::Mass(_))
     ));
     assert!(matches!(
         gpu.hydro.mass_properties(
@@ -943,7 +936,7 @@ fn non_finite_input_is_a_typed_error() {
                 areal_density: vec![1.0; 3]
             }
         ),
-        Err(GpuError::Mass(_))
+        Err(GpuHydroError::Mass(_))
     ));
     // An id from another GpuHydro.
     let mut other = hydro(d);
@@ -952,7 +945,7 @@ fn non_finite_input_is_a_typed_error() {
     let fresh = hydro(d);
     assert_eq!(
         fresh.evaluate(foreign, &water, &ok, &b.mass, 0.0, &options),
-        Err(GpuError::UnknownAtlas(foreign))
+        Err(GpuHydroError::UnknownAtlas(foreign))
     );
     // Still works after all those refusals.
     assert!(eval(&ok, &b.mass, 0.0, &water).is_ok());

@@ -23,7 +23,7 @@ impl std::fmt::Debug for GpuBackend {
     }
 }
 
-fn gpu_err(e: soak_hydro::gpu::GpuError) -> SoakError {
+fn gpu_err(e: soak_hydro::gpu::GpuHydroError) -> SoakError {
     SoakError::Gpu(e.to_string())
 }
 
@@ -58,7 +58,7 @@ impl GpuBackend {
         water: &Water,
         work: &[(usize, BodyState, HydroOptions)],
         t: f64,
-    ) -> Result<Vec<HydroForces>, soak_hydro::gpu::GpuError> {
+    ) -> Result<Vec<HydroForces>, soak_hydro::gpu::GpuHydroError> {
         let batch: Vec<GpuBody<'_>> = work
             .iter()
             .map(|(k, state, options)| GpuBody {

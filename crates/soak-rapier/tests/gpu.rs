@@ -6,18 +6,10 @@ use soak_bake::{Atlas, BakeOptions, load_mesh};
 use soak_hydro::{Drag, Gerstner, GerstnerWave, MassModel, Water};
 use soak_rapier::{BodyDesc, Effects, ForceGenerator};
 
+/// A device of its own for the test; `None` without an adapter (a failure
+/// under `CI=true`).
 fn device() -> Option<(wgpu::Device, wgpu::Queue)> {
-    match soak_hydro::gpu::headless_device() {
-        Ok((d, q, info)) => {
-            eprintln!("adapter: {}", soak_hydro::gpu::adapter_label(&info));
-            Some((d, q))
-        }
-        Err(e) if std::env::var("CI").is_ok_and(|v| v == "true") => panic!("no GPU adapter under CI: {e}"),
-        Err(e) => {
-            eprintln!("no GPU adapter ({e}): skipping");
-            None
-        }
-    }
+    soak_hydro::gpu::test_device().map(|(d, q, _)| (d, q))
 }
 
 fn world(

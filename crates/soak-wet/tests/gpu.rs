@@ -10,7 +10,7 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use soak_bake::{Atlas, BakeOptions, builtin};
 use soak_hydro::{Gerstner, GerstnerWave, HeightField, Water};
-use soak_wet::gpu::{GpuWetError, GpuWetting, adapter_label, headless_device};
+use soak_wet::gpu::{GpuWetError, GpuWetting};
 use soak_wet::prelude::*;
 
 /// Per-texel tolerance, as a fraction of the saturation, and relative
@@ -22,20 +22,7 @@ type Device = (wgpu::Device, wgpu::Queue, wgpu::AdapterInfo);
 /// A headless device of its own for each test; `None` (with a notice)
 /// without an adapter, a failure under `CI=true`.
 fn device() -> Option<Device> {
-    static ANNOUNCE: std::sync::Once = std::sync::Once::new();
-    match headless_device() {
-        Ok(d) => {
-            ANNOUNCE.call_once(|| eprintln!("GPU tests on {}", adapter_label(&d.2)));
-            Some(d)
-        }
-        Err(e) => {
-            if std::env::var("CI").as_deref() == Ok("true") {
-                panic!("no GPU adapter under CI=true: {e}");
-            }
-            eprintln!("no GPU adapter: skipping ({e})");
-            None
-        }
-    }
+    soak_wet::gpu::test_device()
 }
 
 fn sea() -> Water {

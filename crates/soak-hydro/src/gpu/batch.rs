@@ -2,10 +2,9 @@
 
 use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 
-use super::error::{GpuAtlasId, GpuError};
+use super::error::{GpuAtlasId, GpuHydroError};
 use super::hydro::GpuHydro;
 use super::layout::{Body, Dispatch, HYDRO_SLOTS, ITEM_TEXELS, Item, dispatch_bytes};
-use super::scope::{read_back, scoped};
 use super::surface::{HeightFields, encode_surface};
 use crate::error::HydroError;
 use crate::hydrostatics::{
@@ -13,6 +12,7 @@ use crate::hydrostatics::{
 };
 use crate::mass::MassProperties;
 use crate::water::Water;
+use soak_gpu::{GpuError, read_back, scoped};
 
 /// One body of a batch: its atlas on the device, its water, state, mass
 /// properties and options (as for [`crate::evaluate`]).
@@ -56,16 +56,16 @@ fn v4(v: &Vector3<f64>, w: f64) -> [f32; 4] {
     [v.x as f32, v.y as f32, v.z as f32, w as f32]
 }
 
-fn check(index: usize, b: &GpuBody<'_>) -> Result<(), GpuError> {
+fn check(index: usize, b: &GpuBody<'_>) -> Result<(), GpuHydroError> {
     b.water
         .validate()
-        .map_err(|source| GpuError::Water { body: index, source })?;
+        .map_err(|source| GpuHydroError::Water { body: index, source })?;
     b.state.check().map_err(|e| match e {
-        HydroError::NonFiniteState { field } => GpuError::NonFiniteState { body: index, field },
-        other => GpuError::Mass(other),
+        HydroError::NonFiniteState { field } => GpuHydroError::NonFiniteState { body: index, field },
+        other => GpuHydroError::Mass(other),
     })?;
     if !b.mass.is_finite() {
-        return Err(GpuError::NonFiniteState {
+        return Err(GpuHydroError::NonFiniteState {
             body: index,
             field: "mass",
         });
@@ -74,7 +74,7 @@ fn check(index: usize, b: &GpuBody<'_>) -> Result<(), GpuError> {
         .drag
         .is_some_and(|d| !(d.coefficient.is_finite() && d.linear.is_finite()))
     {
-        return Err(GpuError::NonFiniteState {
+        return Err(GpuHydroError::NonFiniteState {
             body: index,
             field: "drag",
         });
@@ -92,7 +92,7 @@ impl GpuHydro {
         mass: &MassProperties,
         t: f64,
         options: &HydroOptions,
-    ) -> Result<HydroForces, GpuError> {
+    ) -> Result<HydroForces, GpuHydroError> {
         let body = GpuBody {
             atlas,
             water,
@@ -107,12 +107,12 @@ impl GpuHydro {
     /// atlas, water, pose and options: one submission (one dispatch per page
     /// of texels, one for the reduction) and one readback of 192 bytes per
     /// body. Results are in the order of `bodies`.
-    pub fn evaluate_batch(&self, bodies: &[GpuBody<'_>], t: f64) -> Result<Vec<HydroForces>, GpuError> {
+    pub fn evaluate_batch(&self, bodies: &[GpuBody<'_>], t: f64) -> Result<Vec<HydroForces>, GpuHydroError> {
         if bodies.is_empty() {
             return Ok(Vec::new());
         }
         if !t.is_finite() {
-            return Err(GpuError::NonFiniteState { body: 0, field: "t" });
+            return Err(GpuHydroError::NonFiniteState { body: 0, field: "t" });
         }
         let n = bodies.len();
         let mut gpu_bodies = Vec::with_capacity(n);
@@ -183,9 +183,9 @@ impl GpuHydro {
         }
 
         let limit = self.limit;
-        let too_large = |what, needed: u64| -> Result<(), GpuError> {
+        let too_large = |what, needed: u64| -> Result<(), GpuHydroError> {
             if needed > limit {
-                Err(GpuError::TooLarge { what, needed, limit })
+                Err(GpuError::TooLarge { what, needed, limit }.into())
             } else {
                 Ok(())
             }
@@ -223,7 +223,7 @@ impl GpuHydro {
         let s = &mut *scratch;
         let device = &self.device;
         let queue = &self.queue;
-        scoped(device, "evaluating a batch", partial_bytes, || {
+        scoped::<_, GpuHydroError>(device, "evaluating a batch", partial_bytes, || {
             let cap = limit;
             let body_buf = s.bodies.ensure(device, (n * size_of::<Body>()) as u64, cap);
             queue.write_buffer(body_buf, 0, bytemuck::cast_slice(&gpu_bodies));
@@ -252,7 +252,7 @@ impl GpuHydro {
                     label: Some("soak hydrostatics"),
                     timestamp_writes: None,
                 });
-                pass.set_pipeline(&self.kernels.buoyancy.pipeline);
+                pass.set_pipeline(self.kernels.buoyancy.pipeline());
                 for (k, (page, g)) in groups.iter().enumerate() {
                     let bind = self.kernels.buoyancy.bind(
                         device,
@@ -270,7 +270,7 @@ impl GpuHydro {
                     pass.set_bind_group(0, &bind, &[(k as u64 * super::layout::DISPATCH_STRIDE) as u32]);
                     pass.dispatch_workgroups(g[0], g[1], 1);
                 }
-                pass.set_pipeline(&self.kernels.reduce_hydro.pipeline);
+                pass.set_pipeline(self.kernels.reduce_hydro.pipeline());
                 let bind = self.kernels.reduce_hydro.bind(
                     device,
                     &[

@@ -1,6 +1,6 @@
 // Buoyancy and drag sums per texel, reduced per work item (first pass).
 //
-// Composed after shaders/hydro_bindings.wgsl and shaders/water_surface.wgsl.
+// Composed after bindings.wgsl and water_surface.wgsl.
 // Mirrors `BuoyancySums::add_texel` and `DragSums::add_texel` of
 // hydrostatics.rs in f32, with positions relative to the atlas origin. One
 // work item (WG * PER_THREAD texels of one body) makes one partial of SLOTS

@@ -3,10 +3,10 @@
 
 use nalgebra::Point3;
 
-use super::error::{GpuAtlasId, GpuError};
+use super::error::{GpuAtlasId, GpuHydroError};
 use super::hydro::GpuHydro;
 use super::layout::{DISPATCH_STRIDE, Dispatch, ITEM_TEXELS, Item, TEXEL_BYTES, dispatch_bytes};
-use super::scope::{read_back, scoped};
+use soak_gpu::{read_back, scoped};
 
 /// An atlas's texels as the device holds them.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,17 +25,20 @@ impl GpuHydro {
     /// kernel recomputes every texel's position from its barycentrics and its
     /// area vector from its triangle's new area, like `Atlas::refresh` on the
     /// CPU. Nothing comes back.
-    pub fn deform(&mut self, id: GpuAtlasId, positions: &[Point3<f64>]) -> Result<(), GpuError> {
+    pub fn deform(&mut self, id: GpuAtlasId, positions: &[Point3<f64>]) -> Result<(), GpuHydroError> {
         let entry = self.entry(id)?;
-        let deformable = entry.deformable.as_ref().ok_or(GpuError::NotDeformable(id))?;
+        let deformable = entry
+            .deformable
+            .as_ref()
+            .ok_or(GpuHydroError::NotDeformable(id))?;
         if positions.len() != deformable.vertex_count {
-            return Err(GpuError::VertexCount {
+            return Err(GpuHydroError::VertexCount {
                 given: positions.len(),
                 expected: deformable.vertex_count,
             });
         }
         if let Some(vertex) = positions.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
-            return Err(GpuError::NonFiniteVertex { vertex });
+            return Err(GpuHydroError::NonFiniteVertex { vertex });
         }
         let o = entry.origin;
         let vertices: Vec<[f32; 4]> = positions
@@ -77,7 +80,7 @@ impl GpuHydro {
         let queue = &self.queue;
         let mut scratch = self.scratch.lock().unwrap_or_else(|p| p.into_inner());
         let s = &mut *scratch;
-        scoped(device, "deforming an atlas", (vertices.len() * 16) as u64, || {
+        scoped::<_, GpuHydroError>(device, "deforming an atlas", (vertices.len() * 16) as u64, || {
             queue.write_buffer(&deformable.vertices, 0, bytemuck::cast_slice(&vertices));
             queue.write_buffer(&self.radii, id.0 as u64 * 4, bytemuck::bytes_of(&0u32));
             let item_buf = s
@@ -95,7 +98,7 @@ impl GpuHydro {
                     label: Some("soak deformation"),
                     timestamp_writes: None,
                 });
-                pass.set_pipeline(&self.kernels.deform.pipeline);
+                pass.set_pipeline(self.kernels.deform.pipeline());
                 for (k, (page, g)) in groups.iter().enumerate() {
                     let page = &self.pages[*page];
                     let bind = self.kernels.deform.bind(
@@ -121,13 +124,13 @@ impl GpuHydro {
 
     /// Reads an atlas's texels back from the device (for tests and tools:
     /// this waits for the queue and copies the whole atlas).
-    pub fn download(&self, id: GpuAtlasId) -> Result<GpuTexels, GpuError> {
+    pub fn download(&self, id: GpuAtlasId) -> Result<GpuTexels, GpuHydroError> {
         let entry = self.entry(id)?;
         let bytes = entry.len as u64 * TEXEL_BYTES + 16;
         let mut scratch = self.scratch.lock().unwrap_or_else(|p| p.into_inner());
         let s = &mut *scratch;
         let device = &self.device;
-        scoped(device, "reading texels back", bytes, || {
+        scoped::<_, GpuHydroError>(device, "reading texels back", bytes, || {
             let staging = s.staging.ensure(device, bytes, u64::MAX);
             let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
             for seg in &entry.segments {

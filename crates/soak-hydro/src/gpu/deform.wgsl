@@ -3,7 +3,7 @@
 // new triangle area over the triangle's texel count, and the bounding radius
 // (its square's bits, atomically maxed into radii[dispatch.mode]).
 //
-// Composed after shaders/hydro_bindings.wgsl. Page layout: texels[2i] =
+// Composed after bindings.wgsl. Page layout: texels[2i] =
 // (position - origin, |A|), texels[2i + 1] = (A, 0); tribary[i] =
 // (bits of the triangle id, λ1, λ2, 0).
 

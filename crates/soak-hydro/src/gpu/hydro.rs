@@ -5,10 +5,10 @@ use std::sync::Mutex;
 use nalgebra::Point3;
 use soak_bake::Atlas;
 
-use super::error::{GpuAtlasId, GpuError};
+use super::error::{GpuAtlasId, GpuHydroError};
 use super::kernels::Kernels;
 use super::layout::{ITEM_TEXELS, TEXEL_BYTES, TRIBARY_BYTES};
-use super::scope::scoped;
+use soak_gpu::{GpuError, scoped};
 
 /// Construction options of a [`GpuHydro`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -224,7 +224,7 @@ const MIN_LIMIT: u64 = ITEM_TEXELS as u64 * TEXEL_BYTES;
 
 impl GpuHydro {
     /// Compiles the kernels on `device`, with the device's limits.
-    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Self, GpuError> {
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Self, GpuHydroError> {
         Self::with_options(device, queue, GpuOptions::default())
     }
 
@@ -233,7 +233,7 @@ impl GpuHydro {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         options: GpuOptions,
-    ) -> Result<Self, GpuError> {
+    ) -> Result<Self, GpuHydroError> {
         let limits = device.limits();
         let mut limit = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
         if let Some(cap) = options.max_storage_binding {
@@ -244,10 +244,11 @@ impl GpuHydro {
             return Err(GpuError::LimitTooSmall {
                 limit,
                 minimum: MIN_LIMIT,
-            });
+            }
+            .into());
         }
         let kernels = Kernels::new(device)?;
-        let radii = scoped(device, "allocating the radius buffer", 256, || {
+        let radii = scoped::<_, GpuHydroError>(device, "allocating the radius buffer", 256, || {
             Ok(radii_buffer(device, 64))
         })?;
         Ok(Self {
@@ -275,17 +276,19 @@ impl GpuHydro {
     }
 
     /// Number of pages the atlas `id` spans (more than one when it was split).
-    pub fn atlas_pages(&self, id: GpuAtlasId) -> Result<usize, GpuError> {
+    pub fn atlas_pages(&self, id: GpuAtlasId) -> Result<usize, GpuHydroError> {
         Ok(self.entry(id)?.segments.len())
     }
 
-    pub(crate) fn entry(&self, id: GpuAtlasId) -> Result<&Entry, GpuError> {
-        self.atlases.get(id.0 as usize).ok_or(GpuError::UnknownAtlas(id))
+    pub(crate) fn entry(&self, id: GpuAtlasId) -> Result<&Entry, GpuHydroError> {
+        self.atlases
+            .get(id.0 as usize)
+            .ok_or(GpuHydroError::UnknownAtlas(id))
     }
 
     /// Uploads an atlas's texels (positions relative to its origin and area
     /// vectors), once; evaluate it by the returned id.
-    pub fn upload(&mut self, atlas: &Atlas) -> Result<GpuAtlasId, GpuError> {
+    pub fn upload(&mut self, atlas: &Atlas) -> Result<GpuAtlasId, GpuHydroError> {
         self.upload_inner(atlas, None)
     }
 
@@ -296,8 +299,8 @@ impl GpuHydro {
         &mut self,
         atlas: &Atlas,
         triangles: &[[u32; 3]],
-    ) -> Result<GpuAtlasId, GpuError> {
-        let bad = |triangle: usize, detail: &'static str| GpuError::Triangles {
+    ) -> Result<GpuAtlasId, GpuHydroError> {
+        let bad = |triangle: usize, detail: &'static str| GpuHydroError::Triangles {
             triangle,
             detail,
             triangles: atlas.triangle_count(),
@@ -324,7 +327,8 @@ impl GpuHydro {
                     what,
                     needed,
                     limit: self.limit,
-                });
+                }
+                .into());
             }
         }
         self.upload_inner(atlas, Some(triangles))
@@ -334,17 +338,18 @@ impl GpuHydro {
         &mut self,
         atlas: &Atlas,
         triangles: Option<&[[u32; 3]]>,
-    ) -> Result<GpuAtlasId, GpuError> {
+    ) -> Result<GpuAtlasId, GpuHydroError> {
         let n = atlas.len();
         if n == 0 {
-            return Err(GpuError::EmptyAtlas);
+            return Err(GpuHydroError::EmptyAtlas);
         }
         if n >= (u32::MAX / 2) as usize {
             return Err(GpuError::TooLarge {
                 what: "an atlas",
                 needed: n as u64 * TEXEL_BYTES,
                 limit: (u32::MAX / 2) as u64 * TEXEL_BYTES,
-            });
+            }
+            .into());
         }
         let mut texels = Vec::with_capacity(2 * n);
         for ((x, a), &area) in atlas
@@ -364,7 +369,7 @@ impl GpuHydro {
             .collect();
         let device = self.device.clone();
         let bytes = n as u64 * (TEXEL_BYTES + TRIBARY_BYTES);
-        scoped(&device, "uploading an atlas", bytes, || {
+        scoped::<_, GpuHydroError>(&device, "uploading an atlas", bytes, || {
             let segments = self.place(&texels, &tribary);
             let slot = self.atlases.len() as u32;
             self.ensure_radii(slot + 1);

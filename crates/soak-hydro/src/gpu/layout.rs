@@ -1,5 +1,5 @@
 //! Buffer layouts shared with the kernels: `#[repr(C)]` bytemuck structs
-//! mirrored field by field in `shaders/hydro_bindings.wgsl`. Only `[f32; 4]`,
+//! mirrored field by field in `bindings.wgsl`. Only `[f32; 4]`,
 //! `[u32; 4]` and `u32` fields, so no WGSL alignment padding can hide.
 
 use bytemuck::{Pod, Zeroable};
@@ -28,29 +28,51 @@ pub(crate) const SURFACE_GERSTNER: u32 = 1;
 pub(crate) const SURFACE_HEIGHT_FIELD: u32 = 2;
 pub(crate) const SURFACE_UNBOUNDED: u32 = 3;
 
-/// One body of a batch (WGSL `Body`).
+/// One body of a batch (WGSL `Body`): its pose and its water surface, seen
+/// from the body's atlas origin `o_w` in world axes, so f32 keeps its
+/// precision anywhere in the world.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
-pub(crate) struct Body {
+pub struct Body {
+    /// First row of the rotation object → world (w unused).
     pub rot0: [f32; 4],
+    /// Second row of the rotation object → world (w unused).
     pub rot1: [f32; 4],
+    /// Third row of the rotation object → world (w unused).
     pub rot2: [f32; 4],
+    /// Plane or unbounded medium: unit normal xyz, w = offset − n·o_w (m).
+    /// Gerstner: x = mean level − o_w.y (m). Height field: x, y = grid
+    /// coordinates of o_w, z, w = 1/spacing (1/m).
     pub surface: [f32; 4],
+    /// Gerstner: x, y = world x, z of o_w (m). Height field: x = reference
+    /// height − o_w.y (m).
     pub surface2: [f32; 4],
+    /// Uniform fluid velocity (plane, height field, unbounded), m/s.
     pub current: [f32; 4],
+    /// Centre of mass − o_w, world axes, m.
     pub com: [f32; 4],
+    /// xyz: velocity of the centre of mass (m/s); w: fluid density (kg/m³).
     pub linear_velocity: [f32; 4],
+    /// xyz: angular velocity (rad/s); w: quadratic drag coefficient.
     pub angular_velocity: [f32; 4],
+    /// x: linear skin friction (N s/m per m²); y: 1 when drag is wanted;
+    /// z: 1 when Archimedes' slope sum is wanted.
     pub drag: [f32; 4],
+    /// x: surface kind (`SURFACE_*`); y: first wave or first height sample;
+    /// z: wave count or samples along x; w: samples along z.
     pub info: [u32; 4],
+    /// x: atlas slot (bounding radius for the unbounded medium).
     pub slot: [u32; 4],
 }
 
-/// One Gerstner wave (WGSL `Wave`).
+/// One Gerstner wave (WGSL `Wave`), its phase at the body's origin and time
+/// folded in.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
-pub(crate) struct Wave {
+pub struct Wave {
+    /// Direction x, direction z, wavenumber k (1/m), angular frequency (rad/s).
     pub a: [f32; 4],
+    /// Q·A (m), amplitude (m), phase k d·o_w − ω t + φ (rad), unused.
     pub b: [f32; 4],
 }
 

@@ -1,6 +1,6 @@
 // Mass-property sums per texel, reduced per work item (first pass).
 //
-// Composed after shaders/hydro_bindings.wgsl. Mirrors `volume_moments` and
+// Composed after bindings.wgsl. Mirrors `volume_moments` and
 // `shell` of mass.rs in f32 (positions relative to the atlas origin):
 // dispatch.mode 0 is the solid (the ten divergence-theorem sums), 1 a shell
 // of uniform areal density dispatch.param.x, 2 a shell with one areal density

@@ -3,18 +3,18 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::error::{GpuAtlasId, GpuError};
+use super::error::{GpuAtlasId, GpuHydroError};
 use super::hydro::GpuHydro;
 use super::layout::{Dispatch, ITEM_TEXELS, Item, MASS_SLOTS, dispatch_bytes};
-use super::scope::{read_back, scoped};
 use crate::error::HydroError;
 use crate::mass::{MassModel, MassProperties, VolumeMoments, inertia_from_second_moment, parallel_axis};
+use soak_gpu::{GpuError, read_back, scoped};
 
 const SOLID: u32 = 0;
 const SHELL_UNIFORM: u32 = 1;
 const SHELL_TEXTURE: u32 = 2;
 
-fn check_density(what: &'static str, value: f64) -> Result<(), GpuError> {
+fn check_density(what: &'static str, value: f64) -> Result<(), GpuHydroError> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
@@ -25,7 +25,7 @@ fn check_density(what: &'static str, value: f64) -> Result<(), GpuError> {
 impl GpuHydro {
     /// Volume moments of the solid bounded by the atlas, about its origin:
     /// [`crate::volume_moments`] on the device.
-    pub fn volume_moments(&self, id: GpuAtlasId) -> Result<VolumeMoments, GpuError> {
+    pub fn volume_moments(&self, id: GpuAtlasId) -> Result<VolumeMoments, GpuHydroError> {
         let s = self.mass_sums(id, SOLID, 0.0, None)?;
         let (sxx, syy, szz) = (s[4] / 3.0, s[5] / 3.0, s[6] / 3.0);
         let (sxy, syz, szx) = (s[7], s[8], s[9]);
@@ -41,7 +41,11 @@ impl GpuHydro {
     /// [`MassModel::mass_properties`] on the device. A per-texel areal
     /// density ([`MassModel::ShellTexture`]) is uploaded with each call, so
     /// it may change every frame.
-    pub fn mass_properties(&self, id: GpuAtlasId, model: &MassModel) -> Result<MassProperties, GpuError> {
+    pub fn mass_properties(
+        &self,
+        id: GpuAtlasId,
+        model: &MassModel,
+    ) -> Result<MassProperties, GpuHydroError> {
         match model {
             MassModel::Solid { density } => {
                 check_density("solid", *density)?;
@@ -77,7 +81,7 @@ impl GpuHydro {
     }
 
     /// The tail of [`crate::mass::shell`]: sums about the origin to mass properties.
-    fn shell(&self, id: GpuAtlasId, s: &[f64; 10]) -> Result<MassProperties, GpuError> {
+    fn shell(&self, id: GpuAtlasId, s: &[f64; 10]) -> Result<MassProperties, GpuHydroError> {
         let mass = s[0];
         let o = self.entry(id)?.origin;
         if mass <= 0.0 {
@@ -99,7 +103,7 @@ impl GpuHydro {
         mode: u32,
         sigma: f32,
         densities: Option<&[f32]>,
-    ) -> Result<[f64; 10], GpuError> {
+    ) -> Result<[f64; 10], GpuHydroError> {
         let entry = self.entry(id)?;
         let mut per_page: Vec<Vec<Item>> = vec![Vec::new(); self.pages.len()];
         let mut partials = 0u32;
@@ -127,7 +131,7 @@ impl GpuHydro {
             ("the areal density texture", density_bytes),
         ] {
             if needed > limit {
-                return Err(GpuError::TooLarge { what, needed, limit });
+                return Err(GpuError::TooLarge { what, needed, limit }.into());
             }
         }
         let items: Vec<Item> = per_page.concat();
@@ -149,7 +153,7 @@ impl GpuHydro {
         let s = &mut *scratch;
         let device = &self.device;
         let queue = &self.queue;
-        scoped(
+        scoped::<_, GpuHydroError>(
             device,
             "computing mass properties",
             partial_bytes + density_bytes,
@@ -179,7 +183,7 @@ impl GpuHydro {
                         label: Some("soak mass properties"),
                         timestamp_writes: None,
                     });
-                    pass.set_pipeline(&self.kernels.mass.pipeline);
+                    pass.set_pipeline(self.kernels.mass.pipeline());
                     for (k, (page, g)) in groups.iter().enumerate() {
                         let bind = self.kernels.mass.bind(
                             device,
@@ -194,7 +198,7 @@ impl GpuHydro {
                         pass.set_bind_group(0, &bind, &[(k as u64 * super::layout::DISPATCH_STRIDE) as u32]);
                         pass.dispatch_workgroups(g[0], g[1], 1);
                     }
-                    pass.set_pipeline(&self.kernels.reduce_mass.pipeline);
+                    pass.set_pipeline(self.kernels.reduce_mass.pipeline());
                     let bind = self.kernels.reduce_mass.bind(
                         device,
                         &[

@@ -4,7 +4,7 @@
 //! [`GpuHydro`] keeps atlases on a device the caller provides and evaluates
 //! the per-texel sums of [`crate::evaluate`] there: one kernel transforms
 //! each texel, finds its depth under the water surface (plane, Gerstner sea,
-//! height field or unbounded medium, in `shaders/water_surface.wgsl`) and
+//! height field or unbounded medium, in [`wgsl::WATER_SURFACE`]) and
 //! sums buoyancy and drag terms per workgroup; a second reduces the partials
 //! per body. The sums come back (192 bytes per body) and the CPU turns them
 //! into [`crate::HydroForces`] with the code [`crate::evaluate`] uses, the
@@ -25,18 +25,18 @@
 
 mod batch;
 mod deform;
-mod device;
 mod error;
 mod hydro;
 mod kernels;
 mod layout;
 mod mass_properties;
-mod scope;
 mod surface;
+pub mod wgsl;
 
 pub use batch::GpuBody;
 pub use deform::GpuTexels;
-pub use device::{adapter_label, headless_device, is_software};
-pub use error::{GpuAtlasId, GpuError};
+pub use error::{GpuAtlasId, GpuHydroError};
 pub use hydro::{GpuHydro, GpuOptions};
 pub use kernels::kernel_sources;
+/// The device helpers every GPU path of soak shares, re-exported from soak-gpu.
+pub use soak_gpu::{GpuError, adapter_label, headless_device, is_software, test_device};

@@ -1,7 +1,7 @@
 // Second pass: sums each output's run of partials (one workgroup per
 // output: a body of a batch, or an atlas for the mass properties).
 //
-// Composed after shaders/hydro_bindings.wgsl and a prelude that defines
+// Composed after bindings.wgsl and a prelude that defines
 // `const SLOTS: u32` (vec4s per partial) and `const COUNT_SLOT: u32` (the
 // slot whose x holds a texel count, summed exactly in u32 and written as
 // its bits; SLOTS when there is none).

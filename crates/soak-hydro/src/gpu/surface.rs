@@ -3,14 +3,15 @@
 
 use nalgebra::Vector3;
 
-use super::error::GpuError;
+use super::error::GpuHydroError;
 use super::layout::{Body, SURFACE_GERSTNER, SURFACE_HEIGHT_FIELD, SURFACE_PLANE, SURFACE_UNBOUNDED, Wave};
 use crate::error::WaterError;
 use crate::water::{Gerstner, HeightField, Plane, Unbounded, Water};
 
-/// Height fields of one batch, uploaded once each however many bodies share them.
-#[derive(Default)]
-pub(crate) struct HeightFields {
+/// The height samples of the height fields of one batch, each field stored
+/// once however many bodies share it (the WGSL binding `heights`).
+#[derive(Debug, Default)]
+pub struct HeightFields {
     /// Heights minus each field's reference, m, all fields end to end.
     pub samples: Vec<f32>,
     /// (field address, first sample, reference height).
@@ -55,9 +56,16 @@ fn v4(v: &Vector3<f64>, w: f64) -> [f32; 4] {
     [v.x as f32, v.y as f32, v.z as f32, w as f32]
 }
 
-/// Fills the surface fields of `body` for water `water` seen from the
-/// body's atlas origin at world position `ow`, at time `t`.
-pub(crate) fn encode_surface(
+/// Fills the surface fields of `body` (`surface`, `surface2`, `current`,
+/// `info`) for `water` seen from the body's atlas origin at world position
+/// `ow` (m), at time `t` (s), appending its waves to `waves` and its height
+/// samples to `heights`. The rest of `body` is the caller's.
+///
+/// # Errors
+/// [`GpuHydroError::UnsupportedSurface`] for a surface the kernels do not know
+/// (a custom [`crate::Surface`]), [`GpuHydroError::Water`] for invalid water;
+/// both name the body as `index`.
+pub fn encode_surface(
     index: usize,
     water: &Water,
     ow: &Vector3<f64>,
@@ -65,15 +73,15 @@ pub(crate) fn encode_surface(
     body: &mut Body,
     waves: &mut Vec<Wave>,
     heights: &mut HeightFields,
-) -> Result<(), GpuError> {
+) -> Result<(), GpuHydroError> {
     let any = water
         .surface
         .as_any()
-        .ok_or(GpuError::UnsupportedSurface { body: index })?;
+        .ok_or(GpuHydroError::UnsupportedSurface { body: index })?;
     if let Some(p) = any.downcast_ref::<Plane>() {
         let n = p.normal;
         if !(n.iter().all(|c| c.is_finite()) && n.y > 0.0 && p.offset.is_finite()) {
-            return Err(GpuError::Water {
+            return Err(GpuHydroError::Water {
                 body: index,
                 source: WaterError::PlaneNormal { normal: n.into() },
             });
@@ -110,7 +118,7 @@ pub(crate) fn encode_surface(
     } else if let Some(h) = any.downcast_ref::<HeightField>() {
         let (first, reference) = heights
             .add(h)
-            .map_err(|source| GpuError::Water { body: index, source })?;
+            .map_err(|source| GpuHydroError::Water { body: index, source })?;
         body.info = [SURFACE_HEIGHT_FIELD, first, h.nx as u32, h.nz as u32];
         body.surface = [
             ((ow.x - h.origin[0]) / h.spacing[0]) as f32,
@@ -124,7 +132,7 @@ pub(crate) fn encode_surface(
         body.info[0] = SURFACE_UNBOUNDED;
         body.current = v4(&Vector3::from(u.current), 0.0);
     } else {
-        return Err(GpuError::UnsupportedSurface { body: index });
+        return Err(GpuHydroError::UnsupportedSurface { body: index });
     }
     Ok(())
 }

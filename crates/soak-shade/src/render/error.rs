@@ -10,49 +10,12 @@ use crate::error::ParameterError;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum RenderError {
-    /// No adapter on any enabled backend.
-    #[error(
-        "no GPU adapter found ({reason}); on Debian install mesa-vulkan-drivers and libvulkan1 \
-         (lavapipe) or libegl1, libegl-mesa0 and libgl1-mesa-dri (llvmpipe), or pick a backend \
-         with WGPU_BACKEND=vulkan|gl"
-    )]
-    NoAdapter {
-        /// wgpu's reason.
-        reason: String,
-    },
-    /// The adapter refused the device request.
-    #[error("requesting a device from {adapter} failed: {reason}")]
-    RequestDevice {
-        /// The adapter's label.
-        adapter: String,
-        /// wgpu's reason.
-        reason: String,
-    },
-    /// The device was lost (driver reset, destroyed device).
-    #[error("the GPU device was lost while {what}: {reason}")]
-    DeviceLost {
-        /// The operation.
-        what: &'static str,
-        /// wgpu's reason.
-        reason: String,
-    },
-    /// The device ran out of memory.
-    #[error("out of GPU memory while {what} ({bytes} bytes requested)")]
-    OutOfMemory {
-        /// The operation.
-        what: &'static str,
-        /// Bytes that operation allocated (an estimate).
-        bytes: u64,
-    },
-    /// wgpu rejected an operation (a bug in soak, or a device below what
-    /// the renderer needs, e.g. no renderable `Rgba16Float`).
-    #[error("wgpu rejected {what}: {message}")]
-    Validation {
-        /// The operation.
-        what: &'static str,
-        /// wgpu's message.
-        message: String,
-    },
+    /// The device: no adapter, a lost device, out of memory, a command wgpu
+    /// rejects (a bug in soak, or a device below what the renderer needs,
+    /// e.g. no renderable `Rgba16Float`); soak-gpu's errors, shared by every
+    /// GPU path of soak.
+    #[error(transparent)]
+    Gpu(#[from] soak_gpu::GpuError),
     /// An image size the renderer cannot make.
     #[error("{what} is {width}×{height} pixels; each side must be in 1..={max}")]
     ImageSize {
@@ -129,21 +92,4 @@ pub enum RenderError {
         /// What is wrong.
         detail: String,
     },
-}
-
-impl From<soak_hydro::gpu::GpuError> for RenderError {
-    fn from(e: soak_hydro::gpu::GpuError) -> Self {
-        use soak_hydro::gpu::GpuError as G;
-        match e {
-            G::NoAdapter { reason } => RenderError::NoAdapter { reason },
-            G::RequestDevice { adapter, reason } => RenderError::RequestDevice { adapter, reason },
-            G::DeviceLost { what, reason } => RenderError::DeviceLost { what, reason },
-            G::OutOfMemory { what, bytes } => RenderError::OutOfMemory { what, bytes },
-            G::Validation { what, message } => RenderError::Validation { what, message },
-            other => RenderError::Validation {
-                what: "requesting a device",
-                message: other.to_string(),
-            },
-        }
-    }
 }

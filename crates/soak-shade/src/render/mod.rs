@@ -32,7 +32,6 @@
 
 pub mod camera;
 pub mod colour;
-pub mod device;
 pub mod error;
 mod geometry;
 mod gpu_types;
@@ -51,7 +50,6 @@ mod validation;
 /// The font type of [`MaterialSweep::font`] (ab_glyph's).
 pub use ab_glyph::FontArc as Font;
 pub use camera::{Camera, Projection};
-pub use device::{adapter_label, headless_device, is_software};
 pub use error::RenderError;
 pub use liquid_texture::liquid_image_from_texels;
 pub use material_sweep::{MaterialSweep, SweepColumn, SweepRow, SweepWetness, material_sweep};
@@ -62,4 +60,6 @@ pub use scene::{
     Albedo, Arrow, DebugView, DirectionalLight, Environment, LiquidImage, RenderObject, RenderScene,
     RenderWater, ToneMap, WaterShape,
 };
+/// The device helpers every GPU path of soak shares, re-exported from soak-gpu.
+pub use soak_gpu::{GpuError, adapter_label, headless_device, is_software, test_device};
 pub use subsurface::{Subsurface, SubsurfaceGaussian};

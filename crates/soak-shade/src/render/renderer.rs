@@ -7,7 +7,6 @@ use nalgebra::{Matrix4, Point3, Vector3};
 use wgpu::util::DeviceExt;
 
 use super::camera::{light_view_projection, to_gpu};
-use super::device::{read_back, scoped};
 use super::error::RenderError;
 use super::geometry::{arrow_vertices, cull_to_view, water_grid};
 use super::gpu_types::{FrameUniform, PostUniform, WaterUniform};
@@ -18,6 +17,7 @@ use super::scene::{Albedo, DebugView, RenderObject, RenderScene, ToneMap, WaterS
 use super::upload::{CachedAlbedo, CachedMesh, GpuObject, MeshBuffer, MeshKey};
 use crate::fresnel::fresnel_f0;
 use crate::specular::alpha_from_roughness;
+use soak_gpu::{GpuError, read_back, scoped};
 
 /// Construction-time settings of a [`Renderer`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -134,10 +134,10 @@ impl Renderer {
     ///
     /// # Errors
     /// [`RenderError::ImageSize`] for a zero or oversized image;
-    /// [`RenderError::Validation`] if the device cannot compile the
+    /// [`GpuError::Validation`] if the device cannot compile the
     /// shaders or make the targets (it needs renderable, blendable,
     /// filterable `Rgba16Float`, as WebGPU guarantees);
-    /// [`RenderError::OutOfMemory`].
+    /// [`GpuError::OutOfMemory`].
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -168,7 +168,7 @@ impl Renderer {
         check_size("the shadow map", s, s, max)?;
         let bytes = u64::from(width) * u64::from(height) * (8 * u64::from(options.sample_count) + 24)
             + 4 * u64::from(s) * u64::from(s);
-        scoped(device, "creating the renderer", bytes, || {
+        scoped::<_, RenderError>(device, "creating the renderer", bytes, || {
             let pipelines = Pipelines::new(device, options.sample_count);
             let targets = Self::make_targets(device, width, height, options.sample_count);
             let shadow_map = device
@@ -309,7 +309,7 @@ impl Renderer {
     /// Changes the image size (reallocates the targets).
     ///
     /// # Errors
-    /// [`RenderError::ImageSize`], [`RenderError::OutOfMemory`].
+    /// [`RenderError::ImageSize`], [`GpuError::OutOfMemory`].
     pub fn resize(&mut self, width: u32, height: u32) -> Result<(), RenderError> {
         if (width, height) == self.size() {
             return Ok(());
@@ -319,7 +319,7 @@ impl Renderer {
         let device = self.device.clone();
         let samples = self.options.sample_count;
         let bytes = u64::from(width) * u64::from(height) * (8 * u64::from(samples) + 24);
-        self.targets = scoped(&device, "resizing the renderer", bytes, || {
+        self.targets = scoped::<_, RenderError>(&device, "resizing the renderer", bytes, || {
             Ok(Self::make_targets(&device, width, height, samples))
         })?;
         Ok(())
@@ -332,8 +332,8 @@ impl Renderer {
     /// Scene problems ([`RenderError::Material`], [`RenderError::Mesh`],
     /// [`RenderError::MissingUvs`], [`RenderError::Texture`],
     /// [`RenderError::SegmentCount`], [`RenderError::Scene`]) before any
-    /// GPU work; GPU failures ([`RenderError::OutOfMemory`],
-    /// [`RenderError::DeviceLost`], [`RenderError::Validation`]).
+    /// GPU work; GPU failures ([`GpuError::OutOfMemory`],
+    /// [`GpuError::DeviceLost`], [`GpuError::Validation`]).
     pub fn render(&mut self, scene: &RenderScene) -> Result<image::RgbaImage, RenderError> {
         let data = self.render_padded(scene)?;
         let (w, h) = self.size();
@@ -342,10 +342,13 @@ impl Renderer {
         for y in 0..h as usize {
             pixels.extend_from_slice(&data[y * row..y * row + 4 * w as usize]);
         }
-        image::RgbaImage::from_raw(w, h, pixels).ok_or(RenderError::Validation {
-            what: "reading the image back",
-            message: "the readback has the wrong size".into(),
-        })
+        image::RgbaImage::from_raw(w, h, pixels).ok_or(
+            GpuError::Validation {
+                what: "reading the image back",
+                message: "the readback has the wrong size".into(),
+            }
+            .into(),
+        )
     }
 
     fn render_padded(&mut self, scene: &RenderScene) -> Result<Vec<u8>, RenderError> {
@@ -358,7 +361,7 @@ impl Renderer {
         for c in self.albedos.values_mut() {
             c.used = false;
         }
-        let result = scoped(&device, "rendering a frame", bytes, || self.encode(scene));
+        let result = scoped::<_, RenderError>(&device, "rendering a frame", bytes, || self.encode(scene));
         // Keep what this frame used, drop the rest (and everything after a
         // failure).
         let ok = result.is_ok();
@@ -366,12 +369,12 @@ impl Renderer {
         self.albedos.retain(|_, c| ok && c.used);
         result?;
         let t = &self.targets;
-        read_back(
+        Ok(read_back(
             &self.device,
             &t.readback,
             u64::from(t.padded_row) * u64::from(t.height),
             "reading the image back",
-        )
+        )?)
     }
 
     fn frame_uniform(&self, scene: &RenderScene, shadow: Option<Matrix4<f64>>, radius: f64) -> FrameUniform {

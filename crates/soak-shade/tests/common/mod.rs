@@ -3,7 +3,6 @@
 
 use nalgebra::{Point2, Point3};
 use soak_bake::Mesh;
-use soak_shade::render::{adapter_label, headless_device};
 
 /// A device, queue and adapter description.
 pub type Device = (wgpu::Device, wgpu::Queue, wgpu::AdapterInfo);
@@ -12,20 +11,7 @@ pub type Device = (wgpu::Device, wgpu::Queue, wgpu::AdapterInfo);
 /// serialises a device's work behind one context lock). `None`, with a
 /// notice, when there is no adapter; a failure under `CI=true`.
 pub fn device() -> Option<Device> {
-    static ANNOUNCE: std::sync::Once = std::sync::Once::new();
-    match headless_device() {
-        Ok(d) => {
-            ANNOUNCE.call_once(|| eprintln!("GPU tests on {}", adapter_label(&d.2)));
-            Some(d)
-        }
-        Err(e) => {
-            if std::env::var("CI").as_deref() == Ok("true") {
-                panic!("no GPU adapter under CI=true: {e}");
-            }
-            eprintln!("no GPU adapter: skipping ({e})");
-            None
-        }
-    }
+    soak_shade::render::test_device()
 }
 
 /// A flat square plate of side `side` (m) in the xz plane at y = 0, facing

@@ -1,7 +1,7 @@
 // soak-wet: buffer layouts of the wetting kernels (feature `gpu`).
 //
-// Composed after shaders/hydro_bindings.wgsl (Body, Wave, SURFACE_*) and
-// shaders/water_surface.wgsl. `Params` mirrors the `#[repr(C)]` bytemuck
+// Composed after soak-hydro's bindings.wgsl (Body, Wave, SURFACE_*) and
+// water_surface.wgsl. `Params` mirrors the `#[repr(C)]` bytemuck
 // struct in crates/soak-wet/src/gpu/layout.rs field by field: vec4 fields
 // only, so WGSL's alignment rules insert no hidden padding.
 

@@ -1,15 +1,12 @@
-//! The compute pipelines: WGSL composed from soak-hydro's shared
-//! `shaders/` (bindings and water surfaces) and the kernels beside this file.
+//! The compute pipelines: WGSL composed from soak-hydro's buffer layouts and
+//! water surfaces ([`soak_hydro::gpu::wgsl`]) and the kernels beside this
+//! file.
 
-use std::borrow::Cow;
+use soak_gpu::{Binding, GpuError, Kernel, scoped};
+use soak_hydro::gpu::wgsl::{BINDINGS as HYDRO_BINDINGS, WATER_SURFACE as WATER};
 
-use soak_hydro::gpu::GpuError;
+use super::layout::Params;
 
-use super::scope::scoped;
-
-/// soak-hydro's buffer layouts (Body, Wave) and water surfaces (top-level `shaders/`).
-const HYDRO_BINDINGS: &str = include_str!("../../../../shaders/hydro_bindings.wgsl");
-const WATER: &str = include_str!("../../../../shaders/water_surface.wgsl");
 const BINDINGS: &str = include_str!("bindings.wgsl");
 const EXCHANGE: &str = include_str!("exchange.wgsl");
 const GATHER: &str = include_str!("gather.wgsl");
@@ -38,19 +35,6 @@ pub fn kernel_sources() -> Vec<(&'static str, String)> {
     ]
 }
 
-/// How a kernel sees one binding.
-#[derive(Clone, Copy)]
-enum Slot {
-    Read,
-    ReadWrite,
-    Uniform,
-}
-
-pub(crate) struct Kernel {
-    pub layout: wgpu::BindGroupLayout,
-    pub pipeline: wgpu::ComputePipeline,
-}
-
 pub(crate) struct Kernels {
     pub exchange: Kernel,
     pub gather: Kernel,
@@ -64,87 +48,24 @@ pub(crate) struct Kernels {
 
 impl Kernels {
     pub(crate) fn new(device: &wgpu::Device) -> Result<Self, GpuError> {
-        use Slot::*;
+        use Binding::{Read, ReadWrite};
+        // The last binding of every kernel: the step's `Params`.
+        let params = Binding::Uniform {
+            size: size_of::<Params>() as u64,
+        };
         let sources = kernel_sources();
         scoped(device, "compiling the wetting kernels", 0, || {
-            let make = |i: usize, slots: &[Slot]| kernel(device, sources[i].0, &sources[i].1, slots);
+            let make = |i: usize, slots: &[Binding]| Kernel::new(device, sources[i].0, &sources[i].1, slots);
             Ok(Self {
-                exchange: make(0, &[Read, ReadWrite, Read, Read, Read, Read, Read, Uniform]),
-                gather: make(1, &[Read, Read, Read, Read, Read, ReadWrite, ReadWrite, Uniform]),
-                substep: make(2, &[Read, ReadWrite, Read, Read, Read, Uniform]),
-                finish: make(3, &[Read, Read, Read, ReadWrite, Uniform]),
-                activity: make(4, &[Read, Read, Read, ReadWrite, Uniform]),
-                delta: make(5, &[Read, Read, Read, Read, Read, Read, ReadWrite, Uniform]),
-                residual: make(6, &[Read, Read, Read, Read, Read, ReadWrite, Uniform]),
-                scatter: make(7, &[Read, ReadWrite, Read, Read, Read, Read, Read, Uniform]),
+                exchange: make(0, &[Read, ReadWrite, Read, Read, Read, Read, Read, params]),
+                gather: make(1, &[Read, Read, Read, Read, Read, ReadWrite, ReadWrite, params]),
+                substep: make(2, &[Read, ReadWrite, Read, Read, Read, params]),
+                finish: make(3, &[Read, Read, Read, ReadWrite, params]),
+                activity: make(4, &[Read, Read, Read, ReadWrite, params]),
+                delta: make(5, &[Read, Read, Read, Read, Read, Read, ReadWrite, params]),
+                residual: make(6, &[Read, Read, Read, Read, Read, ReadWrite, params]),
+                scatter: make(7, &[Read, ReadWrite, Read, Read, Read, Read, Read, params]),
             })
-        })
-    }
-}
-
-fn kernel(device: &wgpu::Device, label: &str, source: &str, slots: &[Slot]) -> Kernel {
-    let entries: Vec<wgpu::BindGroupLayoutEntry> = slots
-        .iter()
-        .enumerate()
-        .map(|(i, s)| wgpu::BindGroupLayoutEntry {
-            binding: i as u32,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: match s {
-                Slot::Read | Slot::ReadWrite => wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Storage {
-                        read_only: matches!(s, Slot::Read),
-                    },
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                Slot::Uniform => wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: wgpu::BufferSize::new(size_of::<super::layout::Params>() as u64),
-                },
-            },
-            count: None,
-        })
-        .collect();
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(label),
-        entries: &entries,
-    });
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(source)),
-    });
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &[Some(&layout)],
-        immediate_size: 0,
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(label),
-        layout: Some(&pipeline_layout),
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    Kernel { layout, pipeline }
-}
-
-impl Kernel {
-    /// A bind group of whole buffers in binding order.
-    pub(crate) fn bind(&self, device: &wgpu::Device, buffers: &[&wgpu::Buffer]) -> wgpu::BindGroup {
-        let entries: Vec<wgpu::BindGroupEntry> = buffers
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry {
-                binding: i as u32,
-                resource: b.as_entire_binding(),
-            })
-            .collect();
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: None,
-            layout: &self.layout,
-            entries: &entries,
         })
     }
 }

@@ -1,8 +1,8 @@
 //! Buffer layouts shared with the kernels: `#[repr(C)]` bytemuck structs
-//! mirrored field by field in WGSL. `Params` is `bindings.wgsl`'s; `Body`
-//! and `Wave` are soak-hydro's `shaders/hydro_bindings.wgsl` ones, whose
-//! water-surface functions the exchange kernel calls. Only `[f32; 4]` and
-//! `[u32; 4]` fields, so no WGSL alignment padding can hide.
+//! mirrored field by field in WGSL: `Params` is `bindings.wgsl`'s. The
+//! exchange kernel also reads soak-hydro's `Body` and `Wave`
+//! ([`soak_hydro::gpu::wgsl`]). Only `[f32; 4]` and `[u32; 4]` fields, so no
+//! WGSL alignment padding can hide.
 
 use bytemuck::{Pod, Zeroable};
 
@@ -19,11 +19,6 @@ pub(crate) const REGION_EVERYWHERE: u32 = 0;
 pub(crate) const REGION_DISC: u32 = 1;
 pub(crate) const REGION_BOX: u32 = 2;
 
-pub(crate) const SURFACE_PLANE: u32 = 0;
-pub(crate) const SURFACE_GERSTNER: u32 = 1;
-pub(crate) const SURFACE_HEIGHT_FIELD: u32 = 2;
-pub(crate) const SURFACE_UNBOUNDED: u32 = 3;
-
 /// Per-step constants (WGSL `Params`, a uniform).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
@@ -36,33 +31,6 @@ pub(crate) struct Params {
     pub info: [u32; 4],
     pub dims: [u32; 4],
     pub info2: [u32; 4],
-}
-
-/// soak-hydro's WGSL `Body`: the pose and the water surface seen from the
-/// atlas origin (only the fields `surface_at` reads are filled).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
-pub(crate) struct Body {
-    pub rot0: [f32; 4],
-    pub rot1: [f32; 4],
-    pub rot2: [f32; 4],
-    pub surface: [f32; 4],
-    pub surface2: [f32; 4],
-    pub current: [f32; 4],
-    pub com: [f32; 4],
-    pub linear_velocity: [f32; 4],
-    pub angular_velocity: [f32; 4],
-    pub drag: [f32; 4],
-    pub info: [u32; 4],
-    pub slot: [u32; 4],
-}
-
-/// soak-hydro's WGSL `Wave`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
-pub(crate) struct Wave {
-    pub a: [f32; 4],
-    pub b: [f32; 4],
 }
 
 /// Workgroups `(x, y)` for one invocation per element of `count`, and the
@@ -80,8 +48,6 @@ mod tests {
     #[test]
     fn sizes_match_the_wgsl() {
         assert_eq!(size_of::<Params>(), 8 * 16);
-        assert_eq!(size_of::<Body>(), 12 * 16);
-        assert_eq!(size_of::<Wave>(), 32);
     }
 
     #[test]

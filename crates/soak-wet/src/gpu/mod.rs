@@ -6,7 +6,7 @@
 //! diffusion) its voxel field on that device:
 //!
 //! - `exchange.wgsl`: absorption, rain and evaporation per texel, with the
-//!   water depth from soak-hydro's `shaders/water_surface.wgsl` (plane,
+//!   water depth from soak-hydro's water surfaces ([`soak_hydro::gpu::wgsl`]; plane,
 //!   Gerstner sea, height field);
 //! - `gather.wgsl`: texels → voxels (liquid volume or Shepard average), one
 //!   invocation per defined voxel summing its texels in a fixed order (no
@@ -22,16 +22,14 @@
 //! The binning (which texel lies in which voxel, neighbour lists) is built
 //! on the CPU at upload with the same code as [`crate::Wetting`] and never
 //! changes (a body's field lives in object space). Device helpers come from
-//! soak-hydro ([`headless_device`], [`adapter_label`], [`is_software`]).
+//! soak-gpu ([`headless_device`], [`adapter_label`], [`is_software`]).
 
 mod error;
 mod kernels;
 mod layout;
-mod scope;
-mod surface;
 mod wetting;
 
 pub use error::GpuWetError;
 pub use kernels::kernel_sources;
-pub use soak_hydro::gpu::{GpuError, adapter_label, headless_device, is_software};
+pub use soak_gpu::{GpuError, adapter_label, headless_device, is_software, test_device};
 pub use wetting::{GpuStep, GpuWetBody, GpuWetting};

@@ -3,16 +3,16 @@
 
 use nalgebra::{Isometry3, Point3, Vector3};
 use soak_bake::Atlas;
-use soak_hydro::gpu::GpuError;
+use soak_gpu::{GpuError, read_back, scoped};
+use soak_hydro::gpu::wgsl::{Body, HeightFields, Wave, encode_surface};
 use soak_hydro::{SurfaceKind, Water};
 
 use super::error::GpuWetError;
 use super::kernels::Kernels;
 use super::layout::{
-    Body, FLAG_RAINING, FLAG_WET_POSSIBLE, MODE_CONSERVATIVE, MODE_THESIS, Params, REGION_BOX, REGION_DISC,
-    REGION_EVERYWHERE, Wave, groups,
+    FLAG_RAINING, FLAG_WET_POSSIBLE, MODE_CONSERVATIVE, MODE_THESIS, Params, REGION_BOX, REGION_DISC,
+    REGION_EVERYWHERE, groups,
 };
-use super::scope::{read_back, scoped};
 use crate::diffusion::{Diffusion, DiffusionMode, SubstepPlan};
 use crate::environment::{Environment, EnvironmentResponse};
 use crate::exchange::Rates;
@@ -237,7 +237,7 @@ impl GpuWetting {
         };
         let device = &self.device;
         let bytes = n as u64 * 40;
-        let body = scoped(device, "uploading a wet body", bytes, || {
+        let body = scoped::<_, GpuError>(device, "uploading a wet body", bytes, || {
             let texel_buf = self.filled("soak-wet texels", &texels)?;
             let liquid_buf = self.filled("soak-wet liquid", &h)?;
             let permeability_buf = self.filled("soak-wet permeability", &perm)?;
@@ -429,7 +429,7 @@ impl GpuWetting {
     /// Reads the body's liquid texture back (m per texel, atlas order).
     pub fn download(&self, body: &GpuWetBody) -> Result<Vec<f64>, GpuWetError> {
         let bytes = body.texels as u64 * 4;
-        scoped(&self.device, "reading back a liquid texture", bytes, || {
+        scoped::<_, GpuError>(&self.device, "reading back a liquid texture", bytes, || {
             let mut encoder = self
                 .device
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -519,10 +519,11 @@ impl GpuWetting {
             ..Body::default()
         };
         let mut waves: Vec<Wave> = Vec::new();
-        let mut heights: Vec<f32> = Vec::new();
+        let mut heights = HeightFields::default();
         if wet_possible {
-            super::surface::encode_surface(water, &ow, time, &mut gpu_body, &mut waves, &mut heights)?;
+            encode_surface(0, water, &ow, time, &mut gpu_body, &mut waves, &mut heights)?;
         }
+        let heights = heights.samples;
         let (region_kind, region, region2) = encode_region(&rates.region, &ow);
         let plan = match (&body.field, body.diffusion) {
             (Some(f), Some(d)) if d.coefficient > 0.0 && dt > 0.0 => {
@@ -573,7 +574,7 @@ impl GpuWetting {
         let device = &self.device;
         let queue = &self.queue;
         let bytes = (waves.len() * 32 + heights.len() * 4) as u64;
-        scoped(device, "stepping a wet body", bytes, || {
+        scoped::<_, GpuError>(device, "stepping a wet body", bytes, || {
             let mut rebind = false;
             if waves.len() > body.waves.1 {
                 let cap = waves.len().next_power_of_two();
@@ -617,34 +618,34 @@ impl GpuWetting {
                     timestamp_writes: None,
                 });
                 if dt > 0.0 {
-                    pass.set_pipeline(&self.kernels.exchange.pipeline);
+                    pass.set_pipeline(self.kernels.exchange.pipeline());
                     pass.set_bind_group(0, &body.exchange, &[]);
                     pass.dispatch_workgroups(texel_groups[0], texel_groups[1], 1);
                 }
                 if let (Some(p), Some(f)) = (plan.filter(|p| p.substeps > 0), &body.field) {
-                    pass.set_pipeline(&self.kernels.gather.pipeline);
+                    pass.set_pipeline(self.kernels.gather.pipeline());
                     pass.set_bind_group(0, &f.gather, &[]);
                     pass.dispatch_workgroups(voxel_groups[0], voxel_groups[1], 1);
-                    pass.set_pipeline(&self.kernels.substep.pipeline);
+                    pass.set_pipeline(self.kernels.substep.pipeline());
                     for k in 0..p.substeps {
                         pass.set_bind_group(0, &f.substep[(k % 2) as usize], &[]);
                         pass.dispatch_workgroups(voxel_groups[0], voxel_groups[1], 1);
                     }
-                    pass.set_pipeline(&self.kernels.finish.pipeline);
+                    pass.set_pipeline(self.kernels.finish.pipeline());
                     pass.set_bind_group(0, &f.finish[(p.substeps % 2) as usize], &[]);
                     pass.dispatch_workgroups(voxel_groups[0], voxel_groups[1], 1);
                     if mode == MODE_CONSERVATIVE {
-                        pass.set_pipeline(&self.kernels.activity.pipeline);
+                        pass.set_pipeline(self.kernels.activity.pipeline());
                         pass.set_bind_group(0, &f.activity, &[]);
                         pass.dispatch_workgroups(voxel_groups[0], voxel_groups[1], 1);
-                        pass.set_pipeline(&self.kernels.delta.pipeline);
+                        pass.set_pipeline(self.kernels.delta.pipeline());
                         pass.set_bind_group(0, &f.delta, &[]);
                         pass.dispatch_workgroups(texel_groups[0], texel_groups[1], 1);
-                        pass.set_pipeline(&self.kernels.residual.pipeline);
+                        pass.set_pipeline(self.kernels.residual.pipeline());
                         pass.set_bind_group(0, &f.residual, &[]);
                         pass.dispatch_workgroups(voxel_groups[0], voxel_groups[1], 1);
                     }
-                    pass.set_pipeline(&self.kernels.scatter.pipeline);
+                    pass.set_pipeline(self.kernels.scatter.pipeline());
                     pass.set_bind_group(0, &f.scatter, &[]);
                     pass.dispatch_workgroups(texel_groups[0], texel_groups[1], 1);
                 }

@@ -1,6 +1,6 @@
 // soak: water surfaces on the GPU, mirroring crates/soak-hydro/src/water.rs.
 //
-// Needs hydro_bindings.wgsl and, in the including module, the bindings
+// Needs bindings.wgsl and, in the including module, the bindings
 // `waves: array<Wave>`, `heights: array<f32>` and `radii: array<u32>`.
 // Points are `r = p - o_w` (world axes, relative to the body's atlas origin).
 

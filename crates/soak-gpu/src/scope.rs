@@ -1,59 +1,60 @@
-//! Getting a headless device, naming adapters, and turning wgpu's error
-//! reports into [`RenderError`] values.
+//! wgpu error scopes around allocation and submission, and reading buffers
+//! back, with what wgpu reports turned into [`GpuError`] values.
 
-use super::error::RenderError;
-
-pub use soak_hydro::gpu::{adapter_label, is_software};
-
-/// A device and queue on the first adapter wgpu offers, without a window:
-/// [`soak_hydro::gpu::headless_device`], with its error as a
-/// [`RenderError`].
-///
-/// `WGPU_BACKEND=vulkan|gl` picks a backend (Mesa's lavapipe or llvmpipe
-/// work headless). A convenience for tests, tools and examples: the
-/// renderer takes a device, so engines pass their own.
-pub fn headless_device() -> Result<(wgpu::Device, wgpu::Queue, wgpu::AdapterInfo), RenderError> {
-    Ok(soak_hydro::gpu::headless_device()?)
-}
+use crate::GpuError;
 
 /// Runs `f` inside out-of-memory and validation error scopes: errors wgpu
-/// reports become typed values instead of the default panic.
-pub(crate) fn scoped<T>(
+/// reports become typed values instead of wgpu's default panic.
+///
+/// `what` names the operation and `bytes` what it allocates (an estimate is
+/// fine) in the error. An error `f` returns itself is passed through; a wgpu
+/// error takes precedence over it, since it is usually the cause.
+///
+/// # Errors
+/// [`GpuError::OutOfMemory`], [`GpuError::DeviceLost`] (a validation error
+/// that says the device is lost) or [`GpuError::Validation`], converted into
+/// the caller's error type; or `f`'s own error.
+pub fn scoped<T, E: From<GpuError>>(
     device: &wgpu::Device,
     what: &'static str,
     bytes: u64,
-    f: impl FnOnce() -> Result<T, RenderError>,
-) -> Result<T, RenderError> {
+    f: impl FnOnce() -> Result<T, E>,
+) -> Result<T, E> {
     let oom = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
     let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let result = f();
     let invalid = pollster::block_on(validation.pop());
     let out_of_memory = pollster::block_on(oom.pop());
     if out_of_memory.is_some() {
-        return Err(RenderError::OutOfMemory { what, bytes });
+        return Err(GpuError::OutOfMemory { what, bytes }.into());
     }
     if let Some(e) = invalid {
         let message = e.to_string();
         return Err(if message.to_ascii_lowercase().contains("lost") {
-            RenderError::DeviceLost {
+            GpuError::DeviceLost {
                 what,
                 reason: message,
             }
         } else {
-            RenderError::Validation { what, message }
-        });
+            GpuError::Validation { what, message }
+        }
+        .into());
     }
     result
 }
 
-/// Waits for the queue and reads the first `bytes` bytes of a `MAP_READ`
-/// buffer.
-pub(crate) fn read_back(
+/// Waits for the queue and copies out the first `bytes` bytes of a
+/// `MAP_READ` buffer, then unmaps it.
+///
+/// # Errors
+/// [`GpuError::DeviceLost`] when the device is lost while waiting or
+/// mapping; `what` names the operation in the error.
+pub fn read_back(
     device: &wgpu::Device,
     staging: &wgpu::Buffer,
     bytes: u64,
     what: &'static str,
-) -> Result<Vec<u8>, RenderError> {
+) -> Result<Vec<u8>, GpuError> {
     if bytes == 0 {
         return Ok(Vec::new());
     }
@@ -62,7 +63,7 @@ pub(crate) fn read_back(
     slice.map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);
     });
-    let lost = |reason: String| RenderError::DeviceLost { what, reason };
+    let lost = |reason: String| GpuError::DeviceLost { what, reason };
     device
         .poll(wgpu::PollType::wait_indefinitely())
         .map_err(|e| lost(e.to_string()))?;

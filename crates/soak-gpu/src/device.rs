@@ -1,6 +1,6 @@
 //! Getting a device without a window, and naming adapters in reports.
 
-use super::error::GpuError;
+use crate::GpuError;
 
 /// A device and queue on the first adapter wgpu offers, without a window.
 ///
@@ -10,8 +10,12 @@ use super::error::GpuError;
 /// own limits (larger storage bindings than the WebGPU defaults) and no
 /// optional feature: the kernels stay within the WebGPU baseline.
 ///
-/// A convenience for tests, tools and benches: the GPU functions of this
-/// module take a device, so engines pass their own.
+/// A convenience for tests, tools and benches: soak's GPU functions take a
+/// device, so engines pass their own.
+///
+/// # Errors
+/// [`GpuError::NoAdapter`] when wgpu finds no adapter on any enabled
+/// backend, [`GpuError::RequestDevice`] when the adapter refuses the device.
 pub fn headless_device() -> Result<(wgpu::Device, wgpu::Queue, wgpu::AdapterInfo), GpuError> {
     let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
@@ -25,7 +29,7 @@ pub fn headless_device() -> Result<(wgpu::Device, wgpu::Queue, wgpu::AdapterInfo
     })?;
     let info = adapter.get_info();
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-        label: Some("soak-hydro"),
+        label: Some("soak"),
         required_features: wgpu::Features::empty(),
         required_limits: adapter.limits(),
         experimental_features: wgpu::ExperimentalFeatures::disabled(),
@@ -63,4 +67,32 @@ pub fn adapter_label(info: &wgpu::AdapterInfo) -> String {
     };
     let software = if is_software(info) { ", software" } else { "" };
     format!("{} ({backend}{driver}{software})", info.name)
+}
+
+/// [`headless_device`] for test suites and benches: `None`, with a notice on
+/// standard error, when there is no adapter, so GPU tests skip on a machine
+/// without one; but under `CI=true` a missing adapter panics, so GPU tests
+/// cannot pass in CI by skipping. Announces the adapter once per process.
+///
+/// Take a device of its own for each test: on wgpu's GL backend a device
+/// serialises all its work behind one context lock, which wgpu gives up on
+/// after 6 s, and tests running in parallel on one device could trip it.
+///
+/// # Panics
+/// When no device can be had and the environment variable `CI` is `true`.
+pub fn test_device() -> Option<(wgpu::Device, wgpu::Queue, wgpu::AdapterInfo)> {
+    static ANNOUNCE: std::sync::Once = std::sync::Once::new();
+    match headless_device() {
+        Ok(d) => {
+            ANNOUNCE.call_once(|| eprintln!("GPU tests on {}", adapter_label(&d.2)));
+            Some(d)
+        }
+        Err(e) => {
+            if std::env::var("CI").as_deref() == Ok("true") {
+                panic!("no GPU adapter under CI=true: {e}");
+            }
+            eprintln!("no GPU adapter: skipping ({e})");
+            None
+        }
+    }
 }

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Packs every crate of the workspace as it would be published and checks
+# that what is packed builds on its own:
+# 1. `cargo package --workspace --all-features` builds each packed crate
+#    from its .crate contents (every feature, the GPU kernels' WGSL included);
+# 2. an empty project that depends on the packed soak-hydro with its `gpu`
+#    feature (and on the packed soak-wet with its `gpu` feature), by path to
+#    the unpacked .crate files, builds and runs: it composes every GPU
+#    kernel's WGSL, which a crate that packed a file outside its own folder
+#    would not have.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root="$(pwd)"
+# Full debug information is not needed to check that a crate builds.
+export CARGO_PROFILE_DEV_DEBUG="${CARGO_PROFILE_DEV_DEBUG:-0}"
+cargo package --workspace --all-features --locked
+
+version="$(cargo metadata --format-version 1 --no-deps |
+  python3 -c 'import json,sys; print(next(p["version"] for p in json.load(sys.stdin)["packages"] if p["name"] == "soak-hydro"))')"
+check="$root/target/package-check"
+rm -rf "$check"
+mkdir -p "$check/unpacked" "$check/app/src"
+for crate in "$root"/target/package/*-"$version".crate; do
+  tar xzf "$crate" -C "$check/unpacked"
+done
+patches=""
+for dir in "$check"/unpacked/*/; do
+  name="$(basename "$dir")"
+  name="${name%-"$version"}"
+  patches+="$name = { path = \"$dir\" }"$'\n'
+done
+cat >"$check/app/Cargo.toml" <<TOML
+[package]
+name = "packed-soak-check"
+version = "0.0.0"
+edition = "2024"
+publish = false
+
+[dependencies]
+soak-hydro = { path = "$check/unpacked/soak-hydro-$version", features = ["gpu"] }
+soak-wet = { path = "$check/unpacked/soak-wet-$version", features = ["gpu"] }
+
+[patch.crates-io]
+$patches
+[workspace]
+TOML
+cat >"$check/app/src/main.rs" <<'RS'
+//! Composes every GPU kernel of the packed crates: each must be non-empty
+//! WGSL with an entry point.
+fn main() {
+    let kernels: Vec<(&str, String)> = soak_hydro::gpu::kernel_sources()
+        .into_iter()
+        .chain(soak_wet::gpu::kernel_sources())
+        .collect();
+    for (name, source) in &kernels {
+        assert!(source.contains("fn main"), "kernel {name} has no entry point");
+    }
+    println!("{} kernels composed from the packed crates", kernels.len());
+}
+RS
+# The workspace's lock file pins the same versions of every dependency.
+cp "$root/Cargo.lock" "$check/app/Cargo.lock"
+CARGO_TARGET_DIR="$root/target/package/check-target" cargo run --quiet --manifest-path "$check/app/Cargo.toml"
