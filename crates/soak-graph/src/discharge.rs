@@ -30,7 +30,7 @@ use rand::SeedableRng;
 use rand::seq::SliceRandom;
 use rand_chacha::ChaCha8Rng;
 
-use crate::flooding::FlowOptions;
+use crate::flow_options::FlowOptions;
 use crate::liquid_graph::LiquidGraph;
 
 /// A node that can receive and the series resistance of the path to it.

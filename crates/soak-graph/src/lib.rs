@@ -3,6 +3,7 @@
 pub mod discharge;
 pub mod error;
 pub mod flooding;
+pub mod flow_options;
 pub mod graph_file;
 pub mod ingress;
 pub mod liquid_graph;
@@ -12,7 +13,8 @@ pub mod texel_nodes;
 
 pub use discharge::Discharge;
 pub use error::{Element, FlowError, GraphError, GraphFileError, PermeabilityError, TexelMapError};
-pub use flooding::{Flooding, FloodingState, FlowOptions, Ledger, StepReport};
+pub use flooding::{Flooding, FloodingState, Ledger, StepReport};
+pub use flow_options::FlowOptions;
 pub use graph_file::{Format, GraphFile, load_graph, parse_graph};
 pub use liquid_graph::{LiquidGraph, Node, Pipe, SegmentGraphOptions, WATER_VISCOSITY};
 pub use permeability::Permeability;
