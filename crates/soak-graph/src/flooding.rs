@@ -29,65 +29,10 @@ use crate::discharge::{Levels, Searcher, move_liquid, poiseuille};
 use crate::error::{FlowError, GraphError, TexelMapError};
 use crate::flow_options::FlowOptions;
 use crate::ingress::{Exchange, Wall};
+use crate::ledger::Ledger;
 use crate::liquid_graph::LiquidGraph;
 use crate::permeability::Permeability;
 use crate::texel_nodes::TexelNodes;
-
-/// A compensated (Neumaier) running sum.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-struct Sum {
-    sum: f64,
-    carry: f64,
-}
-
-impl Sum {
-    fn add(&mut self, x: f64) {
-        let t = self.sum + x;
-        if self.sum.abs() >= x.abs() {
-            self.carry += (self.sum - t) + x;
-        } else {
-            self.carry += (x - t) + self.sum;
-        }
-        self.sum = t;
-    }
-    fn value(&self) -> f64 {
-        self.sum + self.carry
-    }
-}
-
-/// What entered and left the object since it was made, m³.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Ledger {
-    initial: f64,
-    entered: Sum,
-    left: Sum,
-}
-
-impl Ledger {
-    /// Liquid inside at the start, m³.
-    pub fn initial(&self) -> f64 {
-        self.initial
-    }
-    /// Liquid that entered since, m³.
-    pub fn entered(&self) -> f64 {
-        self.entered.value()
-    }
-    /// Liquid that left since, m³.
-    pub fn left(&self) -> f64 {
-        self.left.value()
-    }
-    /// What should be inside: `initial + entered − left`, m³.
-    pub fn expected(&self) -> f64 {
-        self.initial + self.entered() - self.left()
-    }
-    /// `|inside − expected| / (initial + entered)`, dimensionless (0 when
-    /// nothing was ever inside).
-    pub fn relative_error(&self, inside: f64) -> f64 {
-        let scale = self.initial + self.entered();
-        let err = (inside - self.expected()).abs();
-        if scale > 0.0 { err / scale } else { err }
-    }
-}
 
 /// What one step did, m³.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
@@ -177,17 +122,10 @@ pub struct FloodingState {
 impl Flooding {
     /// The evolving state, for saving.
     pub fn state(&self) -> FloodingState {
-        let l = &self.ledger;
         FloodingState {
             liquid: self.graph.liquids(),
             permeability: self.wall.as_ref().map(|w| w.permeability.clone()),
-            ledger: [
-                l.initial,
-                l.entered.sum,
-                l.entered.carry,
-                l.left.sum,
-                l.left.carry,
-            ],
+            ledger: self.ledger.to_parts(),
             rng: self.rng.clone(),
         }
     }
@@ -216,12 +154,7 @@ impl Flooding {
         for (i, &l) in state.liquid.iter().enumerate() {
             self.graph.set_liquid(i, l).map_err(FlowError::Graph)?;
         }
-        let [initial, es, ec, ls, lc] = state.ledger;
-        self.ledger = Ledger {
-            initial,
-            entered: Sum { sum: es, carry: ec },
-            left: Sum { sum: ls, carry: lc },
-        };
+        self.ledger = Ledger::from_parts(state.ledger);
         self.rng = state.rng.clone();
         Ok(())
     }
@@ -234,10 +167,7 @@ impl Flooding {
         options.check()?;
         let n = graph.node_count();
         Ok(Self {
-            ledger: Ledger {
-                initial: graph.total_liquid(),
-                ..Ledger::default()
-            },
+            ledger: Ledger::new(graph.total_liquid()),
             graph,
             wall: None,
             rng: ChaCha8Rng::seed_from_u64(options.seed),
@@ -376,7 +306,7 @@ impl Flooding {
         let before = n.liquid;
         n.liquid = (before + volume).min(n.capacity);
         let taken = n.liquid - before;
-        self.ledger.entered.add(taken);
+        self.ledger.enter(taken);
         Ok(taken)
     }
 
@@ -482,8 +412,8 @@ impl Flooding {
                 self.options.tolerance,
                 &mut self.rng,
             );
-            self.ledger.entered.add(flow.entered);
-            self.ledger.left.add(flow.left);
+            self.ledger.enter(flow.entered);
+            self.ledger.leave(flow.left);
             report.entered = flow.entered;
             report.left = flow.left;
             report.routed = flow.routed;
