@@ -158,7 +158,7 @@ impl Searcher {
 /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/graphs/fig4_5_cascade.toml");
 /// let graph = soak_graph::load_graph(path)?;
 /// let options = soak_graph::FlowOptions::default();
-/// let found = soak_graph::discharge::find_discharge(&graph, &nalgebra::Isometry3::identity(), 0, &options, 7);
+/// let found = soak_graph::find_discharge(&graph, &nalgebra::Isometry3::identity(), 0, &options, 7);
 /// // A gives straight to C, through the full B.
 /// assert_eq!(found.map(|d| d.node), graph.find("C"));
 /// # Ok::<(), soak_graph::GraphFileError>(())
