@@ -1,21 +1,5 @@
 //! Water inside an object, step by step: the liquid graph, its wall, and a
 //! ledger that proves nothing is created or lost.
-//!
-//! Each [`Flooding::step`]:
-//! 1. takes the world height of every node from the body's pose, and their
-//!    heads (see [`crate::liquid_graph`]);
-//! 2. exchanges liquid through the permeable texels of the wall
-//!    ([`crate::ingress`]: Darcy in and out, capped by capacity);
-//! 3. redistributes it inside ([`crate::discharge`]: for every node with
-//!    liquid, in a seeded random order, Algorithm 1 finds a discharge node
-//!    and Poiseuille's law sets the volume), `passes` times with `Δt/passes`.
-//!
-//! The [`Ledger`] accumulates what entered and what left (compensated sums,
-//! f64); at every step `inside = initial + entered − left` to rounding,
-//! whatever the caps did, and no node ever holds less than 0 or more than
-//! its capacity.
-//!
-//! The same seed, graph, atlas and inputs give bit-identical runs.
 
 use nalgebra::Isometry3;
 use rand::SeedableRng;
@@ -65,6 +49,24 @@ struct WallState {
 }
 
 /// A liquid graph in motion inside a body, with its permeable wall.
+///
+/// Each [`Flooding::step`]:
+/// 1. takes the world height of every node from the body's pose, and their
+///    heads (see the vessels of [`Node`](crate::Node));
+/// 2. exchanges liquid through the permeable texels of the wall (Darcy in
+///    and out, see [`Permeability`], capped by capacity; what a full node
+///    cannot take is pushed on to the nodes the sea can fill);
+/// 3. redistributes it inside (for every node with liquid, in a seeded
+///    random order, Algorithm 1 finds a discharge node, see
+///    [`find_discharge`](crate::find_discharge), and Poiseuille's law sets
+///    the volume), `passes` times with `Δt/passes`.
+///
+/// The [`Ledger`] accumulates what entered and what left (compensated sums,
+/// f64); at every step `inside = initial + entered − left` to rounding,
+/// whatever the caps did, and no node ever holds less than 0 or more than
+/// its capacity.
+///
+/// The same seed, graph, atlas and inputs give bit-identical runs.
 ///
 /// # Example
 /// ```
