@@ -12,7 +12,7 @@
 //! compartments of `data/graphs/boat.toml`. The boat settles for
 //! `--punch` seconds, then a hole is punched: every texel within the hole's
 //! radius gets permeability κ = `--kappa` m (κ = k/L, see
-//! `soak_graph::permeability`). Each step the liquid graph advances with the
+//! `soak_graph::Permeability`). Each step the liquid graph advances with the
 //! body's pose and its water becomes extra mass, while the buoyancy stays
 //! the hull's enclosed volume.
 

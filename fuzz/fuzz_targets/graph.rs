@@ -35,7 +35,7 @@ fuzz_target!(|data: &[u8]| {
         return;
     }
     // Text → graph → text → graph gives the same graph.
-    let again = soak_graph::parse_graph(&soak_graph::graph_file::to_toml(&graph), Format::Toml, path)
+    let again = soak_graph::parse_graph(&soak_graph::to_toml(&graph), Format::Toml, path)
         .unwrap_or_else(|e| panic!("a parsed graph does not round-trip through TOML: {e}"));
     assert_eq!(again.node_count(), graph.node_count());
     assert_eq!(again.edge_count(), graph.edge_count());

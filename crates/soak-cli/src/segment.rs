@@ -140,8 +140,8 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     draw(&mesh, &seg, &graph, args.size.clamp(64, 4096))?.write(&out)?;
     if let Some(path) = &args.graph {
         let text = match path.extension().and_then(|e| e.to_str()) {
-            Some("json") => soak_graph::graph_file::to_json(&graph),
-            _ => soak_graph::graph_file::to_toml(&graph),
+            Some("json") => soak_graph::to_json(&graph),
+            _ => soak_graph::to_toml(&graph),
         };
         std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))?;
     }

@@ -1,23 +1,6 @@
 //! The discharge search (thesis Algorithm 1, *buscarNodoDeDescarga*) and
 //! the Poiseuille transfer along the path it finds.
 //!
-//! From a source node (or from the sea pushing in through a full node, see
-//! [`crate::ingress`]) with free surface at world height `h_s`, a
-//! depth-first search walks the open pipes in a seeded random order and
-//! returns the first node that can receive liquid:
-//!
-//! - a node already visited is skipped (each node is visited once);
-//! - a node whose vessel **bottom** is above `h_s` (+ tolerance) is an
-//!   **energy barrier**: the liquid cannot climb into it, and the search does
-//!   not pass through it. Heights are world heights, so the answer changes as
-//!   the body turns. With zero-height vessels this is the thesis' test
-//!   `nivel > 0` on node positions;
-//! - a node that is not full and whose head is below `h_s` (− tolerance)
-//!   receives;
-//! - any other node (full, or with a higher head) passes the search on:
-//!   liquid is indistinguishable, so the source discharges straight to the
-//!   node beyond (thesis Fig. 4.5: A gives to C through a full B).
-//!
 //! The transfer over the path is Poiseuille's `Q = π Δp r⁴ / (8 μ L)` with
 //! `Δp = ρ g Δh` and the pipes' resistances `8 μ L / (π r⁴ p)` added in
 //! series, for the step `Δt`; it is capped by what the source holds, what
@@ -30,7 +13,7 @@ use rand::SeedableRng;
 use rand::seq::SliceRandom;
 use rand_chacha::ChaCha8Rng;
 
-use crate::flooding::FlowOptions;
+use crate::flow_options::FlowOptions;
 use crate::liquid_graph::LiquidGraph;
 
 /// A node that can receive and the series resistance of the path to it.
@@ -91,7 +74,7 @@ impl Searcher {
     }
 
     /// Algorithm 1 from `source` for liquid whose free surface is at world
-    /// height `head` (m); see the module docs. Iterative, so deep graphs
+    /// height `head` (m); see [`find_discharge`]. Iterative, so deep graphs
     /// cannot overflow the call stack.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn find(
@@ -153,12 +136,31 @@ impl Searcher {
 /// ChaCha8 generator seeded with `seed` shuffles them; `None` when no node
 /// can receive (or `source` does not exist).
 ///
+/// # The search
+///
+/// From a source node (or, inside a [`Flooding`](crate::Flooding), from
+/// the sea pushing in through a full node) with free surface at world
+/// height `h_s`, a depth-first search walks the open pipes in a seeded
+/// random order and returns the first node that can receive liquid:
+///
+/// - a node already visited is skipped (each node is visited once);
+/// - a node whose vessel **bottom** is above `h_s` (+ tolerance) is an
+///   **energy barrier**: the liquid cannot climb into it, and the search does
+///   not pass through it. Heights are world heights, so the answer changes as
+///   the body turns. With zero-height vessels this is the thesis' test
+///   `nivel > 0` on node positions;
+/// - a node that is not full and whose head is below `h_s` (− tolerance)
+///   receives;
+/// - any other node (full, or with a higher head) passes the search on:
+///   liquid is indistinguishable, so the source discharges straight to the
+///   node beyond (thesis Fig. 4.5: A gives to C through a full B).
+///
 /// # Example
 /// ```
 /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/graphs/fig4_5_cascade.toml");
 /// let graph = soak_graph::load_graph(path)?;
 /// let options = soak_graph::FlowOptions::default();
-/// let found = soak_graph::discharge::find_discharge(&graph, &nalgebra::Isometry3::identity(), 0, &options, 7);
+/// let found = soak_graph::find_discharge(&graph, &nalgebra::Isometry3::identity(), 0, &options, 7);
 /// // A gives straight to C, through the full B.
 /// assert_eq!(found.map(|d| d.node), graph.find("C"));
 /// # Ok::<(), soak_graph::GraphFileError>(())

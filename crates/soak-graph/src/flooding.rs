@@ -1,21 +1,5 @@
 //! Water inside an object, step by step: the liquid graph, its wall, and a
 //! ledger that proves nothing is created or lost.
-//!
-//! Each [`Flooding::step`]:
-//! 1. takes the world height of every node from the body's pose, and their
-//!    heads (see [`crate::liquid_graph`]);
-//! 2. exchanges liquid through the permeable texels of the wall
-//!    ([`crate::ingress`]: Darcy in and out, capped by capacity);
-//! 3. redistributes it inside ([`crate::discharge`]: for every node with
-//!    liquid, in a seeded random order, Algorithm 1 finds a discharge node
-//!    and Poiseuille's law sets the volume), `passes` times with `Δt/passes`.
-//!
-//! The [`Ledger`] accumulates what entered and what left (compensated sums,
-//! f64); at every step `inside = initial + entered − left` to rounding,
-//! whatever the caps did, and no node ever holds less than 0 or more than
-//! its capacity.
-//!
-//! The same seed, graph, atlas and inputs give bit-identical runs.
 
 use nalgebra::Isometry3;
 use rand::SeedableRng;
@@ -27,124 +11,12 @@ use soak_hydro::{MassProperties, Water};
 
 use crate::discharge::{Levels, Searcher, move_liquid, poiseuille};
 use crate::error::{FlowError, GraphError, TexelMapError};
+use crate::flow_options::FlowOptions;
 use crate::ingress::{Exchange, Wall};
-use crate::liquid_graph::{LiquidGraph, WATER_VISCOSITY};
+use crate::ledger::Ledger;
+use crate::liquid_graph::LiquidGraph;
 use crate::permeability::Permeability;
 use crate::texel_nodes::TexelNodes;
-
-/// Parameters of the liquid's motion.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct FlowOptions {
-    /// Dynamic viscosity μ of the liquid, Pa·s (> 0). Default water's, 10⁻³.
-    pub viscosity: f64,
-    /// Redistribution passes per step (≥ 1), each over `Δt/passes`.
-    /// Default 1, as the thesis.
-    pub passes: u32,
-    /// Height tolerance of the barrier and head comparisons, m (≥ 0).
-    /// Default 10⁻⁹.
-    pub tolerance: f64,
-    /// Seed of the random neighbour and node orders.
-    pub seed: u64,
-}
-
-impl Default for FlowOptions {
-    fn default() -> Self {
-        Self {
-            viscosity: WATER_VISCOSITY,
-            passes: 1,
-            tolerance: 1e-9,
-            seed: 0,
-        }
-    }
-}
-
-impl FlowOptions {
-    /// Checks every parameter's range.
-    ///
-    /// # Errors
-    /// The first parameter out of range, by name.
-    pub fn check(&self) -> Result<(), FlowError> {
-        if !(self.viscosity.is_finite() && self.viscosity > 0.0) {
-            return Err(FlowError::Parameter {
-                name: "viscosity",
-                value: self.viscosity,
-                requirement: "must be a finite number > 0 (Pa·s)",
-            });
-        }
-        if self.passes == 0 {
-            return Err(FlowError::Parameter {
-                name: "passes",
-                value: 0.0,
-                requirement: "must be ≥ 1",
-            });
-        }
-        if !(self.tolerance.is_finite() && self.tolerance >= 0.0) {
-            return Err(FlowError::Parameter {
-                name: "tolerance",
-                value: self.tolerance,
-                requirement: "must be a finite number ≥ 0 (m)",
-            });
-        }
-        Ok(())
-    }
-}
-
-/// A compensated (Neumaier) running sum.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-struct Sum {
-    sum: f64,
-    carry: f64,
-}
-
-impl Sum {
-    fn add(&mut self, x: f64) {
-        let t = self.sum + x;
-        if self.sum.abs() >= x.abs() {
-            self.carry += (self.sum - t) + x;
-        } else {
-            self.carry += (x - t) + self.sum;
-        }
-        self.sum = t;
-    }
-    fn value(&self) -> f64 {
-        self.sum + self.carry
-    }
-}
-
-/// What entered and left the object since it was made, m³.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Ledger {
-    initial: f64,
-    entered: Sum,
-    left: Sum,
-}
-
-impl Ledger {
-    /// Liquid inside at the start, m³.
-    pub fn initial(&self) -> f64 {
-        self.initial
-    }
-    /// Liquid that entered since, m³.
-    pub fn entered(&self) -> f64 {
-        self.entered.value()
-    }
-    /// Liquid that left since, m³.
-    pub fn left(&self) -> f64 {
-        self.left.value()
-    }
-    /// What should be inside: `initial + entered − left`, m³.
-    pub fn expected(&self) -> f64 {
-        self.initial + self.entered() - self.left()
-    }
-    /// `|inside − expected| / (initial + entered)`, dimensionless (0 when
-    /// nothing was ever inside).
-    pub fn relative_error(&self, inside: f64) -> f64 {
-        let scale = self.initial + self.entered();
-        let err = (inside - self.expected()).abs();
-        if scale > 0.0 { err / scale } else { err }
-    }
-}
 
 /// What one step did, m³.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
@@ -177,6 +49,24 @@ struct WallState {
 }
 
 /// A liquid graph in motion inside a body, with its permeable wall.
+///
+/// Each [`Flooding::step`]:
+/// 1. takes the world height of every node from the body's pose, and their
+///    heads (see the vessels of [`Node`](crate::Node));
+/// 2. exchanges liquid through the permeable texels of the wall (Darcy in
+///    and out, see [`Permeability`], capped by capacity; what a full node
+///    cannot take is pushed on to the nodes the sea can fill);
+/// 3. redistributes it inside (for every node with liquid, in a seeded
+///    random order, Algorithm 1 finds a discharge node, see
+///    [`find_discharge`](crate::find_discharge), and Poiseuille's law sets
+///    the volume), `passes` times with `Δt/passes`.
+///
+/// The [`Ledger`] accumulates what entered and what left (compensated sums,
+/// f64); at every step `inside = initial + entered − left` to rounding,
+/// whatever the caps did, and no node ever holds less than 0 or more than
+/// its capacity.
+///
+/// The same seed, graph, atlas and inputs give bit-identical runs.
 ///
 /// # Example
 /// ```
@@ -234,17 +124,10 @@ pub struct FloodingState {
 impl Flooding {
     /// The evolving state, for saving.
     pub fn state(&self) -> FloodingState {
-        let l = &self.ledger;
         FloodingState {
             liquid: self.graph.liquids(),
             permeability: self.wall.as_ref().map(|w| w.permeability.clone()),
-            ledger: [
-                l.initial,
-                l.entered.sum,
-                l.entered.carry,
-                l.left.sum,
-                l.left.carry,
-            ],
+            ledger: self.ledger.to_parts(),
             rng: self.rng.clone(),
         }
     }
@@ -273,12 +156,7 @@ impl Flooding {
         for (i, &l) in state.liquid.iter().enumerate() {
             self.graph.set_liquid(i, l).map_err(FlowError::Graph)?;
         }
-        let [initial, es, ec, ls, lc] = state.ledger;
-        self.ledger = Ledger {
-            initial,
-            entered: Sum { sum: es, carry: ec },
-            left: Sum { sum: ls, carry: lc },
-        };
+        self.ledger = Ledger::from_parts(state.ledger);
         self.rng = state.rng.clone();
         Ok(())
     }
@@ -291,10 +169,7 @@ impl Flooding {
         options.check()?;
         let n = graph.node_count();
         Ok(Self {
-            ledger: Ledger {
-                initial: graph.total_liquid(),
-                ..Ledger::default()
-            },
+            ledger: Ledger::new(graph.total_liquid()),
             graph,
             wall: None,
             rng: ChaCha8Rng::seed_from_u64(options.seed),
@@ -433,7 +308,7 @@ impl Flooding {
         let before = n.liquid;
         n.liquid = (before + volume).min(n.capacity);
         let taken = n.liquid - before;
-        self.ledger.entered.add(taken);
+        self.ledger.enter(taken);
         Ok(taken)
     }
 
@@ -539,8 +414,8 @@ impl Flooding {
                 self.options.tolerance,
                 &mut self.rng,
             );
-            self.ledger.entered.add(flow.entered);
-            self.ledger.left.add(flow.left);
+            self.ledger.enter(flow.entered);
+            self.ledger.leave(flow.left);
             report.entered = flow.entered;
             report.left = flow.left;
             report.routed = flow.routed;

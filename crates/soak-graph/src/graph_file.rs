@@ -1,25 +1,4 @@
 //! Liquid graphs as files (TOML or JSON, by extension).
-//!
-//! ```toml
-//! # Units: metres, cubic metres; positions in the mesh's object space.
-//! [[nodes]]
-//! name = "bow"                 # optional, default "node I"; unique
-//! position = [1.5, 0.35, 0.0]  # m
-//! capacity = 0.12              # m³
-//! liquid = 0.0                 # m³, optional (default 0)
-//! height = 0.5                 # m, optional vessel height (default: diameter of a sphere of the capacity)
-//!
-//! [[edges]]
-//! from = "bow"                 # a node name or a 0-based index
-//! to = 1
-//! radius = 0.02                # m
-//! length = 0.8                 # m, optional (default: distance between the nodes)
-//! permeability = 1.0           # dimensionless, optional (default 1; 0 closes the pipe)
-//! ```
-//!
-//! JSON files have the same keys: `{"nodes": [{...}], "edges": [{...}]}`.
-//! Unknown keys, wrong types, unknown node names and invalid values are
-//! errors naming the file, the line, and the node or edge.
 
 use std::path::{Path, PathBuf};
 
@@ -81,6 +60,27 @@ pub struct EdgeSpec {
 }
 
 /// The contents of a graph file.
+///
+/// ```toml
+/// # Units: metres, cubic metres; positions in the mesh's object space.
+/// [[nodes]]
+/// name = "bow"                 # optional, default "node I"; unique
+/// position = [1.5, 0.35, 0.0]  # m
+/// capacity = 0.12              # m³
+/// liquid = 0.0                 # m³, optional (default 0)
+/// height = 0.5                 # m, optional vessel height (default: diameter of a sphere of the capacity)
+///
+/// [[edges]]
+/// from = "bow"                 # a node name or a 0-based index
+/// to = 1
+/// radius = 0.02                # m
+/// length = 0.8                 # m, optional (default: distance between the nodes)
+/// permeability = 1.0           # dimensionless, optional (default 1; 0 closes the pipe)
+/// ```
+///
+/// JSON files have the same keys: `{"nodes": [{...}], "edges": [{...}]}`.
+/// Unknown keys, wrong types, unknown node names and invalid values are
+/// errors naming the file, the line, and the node or edge.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GraphFile {

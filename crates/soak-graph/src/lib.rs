@@ -1,22 +1,35 @@
 #![doc = include_str!("../README.md")]
 
-pub mod discharge;
-pub mod error;
-pub mod flooding;
-pub mod graph_file;
-pub mod ingress;
-pub mod liquid_graph;
-pub mod permeability;
-pub mod segment;
-pub mod texel_nodes;
+// The files are private: what users reach is re-exported below, so the
+// layout can change without changing the API.
+mod discharge;
+mod error;
+mod flooding;
+mod flow_options;
+mod graph_file;
+mod ingress;
+mod ledger;
+mod liquid_graph;
+mod permeability;
+mod texel_nodes;
 
-pub use discharge::Discharge;
-pub use error::{Element, FlowError, GraphError, GraphFileError, PermeabilityError, TexelMapError};
-pub use flooding::{Flooding, FloodingState, FlowOptions, Ledger, StepReport};
-pub use graph_file::{Format, GraphFile, load_graph, parse_graph};
-pub use liquid_graph::{LiquidGraph, Node, Pipe, SegmentGraphOptions, WATER_VISCOSITY};
-pub use permeability::Permeability;
-pub use texel_nodes::TexelNodes;
+// Public on purpose: segmentation is a pipeline of its own (shape diameter,
+// Gaussian mixture, graph cut, max flow, sphere fit) whose stages are usable
+// and tested one by one, and whose many names (options, constants, stage
+// results) would crowd the crate root.
+pub mod segment;
+
+pub use self::discharge::{Discharge, find_discharge};
+pub use self::error::{Element, FlowError, GraphError, GraphFileError, PermeabilityError, TexelMapError};
+pub use self::flooding::{Flooding, FloodingState, StepReport};
+pub use self::flow_options::FlowOptions;
+pub use self::graph_file::{
+    EdgeSpec, Format, GraphFile, NodeRef, NodeSpec, load_graph, parse_graph, to_json, to_toml, unnamed,
+};
+pub use self::ledger::Ledger;
+pub use self::liquid_graph::{LiquidGraph, Node, Pipe, SegmentGraphOptions, WATER_VISCOSITY};
+pub use self::permeability::Permeability;
+pub use self::texel_nodes::TexelNodes;
 
 /// The types most users need.
 pub mod prelude {

@@ -5,20 +5,6 @@
 //! (m), a capacity (m³) and the liquid it holds (m³). A [`Pipe`] joins two
 //! compartments whose spaces connect; it carries a radius and a length (m)
 //! for Poiseuille's law and a dimensionless permeability factor.
-//!
-//! # Vessels
-//!
-//! The thesis places each node's liquid at a point. To let two nodes at the
-//! same height exchange liquid until their levels match (communicating
-//! vessels), each node is also a vertical **vessel** of height `H_i` (m)
-//! centred on its position: with `y_i` the world height of its position, its
-//! bottom is at `y_i − H_i/2`, its top at `y_i + H_i/2` and its free surface
-//! (the *head*) at `h_i = y_i + H_i (l_i/c_i − 1/2)`, always along world
-//! `y` whatever the body's rotation. Pipes join the vessels' bottoms. The
-//! default height is the diameter of the sphere of the node's capacity,
-//! `2 (3 c_i / 4π)^(1/3)`; a hand-made graph may give the compartment's real
-//! height. With `H_i = 0` every rule below reduces to the thesis' point
-//! nodes.
 
 use nalgebra::{Isometry3, Point3, Vector3};
 use petgraph::graph::{EdgeIndex, NodeIndex, UnGraph};
@@ -33,6 +19,20 @@ use crate::segment::Segmentation;
 pub const WATER_VISCOSITY: f64 = 1.0e-3;
 
 /// A compartment of the liquid graph.
+///
+/// # Vessels
+///
+/// The thesis places each node's liquid at a point. To let two nodes at the
+/// same height exchange liquid until their levels match (communicating
+/// vessels), each node is also a vertical **vessel** of height `H_i` (m)
+/// centred on its position: with `y_i` the world height of its position, its
+/// bottom is at `y_i − H_i/2`, its top at `y_i + H_i/2` and its free surface
+/// (the *head*) at `h_i = y_i + H_i (l_i/c_i − 1/2)`, always along world
+/// `y` whatever the body's rotation. Pipes join the vessels' bottoms. The
+/// default height is the diameter of the sphere of the node's capacity,
+/// `2 (3 c_i / 4π)^(1/3)`; a hand-made graph may give the compartment's real
+/// height. With `H_i = 0` every rule below reduces to the thesis' point
+/// nodes.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Node {
     /// A name for messages and files (unique within a graph).
@@ -43,8 +43,8 @@ pub struct Node {
     pub capacity: f64,
     /// Volume of liquid it holds, m³ (0 ≤ liquid ≤ capacity).
     pub liquid: f64,
-    /// Height of its vessel, m (≥ 0; > 0 when the capacity is), see the
-    /// module docs.
+    /// Height of its vessel, m (≥ 0; > 0 when the capacity is), see
+    /// *Vessels* above.
     pub height: f64,
 }
 

@@ -1,32 +1,5 @@
 //! The permeability channel: one value per atlas texel (the thesis'
 //! *Textura de Permeabilidad*, TPM).
-//!
-//! # Units
-//!
-//! Darcy's law puts the wall thickness `L` under the pressure drop: the flux
-//! through an area `a` is `Q = (k a / μ) Δp / L` with `k` the intrinsic
-//! permeability (m²). The thesis folds `L` into the texture, so the channel
-//! stores **κ = k / L in metres**, and texel `i` at depth `d_i` passes
-//!
-//! ```text
-//! V_i = (κ_i a_i / μ) ρ g d_i Δt        [m · m² / (Pa·s) · Pa · s = m³]
-//! ```
-//!
-//! per step. Some orders of magnitude (water, μ = 10⁻³ Pa·s):
-//!
-//! | surface | κ (m) |
-//! |---|---|
-//! | watertight hull | 0 |
-//! | a hole, passing about what an open orifice of its area passes at 0.25 m depth (`a √(2 g d)`) | ≈ 10⁻⁶ |
-//! | a leaking seam | 10⁻⁹ … 10⁻⁸ |
-//! | felt or plush fabric a few mm thick | 10⁻¹⁰ … 10⁻⁹ |
-//!
-//! The channel can come from an image laid over the UV square
-//! ([`Permeability::from_image`]), from painted regions ("every texel within
-//! 0.3 m of this point", [`Permeability::paint`]), and can change while the
-//! simulation runs (a hole punched: [`Permeability::paint`] again, or
-//! [`Permeability::set`]). It keeps the list of permeable texels so the
-//! per-step loop only visits those.
 
 use nalgebra::Point3;
 use serde::{Deserialize, Serialize};
@@ -34,8 +7,35 @@ use soak_bake::Atlas;
 
 use crate::error::PermeabilityError;
 
-/// κ = k/L per texel, m (see the module docs). Serialises as the list of
-/// values; deserialising validates them.
+/// κ = k/L per texel, m. Serialises as the list of values; deserialising
+/// validates them.
+///
+/// # Units
+///
+/// Darcy's law puts the wall thickness `L` under the pressure drop: the flux
+/// through an area `a` is `Q = (k a / μ) Δp / L` with `k` the intrinsic
+/// permeability (m²). The thesis folds `L` into the texture, so the channel
+/// stores **κ = k / L in metres**, and texel `i` at depth `d_i` passes
+///
+/// ```text
+/// V_i = (κ_i a_i / μ) ρ g d_i Δt        [m · m² / (Pa·s) · Pa · s = m³]
+/// ```
+///
+/// per step. Some orders of magnitude (water, μ = 10⁻³ Pa·s):
+///
+/// | surface | κ (m) |
+/// |---|---|
+/// | watertight hull | 0 |
+/// | a hole, passing about what an open orifice of its area passes at 0.25 m depth (`a √(2 g d)`) | ≈ 10⁻⁶ |
+/// | a leaking seam | 10⁻⁹ … 10⁻⁸ |
+/// | felt or plush fabric a few mm thick | 10⁻¹⁰ … 10⁻⁹ |
+///
+/// The channel can come from an image laid over the UV square
+/// ([`Permeability::from_image`]), from painted regions ("every texel within
+/// 0.3 m of this point", [`Permeability::paint`]), and can change while the
+/// simulation runs (a hole punched: [`Permeability::paint`] again, or
+/// [`Permeability::set`]). It keeps the list of permeable texels so the
+/// per-step loop only visits those.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(into = "Vec<f64>", try_from = "Vec<f64>")]
 pub struct Permeability {

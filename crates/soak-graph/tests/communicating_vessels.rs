@@ -4,8 +4,7 @@
 //! straight through full nodes.
 
 use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
-use soak_graph::discharge::find_discharge;
-use soak_graph::{Flooding, FlowOptions, LiquidGraph, Node, Pipe, load_graph};
+use soak_graph::{Flooding, FlowOptions, LiquidGraph, Node, Pipe, find_discharge, load_graph};
 use soak_hydro::Water;
 
 const DT: f64 = 1.0 / 30.0;

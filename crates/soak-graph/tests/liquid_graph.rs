@@ -47,8 +47,8 @@ fn every_hand_made_graph_loads() {
 fn toml_and_json_round_trip() {
     let boat = load_graph(root().join("data/graphs/boat.toml")).unwrap();
     let p = Path::new("round.toml");
-    let again = parse_graph(&soak_graph::graph_file::to_toml(&boat), Format::Toml, p).unwrap();
-    let json = parse_graph(&soak_graph::graph_file::to_json(&boat), Format::Json, p).unwrap();
+    let again = parse_graph(&soak_graph::to_toml(&boat), Format::Toml, p).unwrap();
+    let json = parse_graph(&soak_graph::to_json(&boat), Format::Json, p).unwrap();
     for g in [&again, &json] {
         assert_eq!(
             g.nodes().cloned().collect::<Vec<_>>(),
