@@ -1,8 +1,9 @@
-//! `soak stress --quick`: every cell of the reduced stability matrix stays
-//! finite, and passes its energy, liquid and settling checks, except the
-//! cells listed in `KNOWN_ENERGY_FAILURES` (see below and docs/stress.md).
+//! The stability matrix's regressions: the quick matrix (every mesh, water
+//! and effect with the extreme densities, scales and time steps) passes
+//! whole, and the cells of the full matrix that failed once, each group
+//! named after what broke, pass (see docs/stress.md).
 
-use std::process::Command;
+use soak_report::stress::{Cell, StressOptions, quick_matrix, run};
 
 /// Cells of the quick matrix known to fail, each with its reason in
 /// docs/stress.md ("Known failures"). None is left: the last, the 1 mm
@@ -15,34 +16,26 @@ const KNOWN_ENERGY_FAILURES: &[&str] = &[];
 
 #[test]
 fn quick_matrix_passes() {
-    let out = Command::new(env!("CARGO_BIN_EXE_soak"))
-        .args(["stress", "--quick", "--json"])
-        .output()
-        .expect("run soak stress");
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let cells: Vec<serde_json::Value> = serde_json::from_str(&stdout).unwrap_or_else(|e| {
-        panic!(
-            "soak stress printed no JSON ({e}); stderr:\n{}",
-            String::from_utf8_lossy(&out.stderr)
-        )
-    });
+    let cells = quick_matrix();
     assert!(cells.len() >= 84, "the quick matrix has {} cells", cells.len());
+    let options = StressOptions {
+        max_steps: 150,
+        ..StressOptions::default()
+    };
+    let outcomes = run(&cells, &options).expect("every cell runs");
+    assert_eq!(outcomes.len(), cells.len());
     let mut unexpected = Vec::new();
     let mut fixed = Vec::new();
-    for c in &cells {
-        let name = c["cell"].as_str().unwrap();
-        let pass = c["pass"].as_bool().unwrap();
-        assert!(
-            c["finite"].as_bool().unwrap(),
-            "{name}: a non-finite value reached Rapier"
-        );
+    for o in &outcomes {
+        let name = o.cell.as_str();
+        assert!(o.finite, "{name}: a non-finite value reached Rapier");
         let known = KNOWN_ENERGY_FAILURES.contains(&name);
-        match (pass, known) {
-            (false, false) => unexpected.push(format!("{name}: {}", c["failures"])),
+        match (o.pass, known) {
+            (false, false) => unexpected.push(format!("{name}: {:?}", o.failures)),
             (true, true) => fixed.push(name.to_string()),
             (false, true) => {
-                let liquid = c["liquid_ratio"].as_f64().unwrap_or(0.0);
-                assert!(liquid <= 1.0, "{name}: liquid check failed: {}", c["liquid_note"]);
+                let liquid = o.liquid_ratio.unwrap_or(0.0);
+                assert!(liquid <= 1.0, "{name}: liquid check failed: {}", o.liquid_note);
             }
             (true, false) => {}
         }
@@ -51,11 +44,6 @@ fn quick_matrix_passes() {
     assert!(
         fixed.is_empty(),
         "these cells pass now: remove them from KNOWN_ENERGY_FAILURES: {fixed:?}"
-    );
-    // The exit status says whether any cell failed.
-    assert_eq!(
-        out.status.success(),
-        cells.iter().all(|c| c["pass"].as_bool().unwrap())
     );
 }
 
@@ -169,22 +157,23 @@ fn across_the_cliff_the_sliver_keeps_its_energy() {
     ]);
 }
 
-/// Runs each named cell of the full matrix and requires it to pass.
+/// Runs each named cell of the full matrix (at its settings: 32² atlases,
+/// at most 300 steps) and requires every one to pass.
 fn assert_cells_pass(names: &[&str]) {
-    for cell in names {
-        let out = Command::new(env!("CARGO_BIN_EXE_soak"))
-            .args(["stress", "--json", "--only", cell])
-            .output()
-            .expect("run soak stress");
-        let cells: Vec<serde_json::Value> =
-            serde_json::from_slice(&out.stdout).expect("soak stress printed JSON");
-        assert_eq!(cells.len(), 1, "{cell}: one cell");
-        let c = &cells[0];
-        assert!(
-            c["pass"].as_bool().unwrap(),
-            "{cell}: {} (energy {} of its allowance)",
-            c["failures"],
-            c["energy_ratio"]
-        );
-    }
+    let cells: Vec<Cell> = names
+        .iter()
+        .map(|n| Cell::from_name(n).unwrap_or_else(|| panic!("{n} is no cell of the matrix")))
+        .collect();
+    let outcomes = run(&cells, &StressOptions::default()).expect("every cell runs");
+    let failing: Vec<String> = outcomes
+        .iter()
+        .filter(|o| !o.pass)
+        .map(|o| {
+            format!(
+                "{}: {:?} (energy {} of its allowance)",
+                o.cell, o.failures, o.energy_ratio
+            )
+        })
+        .collect();
+    assert!(failing.is_empty(), "failing cells:\n{}", failing.join("\n"));
 }
