@@ -20,8 +20,10 @@ use crate::error::SoakError;
 use crate::firewall::Firewall;
 
 mod config;
+mod rapier_body;
 
 pub use config::{Backend, BodyDesc, Effects, SoakId};
+use rapier_body::{apply_wrench, push_mass};
 
 /// A body driven by the generator.
 #[derive(Debug)]
@@ -1391,43 +1393,6 @@ fn with_extra(model: &MassProperties, extra: Option<&MassProperties>) -> MassPro
 
 fn last_part(w: &Wrench) -> Wrench {
     if w.is_finite() { *w } else { Wrench::default() }
-}
-
-fn apply_wrench(rb: &mut RigidBody, w: &Wrench) {
-    rb.reset_forces(false);
-    rb.reset_torques(false);
-    if w.force != Vector3::zeros() || w.torque != Vector3::zeros() {
-        rb.add_force(convert::to_vector(&w.force), true);
-        rb.add_torque(convert::to_vector(&w.torque), true);
-    }
-}
-
-/// Hands mass properties to Rapier and makes them readable at once.
-fn push_mass(
-    name: &str,
-    rb: &mut RigidBody,
-    colliders: &ColliderSet,
-    m: &MassProperties,
-) -> Result<(), SoakError> {
-    if !m.is_finite() || m.mass <= 0.0 {
-        return Err(SoakError::MassProperties {
-            name: name.to_string(),
-            reason: format!(
-                "mass {} kg and inertia {:?} are not a valid body",
-                m.mass, m.inertia
-            ),
-        });
-    }
-    let p = m.principal();
-    let props = rapier3d::prelude::MassProperties::with_principal_inertia_frame(
-        convert::point_to_vector(&m.center_of_mass),
-        m.mass as f32,
-        convert::to_vector(&p.moments),
-        convert::to_rotation(&p.frame),
-    );
-    rb.set_additional_mass_properties(props, true);
-    rb.recompute_mass_properties_from_colliders(colliders);
-    Ok(())
 }
 
 #[cfg(test)]
