@@ -8,7 +8,6 @@ use rapier3d::prelude::{
     ColliderSet, IntegrationParameters, PhysicsWorld, RigidBody, RigidBodyHandle, RigidBodySet,
 };
 use serde::{Deserialize, Serialize};
-use soak_bake::Atlas;
 use soak_hydro::{
     BodyState, BuoyancyMode, HydroForces, HydroOptions, MassModel, MassProperties, PrincipalInertia,
     SurfaceKind, TiledAtlas, Water, Wrench,
@@ -19,101 +18,14 @@ use crate::convert;
 use crate::error::SoakError;
 use crate::firewall::Firewall;
 
+pub(crate) mod body;
 mod config;
 mod rapier_body;
 
+pub use body::SoakBody;
+use body::{Shape, Wet, with_extra};
 pub use config::{Backend, BodyDesc, Effects, SoakId};
 use rapier_body::{apply_wrench, push_mass};
-
-/// A body driven by the generator.
-#[derive(Debug)]
-pub struct SoakBody {
-    name: String,
-    handle: RigidBodyHandle,
-    atlas: Atlas,
-    /// The atlas' volume and the bounds the stiff-step treatment uses,
-    /// computed when the atlas is set (each is a pass over the texels).
-    shape: Shape,
-    tiled: Option<TiledAtlas>,
-    mass_model: MassModel,
-    /// Mass from the model alone.
-    model_mass: MassProperties,
-    /// Mass carried besides the model (liquid inside, a gas, a payload), local frame.
-    extra_mass: Option<MassProperties>,
-    /// `model_mass` combined with `extra_mass`: what Rapier has.
-    mass: MassProperties,
-    effects: Effects,
-    forces: HydroForces,
-    applied: Wrench,
-    dry_skips: u64,
-    /// `None` unless wetting was asked for: a dry body holds no liquid
-    /// texture, no field and no report.
-    wet: Option<Wet>,
-}
-
-/// A body's wetting and what its last step did.
-#[derive(Clone, Debug)]
-struct Wet {
-    wetting: Wetting,
-    last: StepReport,
-}
-
-impl SoakBody {
-    /// The name given at registration.
-    pub fn name(&self) -> &str {
-        &self.name
-    }
-    /// The Rapier body.
-    pub fn handle(&self) -> RigidBodyHandle {
-        self.handle
-    }
-    /// Its atlas (object frame = the rigid body's local frame).
-    pub fn atlas(&self) -> &Atlas {
-        &self.atlas
-    }
-    /// Its mass model.
-    pub fn mass_model(&self) -> &MassModel {
-        &self.mass_model
-    }
-    /// Mass carried besides the mass model, if any.
-    pub fn extra_mass(&self) -> Option<&MassProperties> {
-        self.extra_mass.as_ref()
-    }
-    /// Its current mass properties, local frame, as handed to Rapier.
-    pub fn mass_properties(&self) -> &MassProperties {
-        &self.mass
-    }
-    /// Its effects.
-    pub fn effects(&self) -> &Effects {
-        &self.effects
-    }
-    /// The hydrostatics of the last step (zero when skipped or dry).
-    pub fn forces(&self) -> &HydroForces {
-        &self.forces
-    }
-    /// The force and torque handed to Rapier at the last step, world frame.
-    pub fn applied(&self) -> &Wrench {
-        &self.applied
-    }
-    /// Steps at which the body was above the highest crest and skipped.
-    pub fn dry_skips(&self) -> u64 {
-        self.dry_skips
-    }
-    /// Its wetting state, if wetting is on (see [`ForceGenerator::set_wetting`]).
-    pub fn wetting(&self) -> Option<&Wetting> {
-        self.wet.as_ref().map(|w| &w.wetting)
-    }
-    /// Its liquid texture, if wetting is on: `h_i` per texel in atlas
-    /// order, volume per area, m³/m² = m, in `[0, saturation]`.
-    pub fn liquid(&self) -> Option<&[f64]> {
-        self.wet.as_ref().map(|w| w.wetting.liquid())
-    }
-    /// What the last wetting step did (absorbed, evaporated, m³;
-    /// submerged texels; diffusion substeps), if wetting is on.
-    pub fn wet_report(&self) -> Option<&StepReport> {
-        self.wet.as_ref().map(|w| &w.last)
-    }
-}
 
 /// What a body's run changes, for saving: its mass model and extra mass,
 /// the last forces, and its wetting (liquid texture, ledger and settings).
@@ -863,34 +775,6 @@ fn implicit_weight(water: &Water, shape: &Shape, m: f64, dt: f64, substeps: f64)
     w4 / (1.0 + w4)
 }
 
-/// What the per-step work needs of a body's atlas, computed once per atlas.
-#[derive(Clone, Copy, Debug)]
-struct Shape {
-    /// Enclosed volume, m³ (absolute value).
-    volume: f64,
-    /// An upper bound on the water-plane area in any pose, m²: the smaller
-    /// of `π r²` (`r` the bounding radius) and half the surface area (a
-    /// closed surface's projection on any plane, counted once from above
-    /// and once from below, is at most its area). The second is the tight
-    /// one for long thin bodies: a 200:1 rod's is 1/80 of its `π r²`.
-    water_plane: f64,
-    /// Thickness `3V/A`, m: the radius of a sphere, about the width of a rod.
-    thickness: f64,
-}
-
-impl Shape {
-    fn of(atlas: &Atlas) -> Self {
-        let r = atlas.bounding_radius();
-        let area = atlas.area();
-        let volume = atlas.volume().abs();
-        Self {
-            volume,
-            water_plane: (std::f64::consts::PI * r * r).min(0.5 * area),
-            thickness: 3.0 * volume / area.max(f64::MIN_POSITIVE),
-        }
-    }
-}
-
 /// The buoyancy with its restoring part integrated implicitly in heave,
 /// where the body is stiff for the step.
 ///
@@ -1381,13 +1265,6 @@ impl<'a> Step<'a> {
         }
         let damped = blend(lo);
         if damped.is_finite() { damped } else { w }
-    }
-}
-
-fn with_extra(model: &MassProperties, extra: Option<&MassProperties>) -> MassProperties {
-    match extra {
-        Some(e) => model.combine(e),
-        None => *model,
     }
 }
 
