@@ -83,7 +83,8 @@ impl SoakBody {
     pub fn dry_skips(&self) -> u64 {
         self.dry_skips
     }
-    /// Its wetting state, if wetting is on (see [`ForceGenerator::set_wetting`](super::ForceGenerator::set_wetting)).
+    /// Its wetting state, if wetting is on (see
+    /// [`ForceGenerator::set_wetting`](super::ForceGenerator::set_wetting)).
     pub fn wetting(&self) -> Option<&Wetting> {
         self.wet.as_ref().map(|w| &w.wetting)
     }
