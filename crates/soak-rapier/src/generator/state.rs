@@ -6,8 +6,8 @@ use serde::{Deserialize, Serialize};
 use soak_hydro::{HydroForces, MassModel, MassProperties, Wrench};
 use soak_wet::{Environment, StepReport, Wetting};
 
-use super::ForceGenerator;
 use super::body::{Wet, with_extra};
+use super::force_generator::ForceGenerator;
 use crate::error::SoakError;
 
 /// What a body's run changes, for saving: its mass model and extra mass,
