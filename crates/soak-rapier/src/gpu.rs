@@ -7,7 +7,7 @@ use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuHydro};
 use soak_hydro::{BodyState, HydroForces, HydroOptions, Water};
 
 use crate::error::SoakError;
-use crate::generator::SoakBody;
+use crate::generator::body::SoakBody;
 
 /// Device-side atlases in registration order.
 pub(crate) struct GpuBackend {

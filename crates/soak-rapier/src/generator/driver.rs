@@ -1,0 +1,260 @@
+//! The per-step driver: [`ForceGenerator::apply`] (predict each body's
+//! pose, evaluate its effects, pass them through the firewall and hand them
+//! to Rapier), [`ForceGenerator::wet`], [`ForceGenerator::splash`], and
+//! [`ForceGenerator::step`], which does a whole step.
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+use rapier3d::prelude::{IntegrationParameters, PhysicsWorld, RigidBodySet};
+use soak_hydro::{BodyState, BuoyancyMode, HydroForces, HydroOptions, Wrench};
+
+use super::force_generator::ForceGenerator;
+use super::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
+use super::rapier_body::apply_wrench;
+use crate::convert;
+use crate::error::SoakError;
+
+impl ForceGenerator {
+    /// Evaluates every body's effects and applies them as forces and torques
+    /// (resetting the previous step's), for the Rapier step that `params`
+    /// describe. Does not advance time nor wet bodies ([`ForceGenerator::wet`]);
+    /// [`ForceGenerator::step`] does all three.
+    ///
+    /// Rapier holds an external force constant over its `s` solver substeps,
+    /// which makes any position-dependent force (a spring, buoyancy) gain
+    /// energy every step. Evaluating the force at the pose predicted
+    /// `β = (s − 1)/(2s)` of a step ahead makes the step area-preserving
+    /// again (exactly so for a linear restoring force), so a floating body
+    /// bobs for minutes without its amplitude growing or decaying.
+    pub fn apply(&mut self, bodies: &mut RigidBodySet, params: &IntegrationParameters) {
+        let dt = params.dt as f64;
+        let substeps = params.num_solver_iterations.max(1) as f64;
+        let lookahead = (substeps - 1.0) / (2.0 * substeps) * dt;
+        let t = self.time;
+        let step = self.steps;
+        let bounds = self.water.surface.height_bounds(t);
+
+        // 1. Which bodies need texel work, at which predicted state.
+        let mut work: Vec<(usize, BodyState, HydroOptions)> = Vec::new();
+        for (k, b) in self.bodies.iter_mut().enumerate() {
+            if !b.effects.any() {
+                continue;
+            }
+            let Some(rb) = bodies.get_mut(b.handle) else {
+                continue;
+            };
+            let (v, w) = (convert::vector(rb.linvel()), convert::vector(rb.angvel()));
+            let now = convert::pose(rb.position());
+            // Predicted pose: the centre of mass moves with v, the body turns with ω.
+            let com = now * b.mass.center_of_mass;
+            let rotation = UnitQuaternion::from_scaled_axis(w * lookahead) * now.rotation;
+            let translation = (com + v * lookahead).coords - rotation * b.mass.center_of_mass.coords;
+            let state = BodyState {
+                pose: Isometry3::from_parts(Translation3::from(translation), rotation),
+                linear_velocity: v,
+                angular_velocity: w,
+            };
+            // Above the highest crest: no texel work at all. A body stiff
+            // for the step (see `implicit_heave`) is skipped only if it
+            // cannot reach the water within the step, falling at g.
+            let centre = state.pose * b.atlas.origin();
+            let radius = b.atlas.bounding_radius();
+            let reach = if implicit_weight(&self.water, &b.shape, rb.mass() as f64, dt, substeps)
+                >= IMPLICIT_NEGLIGIBLE
+            {
+                let c = (substeps + 1.0) / (2.0 * substeps);
+                (1.0 - lookahead / dt) * dt * (-v.y).max(0.0)
+                    + c * dt * dt * self.water.gravity * rb.gravity_scale().abs() as f64
+            } else {
+                0.0
+            };
+            if let Some((_, highest)) = bounds
+                && centre.y - radius - reach > highest
+            {
+                b.dry_skips += 1;
+                b.forces = HydroForces {
+                    center_of_buoyancy: state.pose * b.mass.center_of_mass,
+                    ..HydroForces::default()
+                };
+                apply_wrench(rb, &Wrench::default());
+                b.applied = Wrench::default();
+                continue;
+            }
+            let options = HydroOptions {
+                buoyancy: b.effects.buoyancy.unwrap_or(BuoyancyMode::Off),
+                drag: b.effects.drag,
+                dt,
+            };
+            work.push((k, state, options));
+        }
+
+        // 2. Evaluate: one GPU batch, or body by body on the CPU.
+        let mut results: Vec<Result<HydroForces, String>> = Vec::with_capacity(work.len());
+        #[cfg(feature = "gpu")]
+        if let Some(gpu) = &self.gpu {
+            match gpu.evaluate(&self.bodies, &self.water, &work, t) {
+                Ok(forces) => results.extend(forces.into_iter().map(Ok)),
+                Err(e) => {
+                    // Keep going on the CPU for this step; say so once per failure.
+                    self.firewall.reject(
+                        step,
+                        "(all)",
+                        "gpu evaluation",
+                        format!("{e}; evaluated on the CPU"),
+                    );
+                }
+            }
+        }
+        if results.is_empty() {
+            for (k, state, options) in &work {
+                let b = &self.bodies[*k];
+                let r = match &b.tiled {
+                    Some(tiled) => tiled.evaluate(&b.atlas, &self.water, state, &b.mass, t, options),
+                    None => soak_hydro::evaluate(&b.atlas, &self.water, state, &b.mass, t, options),
+                };
+                results.push(r.map_err(|e| e.to_string()));
+            }
+        }
+
+        // 3. The firewall, then Rapier.
+        for ((k, state, options), result) in work.iter().zip(results) {
+            let b = &mut self.bodies[*k];
+            let Some(rb) = bodies.get_mut(b.handle) else {
+                continue;
+            };
+            let forces = match result {
+                Ok(f) => f,
+                Err(e) => {
+                    self.firewall.reject(step, &b.name, "body state", e);
+                    let keep = b.applied;
+                    apply_wrench(rb, &keep);
+                    continue;
+                }
+            };
+            let mut wrench = Wrench::default();
+            // Buoyancy can never exceed the weight of fluid the whole body displaces.
+            let limit = 1.5 * self.water.density * self.water.gravity * b.shape.volume + 1e-9;
+            let bw = forces.buoyancy;
+            if !bw.is_finite() {
+                self.firewall
+                    .reject(step, &b.name, "buoyancy", format!("non-finite {bw:?}"));
+                wrench = wrench + last_part(&b.forces.buoyancy);
+            } else if bw.force.norm() > limit {
+                self.firewall.reject(
+                    step,
+                    &b.name,
+                    "buoyancy",
+                    format!("|F| = {:.3e} N exceeds {:.3e} N", bw.force.norm(), limit),
+                );
+                wrench = wrench + last_part(&b.forces.buoyancy);
+            } else {
+                // The drag is applied with the buoyancy: the implicit solve counts it.
+                let drag = last_part(&forces.drag);
+                wrench =
+                    wrench + implicit_heave(b, rb, &self.water, state, options, t, substeps, limit, bw, drag);
+            }
+            if forces.drag.is_finite() {
+                wrench = wrench + forces.drag;
+            } else {
+                self.firewall
+                    .reject(step, &b.name, "drag", format!("non-finite {:?}", forces.drag));
+            }
+            apply_wrench(rb, &wrench);
+            b.applied = wrench;
+            b.forces = forces;
+        }
+    }
+
+    /// Advances the liquid texture of every wet body by `dt` (s) at the
+    /// generator's time, with the body's pose as Rapier has it now and the
+    /// generator's water and environment: absorption through the submerged
+    /// texels, evaporation from the others, then the body's own diffusion
+    /// (see [`Wetting::step`](soak_wet::Wetting::step)). Bodies without wetting
+    /// are not visited beyond a check. [`ForceGenerator::step`] calls it
+    /// before stepping the world; call it yourself (once per step, before
+    /// [`ForceGenerator::advance`]) when driving Rapier yourself.
+    ///
+    /// A body whose pose is not finite is skipped and the firewall records
+    /// it; invalid wetting settings are an error.
+    pub fn wet(&mut self, bodies: &RigidBodySet, dt: f64) -> Result<(), SoakError> {
+        let (t, step) = (self.time, self.steps);
+        for b in &mut self.bodies {
+            let Some(wet) = &mut b.wet else {
+                continue;
+            };
+            let Some(rb) = bodies.get(b.handle) else {
+                continue;
+            };
+            let pose = convert::pose(rb.position());
+            let finite = pose.translation.vector.iter().all(|c| c.is_finite())
+                && pose.rotation.coords.iter().all(|c| c.is_finite());
+            if !finite {
+                self.firewall
+                    .reject(step, &b.name, "wetting pose", format!("non-finite {pose:?}"));
+                continue;
+            }
+            wet.last = wet
+                .wetting
+                .step(&b.atlas, &pose, &self.water, &self.environment, t, dt)
+                .map_err(|source| SoakError::Wet {
+                    name: b.name.clone(),
+                    source,
+                })?;
+        }
+        Ok(())
+    }
+
+    /// Drops `splash` on every wet body, each at its pose as Rapier has it
+    /// now; returns the volume that stuck (m³, summed over the bodies; the
+    /// rest ran off saturated texels or landed on no body). Bodies without
+    /// wetting are not touched.
+    ///
+    /// # Errors
+    /// An invalid splash, or a wet body whose pose is not finite.
+    pub fn splash(&mut self, bodies: &RigidBodySet, splash: &soak_wet::Splash) -> Result<f64, SoakError> {
+        let mut stuck = 0.0;
+        for b in &mut self.bodies {
+            let (Some(wet), Some(rb)) = (&mut b.wet, bodies.get(b.handle)) else {
+                continue;
+            };
+            let pose = convert::pose(rb.position());
+            stuck += wet
+                .wetting
+                .splash(&b.atlas, &pose, splash)
+                .map_err(|source| SoakError::Wet {
+                    name: b.name.clone(),
+                    source,
+                })?;
+        }
+        Ok(stuck)
+    }
+
+    /// Advances the generator's clock (for moving waves) by `dt` seconds.
+    pub fn advance(&mut self, dt: f64) {
+        self.time += dt;
+        self.steps += 1;
+    }
+
+    /// Makes the fluid's hydrostatic gravity the world's (m/s²). [`ForceGenerator::step`]
+    /// does this every step; call it when driving Rapier yourself.
+    pub fn sync_gravity(&mut self, world: &PhysicsWorld) {
+        self.water.gravity = convert::vector(world.gravity).norm();
+    }
+
+    /// Applies the fluid forces, wets the wet bodies over the step
+    /// ([`ForceGenerator::wet`]), steps the world once and advances time.
+    /// The fluid's gravity follows the world's.
+    pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<(), SoakError> {
+        self.sync_gravity(world);
+        let dt = world.integration_parameters.dt as f64;
+        let params = world.integration_parameters;
+        self.apply(&mut world.bodies, &params);
+        self.wet(&world.bodies, dt)?;
+        world.step();
+        self.advance(dt);
+        Ok(())
+    }
+}
+
+fn last_part(w: &Wrench) -> Wrench {
+    if w.is_finite() { *w } else { Wrench::default() }
+}

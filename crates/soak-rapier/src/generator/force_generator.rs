@@ -1,0 +1,367 @@
+//! The force generator itself ([`ForceGenerator`]): its water, weather,
+//! backend and bodies, and registering bodies and changing their mass,
+//! shape and wetting between steps. Each step's work is in `driver.rs`, the
+//! saved state in `state.rs`.
+
+use nalgebra::Point3;
+use rapier3d::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
+use soak_hydro::{HydroForces, MassModel, MassProperties, TiledAtlas, Water, Wrench};
+use soak_wet::{Environment, StepReport, Wetting};
+
+use super::body::{Shape, SoakBody, Wet, with_extra};
+use super::config::{Backend, BodyDesc, SoakId};
+use super::rapier_body::push_mass;
+use crate::error::SoakError;
+use crate::firewall::Firewall;
+
+/// Applies buoyancy and drag to registered rapier3d bodies before each step.
+///
+/// Gravity stays Rapier's: the generator only adds fluid forces and keeps
+/// each body's mass properties in line with its mass model. User forces in
+/// Rapier persist across steps, so every step resets the body's forces and
+/// torques before adding the new ones.
+///
+/// Bodies may also get wet ([`ForceGenerator::set_wetting`]): each step
+/// their liquid texture absorbs water through the submerged texels, dries
+/// in the generator's [`Environment`] and diffuses, all over the step's
+/// `dt`. Wetting does not change the body's mass or forces. A body without
+/// wetting holds no wetting state at all and costs nothing for it.
+///
+/// # Example
+/// ```
+/// use rapier3d::prelude::*;
+/// use soak_bake::{Atlas, BakeOptions, builtin};
+/// use soak_hydro::{Drag, MassModel, Water};
+/// use soak_rapier::{BodyDesc, Effects, ForceGenerator};
+///
+/// let mut world = PhysicsWorld::new();
+/// let handle = world.bodies.insert(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.0, 0.0)));
+/// let atlas = Atlas::bake(&builtin::cuboid(1.0, 1.0, 1.0), BakeOptions::square(64))?;
+/// let mut soak = ForceGenerator::new(Water::calm(0.0));
+/// soak.register(&mut world.bodies, &world.colliders, handle, BodyDesc {
+///     name: "crate".into(),
+///     atlas,
+///     mass_model: MassModel::Solid { density: 500.0 },
+///     effects: Effects::buoyancy().with_drag(Drag::default()),
+/// })?;
+/// for _ in 0..1200 {
+///     soak.step(&mut world)?;
+/// }
+/// // Half as dense as water: it floats half submerged (its centre near y = 0).
+/// assert!(world.bodies[handle].translation().y.abs() < 0.1);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug)]
+pub struct ForceGenerator {
+    pub(super) water: Water,
+    pub(super) bodies: Vec<SoakBody>,
+    pub(super) backend: Backend,
+    pub(super) time: f64,
+    pub(super) steps: u64,
+    pub(super) firewall: Firewall,
+    pub(super) environment: Environment,
+    #[cfg(feature = "gpu")]
+    pub(super) gpu: Option<crate::gpu::GpuBackend>,
+}
+
+impl ForceGenerator {
+    /// A generator for bodies in `water` (any fluid: water, a sea, air).
+    pub fn new(water: Water) -> Self {
+        Self {
+            water,
+            bodies: Vec::new(),
+            backend: Backend::default(),
+            time: 0.0,
+            steps: 0,
+            firewall: Firewall::default(),
+            environment: Environment::default(),
+            #[cfg(feature = "gpu")]
+            gpu: None,
+        }
+    }
+
+    /// Evaluates every body on the GPU, all in one batch per step (one
+    /// submission, one readback), with the caller's device. Results are
+    /// interchangeable with the CPU backends; should the GPU fail in a step,
+    /// that step is evaluated on the CPU and the firewall records it.
+    #[cfg(feature = "gpu")]
+    pub fn with_gpu(mut self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Self, SoakError> {
+        let mut gpu = crate::gpu::GpuBackend::new(device, queue)?;
+        for b in &self.bodies {
+            gpu.upload(&b.atlas)?;
+        }
+        self.gpu = Some(gpu);
+        Ok(self)
+    }
+
+    /// Whether bodies are evaluated on the GPU.
+    pub fn uses_gpu(&self) -> bool {
+        #[cfg(feature = "gpu")]
+        return self.gpu.is_some();
+        #[cfg(not(feature = "gpu"))]
+        false
+    }
+
+    /// The same generator with another CPU backend.
+    pub fn with_backend(mut self, backend: Backend) -> Self {
+        self.backend = backend;
+        for b in &mut self.bodies {
+            b.tiled = (backend != Backend::PerTexel && b.effects.any()).then(|| TiledAtlas::new(&b.atlas));
+        }
+        self
+    }
+
+    /// The fluid.
+    pub fn water(&self) -> &Water {
+        &self.water
+    }
+
+    /// Replaces the fluid (a new sea state, a rising tide).
+    pub fn set_water(&mut self, water: Water) {
+        self.water = water;
+    }
+
+    /// The weather wet bodies dry in (temperature in K, relative humidity
+    /// as a fraction, wind in m/s, rain); [`Environment::default`] (20 °C,
+    /// 50 %, 2 m/s, no rain) until set.
+    pub fn environment(&self) -> &Environment {
+        &self.environment
+    }
+
+    /// Replaces the weather (validated); it applies from the next step.
+    pub fn set_environment(&mut self, environment: Environment) -> Result<(), SoakError> {
+        environment.validate().map_err(|source| SoakError::Wet {
+            name: "(environment)".into(),
+            source,
+        })?;
+        self.environment = environment;
+        Ok(())
+    }
+
+    /// Turns wetting on for a body with `Some(state)` (made for the body's
+    /// atlas, e.g. `Wetting::new(body.atlas(), Material::wood(),
+    /// Liquid::water())`, and keeping the liquid it already holds), or off
+    /// with `None`, which drops the state and everything it allocated.
+    pub fn set_wetting(&mut self, id: SoakId, wetting: Option<Wetting>) -> Result<(), SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        if let Some(w) = &wetting
+            && w.texels() != b.atlas.len()
+        {
+            return Err(SoakError::Wet {
+                name: b.name.clone(),
+                source: soak_wet::WetError::AtlasMismatch {
+                    state: w.texels(),
+                    atlas: b.atlas.len(),
+                },
+            });
+        }
+        b.wet = wetting.map(|wetting| Wet {
+            wetting,
+            last: StepReport::default(),
+        });
+        Ok(())
+    }
+
+    /// A body's wetting state, if it has one.
+    pub fn wetting(&self, id: SoakId) -> Option<&Wetting> {
+        self.bodies.get(id.0).and_then(SoakBody::wetting)
+    }
+
+    /// A body's wetting state, to splash, paint or change its settings
+    /// (with the body's atlas: [`SoakBody::atlas`]).
+    pub fn wetting_mut(&mut self, id: SoakId) -> Option<&mut Wetting> {
+        self.bodies
+            .get_mut(id.0)
+            .and_then(|b| b.wet.as_mut().map(|w| &mut w.wetting))
+    }
+
+    /// A body's liquid texture, if it has wetting: `h_i` per texel in atlas
+    /// order, m³/m² = m. [`soak_wet::liquid_texture`] lays it out as an
+    /// image, [`soak_wet::write_liquid_png`] writes it in pseudo-colour.
+    pub fn liquid_texture(&self, id: SoakId) -> Option<&[f64]> {
+        self.bodies.get(id.0).and_then(SoakBody::liquid)
+    }
+
+    /// Simulated time, s (advanced by [`ForceGenerator::step`] and [`ForceGenerator::advance`]).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// The registered bodies, in registration order.
+    pub fn bodies(&self) -> &[SoakBody] {
+        &self.bodies
+    }
+
+    /// One body.
+    pub fn body(&self, id: SoakId) -> Option<&SoakBody> {
+        self.bodies.get(id.0)
+    }
+
+    /// Rejected quantities so far.
+    pub fn firewall(&self) -> &Firewall {
+        &self.firewall
+    }
+
+    /// Registers a rigid body: computes its mass properties from the mass
+    /// model and hands them to Rapier (readable at once through `mass()`).
+    /// Its colliders must have density 0: soak owns the body's mass.
+    pub fn register(
+        &mut self,
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+        handle: RigidBodyHandle,
+        desc: BodyDesc,
+    ) -> Result<SoakId, SoakError> {
+        let body = bodies.get_mut(handle).ok_or_else(|| SoakError::MissingBody {
+            name: desc.name.clone(),
+        })?;
+        for &ch in body.colliders() {
+            if let Some(c) = colliders.get(ch)
+                && c.density() != 0.0
+            {
+                return Err(SoakError::ColliderHasMass {
+                    name: desc.name.clone(),
+                    collider: ch.into_raw_parts().0,
+                    density: c.density(),
+                });
+            }
+        }
+        let mass = desc
+            .mass_model
+            .mass_properties(&desc.atlas)
+            .map_err(|source| SoakError::Hydro {
+                name: desc.name.clone(),
+                source,
+            })?;
+        push_mass(&desc.name, body, colliders, &mass)?;
+        let tiled =
+            (self.backend != Backend::PerTexel && desc.effects.any()).then(|| TiledAtlas::new(&desc.atlas));
+        #[cfg(feature = "gpu")]
+        if let Some(gpu) = &mut self.gpu {
+            gpu.upload(&desc.atlas)?;
+        }
+        self.bodies.push(SoakBody {
+            name: desc.name,
+            handle,
+            shape: Shape::of(&desc.atlas),
+            atlas: desc.atlas,
+            tiled,
+            mass_model: desc.mass_model,
+            model_mass: mass,
+            extra_mass: None,
+            mass,
+            effects: desc.effects,
+            forces: HydroForces::default(),
+            applied: Wrench::default(),
+            dry_skips: 0,
+            wet: None,
+        });
+        Ok(SoakId(self.bodies.len() - 1))
+    }
+
+    /// Changes a body's mass model (e.g. a shell density texture that
+    /// changes every frame) and updates Rapier's mass properties at once.
+    pub fn set_mass_model(
+        &mut self,
+        id: SoakId,
+        model: MassModel,
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Result<(), SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        let mass = model
+            .mass_properties(&b.atlas)
+            .map_err(|source| SoakError::Hydro {
+                name: b.name.clone(),
+                source,
+            })?;
+        let rb = bodies
+            .get_mut(b.handle)
+            .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
+        push_mass(&b.name, rb, colliders, &with_extra(&mass, b.extra_mass.as_ref()))?;
+        b.mass = with_extra(&mass, b.extra_mass.as_ref());
+        b.model_mass = mass;
+        b.mass_model = model;
+        Ok(())
+    }
+
+    /// Sets the mass a body carries besides its mass model (local frame):
+    /// liquid inside, a gas, a payload. It is combined with the model's
+    /// about the common centre of mass and handed to Rapier at once.
+    pub fn set_extra_mass(
+        &mut self,
+        id: SoakId,
+        extra: Option<MassProperties>,
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Result<(), SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        if let Some(e) = &extra
+            && !e.is_finite()
+        {
+            return Err(SoakError::MassProperties {
+                name: b.name.clone(),
+                reason: format!("extra mass {e:?} is not finite"),
+            });
+        }
+        let total = with_extra(&b.model_mass, extra.as_ref());
+        let rb = bodies
+            .get_mut(b.handle)
+            .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
+        push_mass(&b.name, rb, colliders, &total)?;
+        b.extra_mass = extra;
+        b.mass = total;
+        Ok(())
+    }
+
+    /// Follows a deforming mesh: new vertex positions (local frame, m, same
+    /// topology) refresh the atlas from its barycentrics (no re-bake) and the
+    /// mass properties.
+    pub fn deform(
+        &mut self,
+        id: SoakId,
+        positions: &[Point3<f64>],
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Result<(), SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        let mut atlas = b.atlas.clone();
+        atlas.refresh(positions).map_err(|source| SoakError::Bake {
+            name: b.name.clone(),
+            source,
+        })?;
+        let mass = b
+            .mass_model
+            .mass_properties(&atlas)
+            .map_err(|source| SoakError::Hydro {
+                name: b.name.clone(),
+                source,
+            })?;
+        let rb = bodies
+            .get_mut(b.handle)
+            .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
+        let total = with_extra(&mass, b.extra_mass.as_ref());
+        push_mass(&b.name, rb, colliders, &total)?;
+        if b.tiled.is_some() {
+            b.tiled = Some(TiledAtlas::new(&atlas));
+        }
+        if let Some(w) = &mut b.wet {
+            // The texels moved in object space: rebin the diffusion field.
+            w.wetting.refresh_field();
+        }
+        #[cfg(feature = "gpu")]
+        if let Some(gpu) = &mut self.gpu {
+            gpu.deform(id.0, positions)?;
+        }
+        b.shape = Shape::of(&atlas);
+        b.atlas = atlas;
+        b.model_mass = mass;
+        b.mass = total;
+        Ok(())
+    }
+}

@@ -1,0 +1,153 @@
+//! The generator's evolving state, for saving and restoring: each body's
+//! [`BodyRunState`], the whole [`GeneratorState`], and
+//! [`ForceGenerator::state`] and [`ForceGenerator::restore_state`].
+
+use serde::{Deserialize, Serialize};
+use soak_hydro::{HydroForces, MassModel, MassProperties, Wrench};
+use soak_wet::{Environment, StepReport, Wetting};
+
+use super::body::{Wet, with_extra};
+use super::force_generator::ForceGenerator;
+use crate::error::SoakError;
+
+/// What a body's run changes, for saving: its mass model and extra mass,
+/// the last forces, and its wetting (liquid texture, ledger and settings).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct BodyRunState {
+    /// The mass model now.
+    pub mass_model: MassModel,
+    /// Extra mass now.
+    pub extra_mass: Option<MassProperties>,
+    /// Hydrostatics of the last step.
+    pub forces: HydroForces,
+    /// What was handed to Rapier at the last step.
+    pub applied: Wrench,
+    /// Dry steps skipped so far.
+    pub dry_skips: u64,
+    /// The body's wetting, if it has any: the liquid texture (m per texel),
+    /// the ledger of absorbed and evaporated volumes (m³) and the material,
+    /// liquid and diffusion settings. The diffusion field's binning is not
+    /// saved: it is rebuilt from the atlas, to the same bits.
+    #[serde(default)]
+    pub wetting: Option<Wetting>,
+    /// What its last wetting step did.
+    #[serde(default)]
+    pub wet_report: Option<StepReport>,
+}
+
+impl PartialEq for BodyRunState {
+    fn eq(&self, other: &Self) -> bool {
+        let same_wetting = match (&self.wetting, &other.wetting) {
+            (None, None) => true,
+            (Some(a), Some(b)) => same_wetting(a, b),
+            _ => false,
+        };
+        self.mass_model == other.mass_model
+            && self.extra_mass == other.extra_mass
+            && self.forces == other.forces
+            && self.applied == other.applied
+            && self.dry_skips == other.dry_skips
+            && self.wet_report == other.wet_report
+            && same_wetting
+    }
+}
+
+/// Whether two wetting states hold the same settings, liquid and ledger
+/// (their rebuilt-on-demand field caches aside).
+fn same_wetting(a: &Wetting, b: &Wetting) -> bool {
+    a.material() == b.material()
+        && a.liquid_params() == b.liquid_params()
+        && a.response() == b.response()
+        && a.diffusion() == b.diffusion()
+        && a.permeability_map() == b.permeability_map()
+        && a.liquid() == b.liquid()
+        && a.ledger() == b.ledger()
+}
+
+/// The evolving state of a [`ForceGenerator`] (not its atlases or water,
+/// which come from the scene).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GeneratorState {
+    /// Simulated time, s.
+    pub time: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// Per body, in registration order.
+    pub bodies: Vec<BodyRunState>,
+    /// The weather wet bodies dry in.
+    #[serde(default)]
+    pub environment: Environment,
+}
+
+impl ForceGenerator {
+    /// The evolving state, for saving.
+    pub fn state(&self) -> GeneratorState {
+        GeneratorState {
+            time: self.time,
+            steps: self.steps,
+            bodies: self
+                .bodies
+                .iter()
+                .map(|b| BodyRunState {
+                    mass_model: b.mass_model.clone(),
+                    extra_mass: b.extra_mass,
+                    forces: b.forces,
+                    applied: b.applied,
+                    dry_skips: b.dry_skips,
+                    wetting: b.wet.as_ref().map(|w| w.wetting.clone()),
+                    wet_report: b.wet.as_ref().map(|w| w.last),
+                })
+                .collect(),
+            environment: self.environment,
+        }
+    }
+
+    /// Restores a state saved from a generator with the same bodies. The
+    /// Rapier world is restored separately (its bodies already carry the
+    /// saved mass properties).
+    pub fn restore_state(&mut self, state: &GeneratorState) -> Result<(), SoakError> {
+        if state.bodies.len() != self.bodies.len() {
+            return Err(SoakError::State(format!(
+                "state has {} bodies, the generator {}",
+                state.bodies.len(),
+                self.bodies.len()
+            )));
+        }
+        for (b, s) in self.bodies.iter().zip(&state.bodies) {
+            if let Some(w) = &s.wetting
+                && w.texels() != b.atlas.len()
+            {
+                return Err(SoakError::State(format!(
+                    "body `{}`: the saved liquid texture has {} texels, the atlas {}",
+                    b.name,
+                    w.texels(),
+                    b.atlas.len()
+                )));
+            }
+        }
+        self.environment = state.environment;
+        for (b, s) in self.bodies.iter_mut().zip(&state.bodies) {
+            let model_mass = s
+                .mass_model
+                .mass_properties(&b.atlas)
+                .map_err(|source| SoakError::Hydro {
+                    name: b.name.clone(),
+                    source,
+                })?;
+            b.mass_model = s.mass_model.clone();
+            b.model_mass = model_mass;
+            b.extra_mass = s.extra_mass;
+            b.mass = with_extra(&model_mass, s.extra_mass.as_ref());
+            b.forces = s.forces;
+            b.applied = s.applied;
+            b.dry_skips = s.dry_skips;
+            b.wet = s.wetting.clone().map(|wetting| Wet {
+                wetting,
+                last: s.wet_report.unwrap_or_default(),
+            });
+        }
+        self.time = state.time;
+        self.steps = state.steps;
+        Ok(())
+    }
+}
