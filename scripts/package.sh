@@ -60,4 +60,6 @@ fn main() {
 RS
 # The workspace's lock file pins the same versions of every dependency.
 cp "$root/Cargo.lock" "$check/app/Cargo.lock"
-CARGO_TARGET_DIR="$root/target/package/check-target" cargo run --quiet --manifest-path "$check/app/Cargo.toml"
+# The same target folder as the verification above: only the packed soak
+# crates build again.
+CARGO_TARGET_DIR="$root/target" cargo run --quiet --manifest-path "$check/app/Cargo.toml"

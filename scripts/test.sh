@@ -19,5 +19,8 @@ cargo clippy --workspace --all-targets --all-features --locked -- -D warnings
 cargo fmt --manifest-path fuzz/Cargo.toml -- --check
 cargo clippy --manifest-path fuzz/Cargo.toml --all-targets --locked -- -D warnings
 cargo test --workspace --all-features --locked
+# Every crate packed as it would be published builds on its own, the GPU
+# kernels of the packed crates included.
+bash scripts/package.sh
 # Disk used by the build, for keeping CI within its machine.
 du -sh target fuzz/target 2>/dev/null || true
