@@ -19,10 +19,14 @@ use rayon::prelude::*;
 use soak_bake::Atlas;
 
 use crate::error::HydroError;
-use crate::hydrostatics::{
-    BodyState, BuoyancyMode, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, PlanarTexels,
-    add_planar_ranges, evaluate, finish, texel,
-};
+use crate::hydrostatics::body_state::BodyState;
+use crate::hydrostatics::evaluation::evaluate;
+use crate::hydrostatics::finish::finish;
+use crate::hydrostatics::forces::HydroForces;
+use crate::hydrostatics::frame::{Frame, texel};
+use crate::hydrostatics::options::{BuoyancyMode, HydroOptions};
+use crate::hydrostatics::planar_kernel::{PlanarTexels, add_planar_ranges};
+use crate::hydrostatics::sums::{BuoyancySums, DragSums};
 use crate::mass::MassProperties;
 use crate::parallel::par_map;
 use crate::water::Water;
