@@ -12,9 +12,10 @@
 //!
 //! One file per part of the design, each depending only on those above it:
 //!
-//! - `options`: [`BuoyancyMode`], [`Drag`], [`HydroOptions`].
-//! - `body_state`: [`BodyState`].
-//! - `forces`: [`Wrench`], [`HydroForces`].
+//! - `options`: [`BuoyancyMode`](crate::BuoyancyMode), [`Drag`](crate::Drag),
+//!   [`HydroOptions`](crate::HydroOptions).
+//! - `body_state`: [`BodyState`](crate::BodyState).
+//! - `forces`: [`Wrench`](crate::Wrench), [`HydroForces`](crate::HydroForces).
 //! - `sums`: the per-texel sums (buoyancy, Archimedes' slope terms, drag).
 //! - `frame`: the frame of one evaluation, depths and texel reads.
 //! - `planar_kernel`: the buoyancy sums under planar water, portable and AVX2.
@@ -23,7 +24,8 @@
 //!   a plane.
 //! - `implicit_drag`: drag integrated implicitly over the step.
 //! - `finish`: the sums turned into forces.
-//! - `evaluation`: the per-texel pass, [`evaluate`] and [`streaming_read`].
+//! - `evaluation`: the per-texel pass, [`evaluate`](crate::evaluate) and
+//!   [`streaming_read`](crate::streaming_read).
 
 pub(crate) mod body_state;
 pub(crate) mod deep_volume;
@@ -36,8 +38,3 @@ pub(crate) mod options;
 pub(crate) mod planar_kernel;
 pub(crate) mod slope_torque;
 pub(crate) mod sums;
-
-pub use self::body_state::BodyState;
-pub use self::evaluation::{evaluate, streaming_read};
-pub use self::forces::{HydroForces, Wrench};
-pub use self::options::{BuoyancyMode, Drag, HydroOptions};
