@@ -1,14 +1,5 @@
-//! Buoyancy and drag of a body from its texel atlas, per texel.
-//!
-//! For texel `i` at world position `p_i` with world area vector `A_i`,
-//! depth `d_i = f(p_i) − p_i.y` and submerged set `S = {i : d_i > 0}`:
-//! `V_s = Σ_S −A_{i,y} d_i` (signed columns, exact for non-convex bodies and
-//! any surface `y = f(x, z)`), `C_B = (1/V_s) Σ_S −A_{i,y} d_i (p_x, p_y + d_i/2, p_z)`;
-//! Archimedes mode applies `ρ g V_s` up at `C_B`; pressure mode sums
-//! `−ρ g d_i A_i` and its torque (equal on a plane, and it also feels the
-//! sideways push of a wave's slope). Drag is quadratic per submerged texel
-//! facing its relative velocity, plus optional linear skin friction, and is
-//! integrated implicitly over the step so it never reverses a velocity.
+//! Buoyancy and drag of a body from its texel atlas, per texel (the model
+//! is described on [`evaluate`](crate::evaluate)).
 //!
 //! One file per part of the design, each depending only on those above it:
 //!

@@ -92,8 +92,9 @@ impl BuoyancySums {
 /// makes its torque the derivative of the water's potential (`wrs`, with
 /// `s = (∂h/∂x, 0, ∂h/∂z)` the surface's slope over a texel, `w = −A_y d`,
 /// and `ρ` the texel's position relative to the centre of mass; see
-/// [`slope_torque`](super::slope_torque::slope_torque)), and what takes the sampling error out of the force on
-/// a body deep under water (`ayr`, `shallow`; see [`deep_volume`](super::deep_volume::deep_volume)).
+/// [`slope_torque`](super::slope_torque::slope_torque)), and what takes the
+/// sampling error out of the force on a body deep under water (`ayr`,
+/// `shallow`; see [`deep_volume`](super::deep_volume::deep_volume)).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct SlopeSums {
     /// Σ w ρ × s.
