@@ -521,7 +521,7 @@ impl LiquidGraph {
         let c = Point3::from(first / mass);
         let inertia = self
             .nodes()
-            .map(|n| soak_hydro::mass::parallel_axis(density * n.liquid, &(n.position - c)))
+            .map(|n| soak_hydro::parallel_axis(density * n.liquid, &(n.position - c)))
             .sum();
         MassProperties {
             mass,

@@ -1,22 +1,42 @@
 #![doc = include_str!("../README.md")]
 
-pub mod error;
+// The files are private: what users reach is re-exported below, so the
+// layout can change without changing the API.
+mod error;
+mod hydrostatics;
+mod mass;
+mod parallel;
+mod tiled;
+mod water;
+
+// Public on purpose: the wgpu compute kernels are a namespace behind a
+// feature, with an API of their own (device helpers, batches of bodies, and
+// in `gpu::wgsl` the WGSL other crates' kernels build on), whose names would
+// crowd the crate root.
 #[cfg(feature = "gpu")]
 pub mod gpu;
-pub mod hydrostatics;
-pub mod mass;
-mod parallel;
-pub mod reference;
-pub mod tiled;
-pub mod water;
 
-pub use error::{HydroError, WaterError};
-pub use hydrostatics::{
-    BodyState, BuoyancyMode, Drag, HydroForces, HydroOptions, Wrench, evaluate, streaming_read,
+// Public on purpose: the exact reference implementations (mesh clipping,
+// polyhedral mass properties, closed forms for spheres, boxes and
+// cylinders) read best as a namespace of their own, apart from the texel
+// methods they check: `reference::submerged_part` beside `evaluate`, and
+// `reference::solid_mass_properties` beside `MassModel::mass_properties`.
+pub mod reference;
+
+pub use self::error::{HydroError, WaterError};
+pub use self::hydrostatics::body_state::BodyState;
+pub use self::hydrostatics::evaluation::{evaluate, streaming_read};
+pub use self::hydrostatics::forces::{HydroForces, Wrench};
+pub use self::hydrostatics::options::{BuoyancyMode, Drag, HydroOptions};
+pub use self::mass::{
+    MassModel, MassProperties, PrincipalInertia, VolumeMoments, inertia_from_second_moment, parallel_axis,
+    shell, volume_moments,
 };
-pub use mass::{MassModel, MassProperties, PrincipalInertia, VolumeMoments, volume_moments};
-pub use tiled::TiledAtlas;
-pub use water::{Gerstner, GerstnerWave, HeightField, Plane, Surface, SurfaceKind, Unbounded, Water};
+pub use self::tiled::{TileCounts, TileMoments, TiledAtlas};
+pub use self::water::{
+    AIR_DENSITY, Gerstner, GerstnerWave, HeightField, Plane, STANDARD_GRAVITY, Surface, SurfaceKind,
+    Unbounded, WATER_DENSITY, Water,
+};
 
 /// The types most users need.
 pub mod prelude {

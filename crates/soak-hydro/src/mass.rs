@@ -1,10 +1,4 @@
 //! Mass properties from the texel atlas by the divergence theorem.
-//!
-//! With `x` a texel position relative to the atlas origin `o` and `A` its
-//! area vector, the solid's volume integrals are sums over texels (f64):
-//! `V = (1/3) Σ x·A`, `∫x dV = Σ (x²/2) A_x` (and likewise y, z),
-//! `∫x² dV = Σ (x³/3) A_x`, `∫xy dV = Σ (x²y/2) A_x`, `∫yz dV = Σ (y²z/2) A_y`,
-//! `∫zx dV = Σ (z²x/2) A_z`. A shell puts mass `σ_i a_i` at each texel.
 
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
@@ -167,6 +161,12 @@ impl std::ops::Add for Sums {
 
 /// Volume moments of the solid bounded by the atlas (closed mesh), about
 /// the atlas origin.
+///
+/// By the divergence theorem, with `x` a texel position relative to the
+/// atlas origin `o` and `A` its area vector, the solid's volume integrals
+/// are sums over texels (f64): `V = (1/3) Σ x·A`, `∫x dV = Σ (x²/2) A_x`
+/// (and likewise y, z), `∫x² dV = Σ (x³/3) A_x`, `∫xy dV = Σ (x²y/2) A_x`,
+/// `∫yz dV = Σ (y²z/2) A_y`, `∫zx dV = Σ (z²x/2) A_z`.
 pub fn volume_moments(atlas: &Atlas) -> VolumeMoments {
     let s = chunked_sum(atlas.len(), Sums([0.0; 10]), |r| {
         let mut s = [0.0f64; 10];
@@ -214,6 +214,9 @@ impl VolumeMoments {
 }
 
 /// How a body's mass is distributed.
+///
+/// Mass properties come from the texel atlas by the divergence theorem:
+/// [`volume_moments`] for a solid, [`shell`] for a shell.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "model", rename_all = "snake_case")]
 pub enum MassModel {
@@ -278,6 +281,8 @@ fn check_density(what: &'static str, value: f64) -> Result<(), HydroError> {
 }
 
 /// Thin-shell mass properties with areal density `sigma(i)` (kg/m²) at texel `i`.
+///
+/// A shell puts mass `σ_i a_i` at each texel (`a_i` its area).
 pub fn shell(atlas: &Atlas, sigma: impl Fn(usize) -> f64 + Sync) -> MassProperties {
     let s = chunked_sum(atlas.len(), Sums([0.0; 10]), |r| {
         let mut s = [0.0f64; 10];

@@ -1,28 +1,19 @@
 //! The tiled path for planar water: same answer as the per-texel sums, far
 //! less work.
-//!
-//! Under a plane the depth is affine in object-space position,
-//! `d(x) = α + β·x`, so a tile of texels that lies wholly under water
-//! contributes a closed form of its precomputed moments `Σ A`, `Σ A⊗x` and
-//! `Σ A⊗x⊗x`; a tile wholly above water contributes nothing (a bounding-sphere
-//! and bounding-box test decides); only tiles cut by the waterline are
-//! summed texel by texel. The closed form is linear in the moments, so
-//! consecutive tiles under water take theirs from a running sum, two
-//! entries for the whole run, and one closed form serves them all. A cut
-//! tile whose centre is under water joins the run, and the planar kernel
-//! takes its dry texels' sums back out: either way the kernel does full
-//! work only on the smaller side of the waterline.
-//! Any other surface falls back to the per-texel path.
 
 use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
 use soak_bake::Atlas;
 
 use crate::error::HydroError;
-use crate::hydrostatics::{
-    BodyState, BuoyancyMode, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, PlanarTexels,
-    add_planar_ranges, evaluate, finish, texel,
-};
+use crate::hydrostatics::body_state::BodyState;
+use crate::hydrostatics::evaluation::evaluate;
+use crate::hydrostatics::finish::finish;
+use crate::hydrostatics::forces::HydroForces;
+use crate::hydrostatics::frame::{Frame, texel};
+use crate::hydrostatics::options::{BuoyancyMode, HydroOptions};
+use crate::hydrostatics::planar_kernel::{PlanarTexels, add_planar_ranges};
+use crate::hydrostatics::sums::{BuoyancySums, DragSums};
 use crate::mass::MassProperties;
 use crate::parallel::par_map;
 use crate::water::Water;
@@ -120,7 +111,21 @@ struct Group {
     tiles: std::ops::Range<usize>,
 }
 
-/// An atlas with per-tile moments, for fast hydrostatics under planar water.
+/// An atlas with per-tile moments, for fast hydrostatics under planar water:
+/// same answer as the per-texel sums of [`crate::evaluate`], far less work.
+///
+/// Under a plane the depth is affine in object-space position,
+/// `d(x) = α + β·x`, so a tile of texels that lies wholly under water
+/// contributes a closed form of its precomputed moments `Σ A`, `Σ A⊗x` and
+/// `Σ A⊗x⊗x`; a tile wholly above water contributes nothing (a bounding-sphere
+/// and bounding-box test decides); only tiles cut by the waterline are
+/// summed texel by texel. The closed form is linear in the moments, so
+/// consecutive tiles under water take theirs from a running sum, two
+/// entries for the whole run, and one closed form serves them all. A cut
+/// tile whose centre is under water joins the run, and the planar kernel
+/// takes its dry texels' sums back out: either way the kernel does full
+/// work only on the smaller side of the waterline.
+/// Any other surface falls back to the per-texel path.
 ///
 /// Two levels: the atlas' tiles (`tile_size`² texels), and groups of
 /// [`TiledAtlas::GROUP`]² neighbouring tiles, consecutive in the tile

@@ -1,10 +1,5 @@
 //! Water: a surface `y = f(x, z, t)` in the world frame (y up), its velocity
 //! field, and the fluid's density.
-//!
-//! Four surfaces are provided: a [`Plane`] (horizontal or tilted), a sum of
-//! [`Gerstner`] waves, a bilinear [`HeightField`], and an [`Unbounded`]
-//! medium (a balloon in air: everything is immersed). Implement [`Surface`]
-//! for your own.
 
 use nalgebra::{Point3, Vector2, Vector3};
 use serde::{Deserialize, Serialize};
@@ -35,7 +30,13 @@ pub enum SurfaceKind {
     Unbounded,
 }
 
-/// A fluid's free surface and velocity field, world frame, y up.
+/// A fluid's free surface and velocity field, world frame, y up: the
+/// surface is `y = f(x, z, t)`.
+///
+/// Four surfaces are provided: a [`Plane`] (horizontal or tilted), a sum of
+/// [`Gerstner`] waves, a bilinear [`HeightField`], and an [`Unbounded`]
+/// medium (a balloon in air: everything is immersed). Implement [`Surface`]
+/// for your own.
 pub trait Surface: Send + Sync {
     /// Surface height `f(x, z, t)` at horizontal position `(x, z)` (m) and time `t` (s), m.
     fn height(&self, x: f64, z: f64, t: f64) -> f64;

@@ -221,7 +221,7 @@ pub fn water_of(loaded: &LoadedScene) -> Result<Water, SceneError> {
             let mut water = Water::new(Unbounded {
                 current: current.into(),
             });
-            water.density = soak_hydro::water::AIR_DENSITY;
+            water.density = soak_hydro::AIR_DENSITY;
             water
         }
     };

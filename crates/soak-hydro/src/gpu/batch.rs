@@ -7,9 +7,12 @@ use super::hydro::GpuHydro;
 use super::layout::{Body, Dispatch, HYDRO_SLOTS, ITEM_TEXELS, Item, dispatch_bytes};
 use super::surface::{HeightFields, encode_surface};
 use crate::error::HydroError;
-use crate::hydrostatics::{
-    BodyState, BuoyancyMode, BuoyancySums, DragSums, Frame, HydroForces, HydroOptions, SlopeSums, finish,
-};
+use crate::hydrostatics::body_state::BodyState;
+use crate::hydrostatics::finish::finish;
+use crate::hydrostatics::forces::HydroForces;
+use crate::hydrostatics::frame::Frame;
+use crate::hydrostatics::options::{BuoyancyMode, HydroOptions};
+use crate::hydrostatics::sums::{BuoyancySums, DragSums, SlopeSums};
 use crate::mass::MassProperties;
 use crate::water::Water;
 use soak_gpu::{GpuError, read_back, scoped};

@@ -80,7 +80,7 @@ impl GpuHydro {
         }
     }
 
-    /// The tail of [`crate::mass::shell`]: sums about the origin to mass properties.
+    /// The tail of [`crate::shell`]: sums about the origin to mass properties.
     fn shell(&self, id: GpuAtlasId, s: &[f64; 10]) -> Result<MassProperties, GpuHydroError> {
         let mass = s[0];
         let o = self.entry(id)?.origin;

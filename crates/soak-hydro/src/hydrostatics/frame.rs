@@ -1,0 +1,90 @@
+//! The frame of one evaluation (pose, centre of mass, the surface as a plane
+//! where it is one) and the depth and texel reads built on it.
+
+use nalgebra::{Matrix3, Point3, Vector3};
+use soak_bake::Atlas;
+
+use super::body_state::BodyState;
+use crate::mass::MassProperties;
+use crate::water::{SurfaceKind, Water};
+
+/// Per-evaluation constants shared by the CPU paths.
+pub(crate) struct Frame {
+    /// For planar water, depth `d(x) = α + β·x` in object coordinates
+    /// relative to the atlas origin, and the world up axis in object axes.
+    pub local_plane: Option<(f64, Vector3<f64>, Vector3<f64>)>,
+    pub rot: Matrix3<f64>,
+    /// World position of the atlas origin.
+    pub ow: Vector3<f64>,
+    /// World centre of mass.
+    pub com: Vector3<f64>,
+    pub plane: Option<(Vector3<f64>, f64)>,
+    pub texels: usize,
+    /// Depth past which a texel counts as deep (the bounding radius), m:
+    /// see [`deep_volume`](super::deep_volume::deep_volume).
+    pub depth_scale: f64,
+}
+
+impl Frame {
+    pub(crate) fn new(
+        atlas: &Atlas,
+        water: &Water,
+        state: &BodyState,
+        mass: &MassProperties,
+        t: f64,
+    ) -> Self {
+        let rot = state.pose.rotation.to_rotation_matrix().into_inner();
+        let ow = (state.pose * atlas.origin()).coords;
+        let com = (state.pose * mass.center_of_mass).coords;
+        let plane = Self::surface_plane(water, t, &ow, atlas.bounding_radius());
+        let local_plane = plane.map(|(n, c)| {
+            let alpha = (c - n.dot(&ow)) / n.y;
+            let beta = -(rot.transpose() * n) / n.y;
+            (alpha, beta, rot.transpose() * Vector3::y())
+        });
+        Self {
+            local_plane,
+            rot,
+            ow,
+            com,
+            plane,
+            texels: atlas.len(),
+            depth_scale: atlas.bounding_radius(),
+        }
+    }
+
+    /// The water's surface as a plane `(normal, offset)` at time `t`, if it
+    /// is one, for a body whose atlas origin is at `ow` within `radius`.
+    pub(crate) fn surface_plane(
+        water: &Water,
+        t: f64,
+        ow: &Vector3<f64>,
+        radius: f64,
+    ) -> Option<(Vector3<f64>, f64)> {
+        match water.surface.kind(t) {
+            SurfaceKind::Plane { normal, offset } => Some((normal, offset)),
+            // No free surface: a horizontal plane above the whole body gives
+            // the same sums (Σ A = 0 for a closed surface) with finite depths.
+            SurfaceKind::Unbounded => Some((Vector3::y(), ow.y + radius + 1.0)),
+            SurfaceKind::General => None,
+        }
+    }
+
+    #[inline]
+    pub(crate) fn depth(&self, water: &Water, p: &Vector3<f64>, t: f64) -> f64 {
+        match self.plane {
+            Some((n, c)) => (c - n.dot(p)) / n.y,
+            None => water.surface.depth(&Point3::from(*p), t),
+        }
+    }
+}
+
+#[inline]
+pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
+    let x = atlas.local_positions().get(i);
+    let a = atlas.area_vectors().get(i);
+    (
+        Vector3::new(x[0] as f64, x[1] as f64, x[2] as f64),
+        Vector3::new(a[0] as f64, a[1] as f64, a[2] as f64),
+    )
+}

@@ -1,0 +1,65 @@
+//! What an evaluation computes: the buoyancy model, the drag coefficients
+//! and the step over which drag is integrated.
+
+use serde::{Deserialize, Serialize};
+
+/// Which buoyancy force is reported as [`HydroForces::buoyancy`](crate::HydroForces::buoyancy).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BuoyancyMode {
+    /// `ρ g V_s` straight up at the centre of buoyancy (the thesis' model).
+    /// Where the surface over a floating body is not flat, its torque also
+    /// takes the slope's part, so that force and torque together are the
+    /// derivative of the water's potential and a body rocking over waves
+    /// or a step neither gains nor loses energy by it; there is still no
+    /// sideways force (no drift).
+    #[default]
+    Archimedes,
+    /// Sum of hydrostatic pressure forces `−ρ g d_i A_i` and their torques.
+    Pressure,
+    /// No buoyancy.
+    Off,
+}
+
+/// Drag coefficients.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Drag {
+    /// Quadratic pressure-drag coefficient `C_d` (dimensionless); 1.0 is a
+    /// flat plate, about 0.5 a sphere.
+    pub coefficient: f64,
+    /// Linear skin friction, N·s/m per m² of wetted surface, on the
+    /// tangential relative velocity.
+    #[serde(default)]
+    pub linear: f64,
+}
+
+impl Default for Drag {
+    fn default() -> Self {
+        Self {
+            coefficient: 1.0,
+            linear: 0.0,
+        }
+    }
+}
+
+/// What to compute.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct HydroOptions {
+    /// Buoyancy model.
+    pub buoyancy: BuoyancyMode,
+    /// Drag, if any.
+    pub drag: Option<Drag>,
+    /// Time step over which drag is integrated implicitly, s. Zero reports
+    /// the explicit drag force of the current velocity.
+    pub dt: f64,
+}
+
+impl Default for HydroOptions {
+    fn default() -> Self {
+        Self {
+            buoyancy: BuoyancyMode::Archimedes,
+            drag: None,
+            dt: 1.0 / 60.0,
+        }
+    }
+}
