@@ -2,12 +2,14 @@
 
 // The files are private: what users reach is re-exported below, so the
 // layout can change without changing the API.
+mod body_field;
 mod diffusion;
 mod environment;
 mod error;
 mod exchange;
 mod grid;
 mod layout;
+mod ledger;
 mod liquid_image;
 mod material;
 mod reduce;
@@ -31,6 +33,7 @@ pub use self::diffusion::{Diffusion, DiffusionMode, DiffusionReport, SHEPARD_MIN
 pub use self::environment::{Environment, EnvironmentResponse, EnvironmentTrack};
 pub use self::error::WetError;
 pub use self::grid::{AUTO_MAX_CELLS, AUTO_TEXEL_SPAN, FieldResolution, MAX_VOXELS, VoxelGrid};
+pub use self::ledger::{Ledger, StepReport};
 pub use self::liquid_image::{UNCOVERED, liquid_rgb, liquid_texture, pseudo_colour, write_liquid_png};
 pub use self::material::{Liquid, Material};
 pub use self::shared_field::{FieldMember, SharedField, SharedReport};
@@ -38,7 +41,7 @@ pub use self::source::{
     LiquidImage, MAX_EXR_BLOCK_BYTES, MAX_IMAGE_BYTES, MAX_IMAGE_SIDE, Rain, Region, Splash,
 };
 pub use self::stats::{HISTOGRAM_BINS, LiquidStats, WET_FILL, round_significant};
-pub use self::wetting::{Ledger, StepReport, Wetting};
+pub use self::wetting::Wetting;
 
 /// The types most users need.
 pub mod prelude {
