@@ -8,7 +8,7 @@ use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
     let path = Path::new("fuzz.glb");
-    match soak_bake::load::load_gltf_bytes(data, path, None) {
+    match soak_bake::load_gltf_bytes(data, path, None) {
         Ok(mesh) => soak_fuzz::bake_pipeline(&mesh, soak_fuzz::resolution_for(data)),
         Err(e) => assert!(e.to_string().contains("fuzz.glb"), "{e}"),
     }

@@ -5,7 +5,7 @@
 
 use std::sync::OnceLock;
 
-use soak_bake::{Atlas, BakeOptions, Mesh, UnwrapOptions, validate};
+use soak_bake::{Atlas, BakeOptions, Mesh, UnwrapOptions, validate, validate_topology};
 
 /// Largest mesh the targets validate and bake: keeps an execution in
 /// milliseconds (the loaders themselves see every mesh).
@@ -33,18 +33,18 @@ pub fn bake_pipeline(mesh: &Mesh, resolution: u32) {
     if mesh.triangles.len() > MAX_TRIANGLES || mesh.positions.len() > MAX_VERTICES {
         return;
     }
-    match validate::validate(mesh) {
+    match validate(mesh) {
         Ok(()) => bake(mesh, resolution),
         Err(e) => {
             assert!(!e.to_string().is_empty());
-            if validate::validate_topology(mesh).is_err() {
+            if validate_topology(mesh).is_err() {
                 return;
             }
             match soak_bake::unwrap(mesh, UnwrapOptions::default()) {
                 Ok((unwrapped, report)) => {
                     assert_eq!(unwrapped.triangles.len(), mesh.triangles.len());
                     assert!(report.coverage.is_finite(), "unwrap report {report:?}");
-                    match validate::validate(&unwrapped) {
+                    match validate(&unwrapped) {
                         Ok(()) => bake(&unwrapped, resolution),
                         Err(e) => assert!(!strict(), "unwrap gave invalid UVs: {e}"),
                     }

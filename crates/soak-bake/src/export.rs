@@ -1,9 +1,5 @@
-//! Writing the atlas' position and area-vector textures as images.
-//!
-//! `.exr` files hold the raw f32 values (object space, m and m²); `.png` files
-//! are 16-bit and normalised for looking at: positions mapped from the
-//! bounding box to [0, 1], area vectors as `n·½ + ½` with the relative texel
-//! area in alpha. Uncovered texels are zero (transparent in PNG).
+//! Writing the atlas' position and area-vector textures as images (the
+//! formats are described on [`Atlas::write_image`]).
 
 use std::path::Path;
 
@@ -40,6 +36,12 @@ impl Atlas {
     }
 
     /// Writes the chosen texture to `path` (`.exr`: raw f32; `.png`: 16-bit, normalised).
+    ///
+    /// `.exr` files hold the raw f32 values (object space, m and m²); `.png`
+    /// files are 16-bit and normalised for looking at: positions mapped from
+    /// the bounding box to [0, 1], area vectors as `n·½ + ½` with the
+    /// relative texel area in alpha. Uncovered texels are zero (transparent
+    /// in PNG).
     pub fn write_image(&self, which: AtlasImage, path: &Path) -> Result<(), ExportError> {
         let ext = path
             .extension()

@@ -1,25 +1,38 @@
 #![doc = include_str!("../README.md")]
 
-pub mod atlas;
-pub mod bake;
-pub mod builtin;
-pub mod columns;
-pub mod error;
-pub mod export;
-pub mod load;
-pub mod mesh;
-pub mod pack;
-pub mod unwrap;
-pub mod uv_overlap;
-pub mod validate;
+// The files are private: what users reach is re-exported below, so the
+// layout can change without changing the API.
+mod atlas;
+mod bake;
+mod columns;
+mod error;
+mod export;
+mod load;
+mod mesh;
+mod pack;
+mod unwrap;
+mod uv_overlap;
+mod validate;
 
-pub use atlas::{Atlas, AtlasSummary, Tile};
-pub use bake::{BakeOptions, DEFAULT_TILE_SIZE, MAX_RESOLUTION};
-pub use columns::Columns;
-pub use error::{BakeError, ExportError, LoadError, MeshError, MeshProblem};
-pub use load::load_mesh;
-pub use mesh::Mesh;
-pub use unwrap::{UnwrapOptions, UnwrapReport, unwrap};
+// Public on purpose: the procedural meshes are a namespace users name
+// (`builtin::cuboid`, `builtin::sphere`, `builtin::parse`, `builtin::NAMES`),
+// the fixtures of every example and test, whose short names would be
+// ambiguous at the crate root.
+pub mod builtin;
+
+pub use self::atlas::{Atlas, AtlasSummary, Tile};
+pub use self::bake::{BakeOptions, DEFAULT_TILE_SIZE, MAX_RESOLUTION};
+pub use self::columns::Columns;
+pub use self::error::{BakeError, ExportError, LoadError, MeshError, MeshProblem};
+pub use self::export::AtlasImage;
+pub use self::load::{load_gltf_bytes, load_mesh, load_obj_bytes};
+pub use self::mesh::Mesh;
+pub use self::pack::{DEFAULT_PADDING, pack_charts};
+pub use self::unwrap::{UnwrapOptions, UnwrapReport, unwrap};
+pub use self::uv_overlap::{find_overlap, triangles_overlap};
+pub use self::validate::{
+    DEGENERATE_AREA, DEGENERATE_UV_AREA, validate, validate_geometry, validate_topology, validate_uvs,
+};
 
 /// The types most users need.
 pub mod prelude {

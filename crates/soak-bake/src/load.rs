@@ -1,8 +1,6 @@
 //! Loading meshes from Wavefront OBJ, glTF 2.0 (`.gltf`, `.glb`) and `builtin:` names.
 //!
-//! UVs follow glTF's convention everywhere in soak: `(0, 0)` is the top-left
-//! corner of an image and `v` grows downwards. OBJ's `v` (which grows upwards)
-//! is flipped on load, so painted textures line up for both formats.
+//! The UV convention is described on [`load_mesh`].
 
 use std::io::BufRead;
 use std::path::{Path, PathBuf};
@@ -18,6 +16,10 @@ use crate::mesh::Mesh;
 /// The mesh is returned as stored; validate it (or bake it, which validates)
 /// before use. Several objects or primitives in one file are merged, with
 /// glTF node transforms applied.
+///
+/// UVs follow glTF's convention everywhere in soak: `(0, 0)` is the top-left
+/// corner of an image and `v` grows downwards. OBJ's `v` (which grows
+/// upwards) is flipped on load, so painted textures line up for both formats.
 pub fn load_mesh(source: &str) -> Result<Mesh, LoadError> {
     if source.starts_with("builtin:") {
         return builtin::parse(source);
@@ -56,7 +58,7 @@ fn name_of(path: &Path) -> String {
 
 /// Parses Wavefront OBJ text. `path` names the mesh in messages; material
 /// libraries are not read. Polygons are triangulated; `v` is flipped to soak's
-/// UV convention.
+/// UV convention (see [`load_mesh`]).
 pub fn load_obj_bytes(bytes: &[u8], path: &Path) -> Result<Mesh, LoadError> {
     let opts = tobj::LoadOptions {
         single_index: true,

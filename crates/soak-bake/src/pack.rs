@@ -6,7 +6,8 @@ use nalgebra::{Point2, Vector2};
 pub const DEFAULT_PADDING: f64 = 0.01;
 
 /// Places charts side by side in the unit square at one common scale, so a
-/// metre of surface covers the same number of texels in every chart.
+/// metre of surface covers the same number of texels in every chart (shelf
+/// packing, with `padding` between charts and around the border).
 ///
 /// `coords[v]` is vertex `v`'s position in its chart's plane (m) and
 /// `chart_of[v]` its chart. Returns one UV per vertex, strictly inside

@@ -1,11 +1,7 @@
 //! soak's physics atlas generator: a bijective UV map with near-uniform texel
 //! density for any mesh, missing or overlapping UVs notwithstanding.
 //!
-//! Charts grow over face adjacency while each face's normal stays within a
-//! cone about the chart's mean normal; each chart is projected onto its plane
-//! (faces whose projection would fold are left to other charts), checked for
-//! overlap (and split until it has none), turned to its principal axes and
-//! packed with the others at one common scale.
+//! The method is described on [`unwrap`].
 
 use std::collections::VecDeque;
 use std::time::Instant;
@@ -57,6 +53,14 @@ pub struct UnwrapReport {
 /// Replaces the mesh's UVs with a generated physics atlas. Triangle order is
 /// kept (triangle `t` of the result is triangle `t` of the input); vertices
 /// are split along chart boundaries.
+///
+/// The atlas is bijective with near-uniform texel density for any mesh,
+/// missing or overlapping UVs notwithstanding. Charts grow over face
+/// adjacency while each face's normal stays within a cone about the chart's
+/// mean normal; each chart is projected onto its plane (faces whose
+/// projection would fold are left to other charts), checked for overlap (and
+/// split until it has none), turned to its principal axes and packed with the
+/// others at one common scale.
 pub fn unwrap(mesh: &Mesh, options: UnwrapOptions) -> Result<(Mesh, UnwrapReport), MeshError> {
     let start = Instant::now();
     validate_geometry(mesh)?;

@@ -1,8 +1,4 @@
 //! Detection of overlapping triangles in the plane (UV bijectivity).
-//!
-//! A uniform grid buckets the triangles; each candidate pair is tested once,
-//! by the separating-axis theorem with a small tolerance so that triangles
-//! which only share an edge or a vertex do not count as overlapping.
 
 use nalgebra::Point2;
 
@@ -12,7 +8,8 @@ const TOUCH_EPS: f64 = 1e-10;
 /// The first pair `(i, j)` (`i < j`, by position in `tris`) of triangles whose
 /// interiors overlap, or `None` if the triangles tile the plane bijectively.
 ///
-/// `tris[k]` are the 2-D corners of triangle `k`.
+/// `tris[k]` are the 2-D corners of triangle `k`. A uniform grid buckets the
+/// triangles; each candidate pair is tested once by [`triangles_overlap`].
 pub fn find_overlap(tris: &[[Point2<f64>; 3]]) -> Option<(usize, usize)> {
     if tris.len() < 2 {
         return None;
@@ -89,7 +86,10 @@ pub fn find_overlap(tris: &[[Point2<f64>; 3]]) -> Option<(usize, usize)> {
     best
 }
 
-/// Whether the interiors of two triangles overlap by more than the tolerance.
+/// Whether the interiors of two triangles overlap by more than the tolerance,
+/// by the separating-axis theorem with a small tolerance (10⁻¹⁰ UV units) so
+/// that triangles which only share an edge or a vertex do not count as
+/// overlapping.
 pub fn triangles_overlap(a: &[Point2<f64>; 3], b: &[Point2<f64>; 3]) -> bool {
     for tri in [a, b] {
         for k in 0..3 {

@@ -1,7 +1,4 @@
 //! Validation of meshes before baking: geometry, topology and UVs.
-//!
-//! Each check returns the first problem found as a [`MeshError`] naming the
-//! offending vertex, edge or triangle.
 
 use crate::error::{MeshError, MeshProblem};
 use crate::mesh::Mesh;
@@ -192,6 +189,9 @@ pub fn validate_uvs(mesh: &Mesh) -> Result<(), MeshError> {
 }
 
 /// Everything baking needs: [`validate_topology`] and [`validate_uvs`].
+///
+/// Each check returns the first problem found as a [`MeshError`] naming the
+/// offending vertex, edge or triangle.
 pub fn validate(mesh: &Mesh) -> Result<(), MeshError> {
     validate_topology(mesh)?;
     validate_uvs(mesh)

@@ -17,7 +17,7 @@ fn obj_gltf_and_glb_load_the_same_tetrahedron() {
     let gltf = load_mesh(&data("tetra.gltf")).unwrap();
     let glb = load_mesh(&data("tetra.glb")).unwrap();
     for m in [&obj, &gltf, &glb] {
-        validate::validate(m).unwrap();
+        validate(m).unwrap();
         assert_eq!(m.triangles.len(), 4);
         assert!((m.volume() - 1.0 / 6.0).abs() < 1e-7);
     }
@@ -40,7 +40,7 @@ fn obj_round_trip_of_every_builtin() {
         let path = dir.join("m.obj");
         std::fs::write(&path, mesh.to_obj()).unwrap();
         let back = load_mesh(path.to_str().unwrap()).unwrap();
-        validate::validate(&back).unwrap_or_else(|e| panic!("{name}: {e}"));
+        validate(&back).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(back.triangles.len(), mesh.triangles.len());
         let a = Atlas::bake(&back, BakeOptions::square(128)).unwrap();
         assert!((a.volume() - mesh.volume()).abs() / mesh.volume() < 1e-5);
@@ -80,7 +80,7 @@ fn obj_uv_index_out_of_range_names_the_line() {
 #[test]
 fn obj_with_a_hole_loads_but_does_not_validate() {
     let mesh = load_mesh(&data("bad/hole.obj")).unwrap();
-    let e = validate::validate(&mesh).unwrap_err();
+    let e = validate(&mesh).unwrap_err();
     assert!(matches!(e.problem, MeshProblem::OpenEdge { .. }));
     assert!(e.to_string().starts_with("mesh `hole.obj` triangle"), "{e}");
 }
@@ -121,7 +121,7 @@ fn builtin_names_and_their_errors() {
     ] {
         let m = load_mesh(ok).unwrap_or_else(|e| panic!("{ok}: {e}"));
         assert_eq!(m.name, ok);
-        validate::validate(&m).unwrap_or_else(|e| panic!("{ok}: {e}"));
+        validate(&m).unwrap_or_else(|e| panic!("{ok}: {e}"));
     }
     for bad in [
         "builtin:cube",
@@ -185,7 +185,7 @@ fn gltf_accessors_that_do_not_fit_their_view_are_errors() {
     let text = std::fs::read_to_string(data("bad/gltf_texcoord_accessor_vec3.gltf")).unwrap();
     let fixed = text.replace(",\"TEXCOORD_0\":0", "");
     let path = std::path::Path::new("t.gltf");
-    assert!(soak_bake::load::load_gltf_bytes(fixed.as_bytes(), path, None).is_ok());
+    assert!(soak_bake::load_gltf_bytes(fixed.as_bytes(), path, None).is_ok());
     for (from, to, expect) in [
         (
             "\"count\":3",
@@ -200,7 +200,7 @@ fn gltf_accessors_that_do_not_fit_their_view_are_errors() {
         ),
     ] {
         let bad = fixed.replace(from, to);
-        let e = soak_bake::load::load_gltf_bytes(bad.as_bytes(), path, None).unwrap_err();
+        let e = soak_bake::load_gltf_bytes(bad.as_bytes(), path, None).unwrap_err();
         let msg = e.to_string();
         assert!(
             msg.contains("t.gltf") && msg.contains("POSITION accessor 0") && msg.contains(expect),
@@ -215,7 +215,7 @@ fn gltf_accessors_that_do_not_fit_their_view_are_errors() {
 #[test]
 fn glb_with_a_length_shorter_than_its_header_is_an_error() {
     let bytes = b"glTF\x02\x00\x00\x00\x04\x00\x00\x00\x00\x00\x00\x00JSON";
-    let e = soak_bake::load::load_gltf_bytes(bytes, std::path::Path::new("short.glb"), None).unwrap_err();
+    let e = soak_bake::load_gltf_bytes(bytes, std::path::Path::new("short.glb"), None).unwrap_err();
     let msg = e.to_string();
     assert!(matches!(e, LoadError::Gltf { .. }), "{e:?}");
     assert!(
@@ -230,7 +230,7 @@ fn glb_with_a_length_shorter_than_its_header_is_an_error() {
 #[test]
 fn gltf_with_a_buffer_uri_that_is_not_utf8_is_an_error() {
     let text = br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"a%AD.bin"}]}"#;
-    let e = soak_bake::load::load_gltf_bytes(text, std::path::Path::new("uri.gltf"), None).unwrap_err();
+    let e = soak_bake::load_gltf_bytes(text, std::path::Path::new("uri.gltf"), None).unwrap_err();
     let msg = e.to_string();
     assert!(matches!(e, LoadError::Gltf { .. }), "{e:?}");
     assert!(
@@ -239,6 +239,6 @@ fn gltf_with_a_buffer_uri_that_is_not_utf8_is_an_error() {
     );
     // Valid escapes still name the file they refer to.
     let ok = br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"a%20b.bin"}]}"#;
-    let e = soak_bake::load::load_gltf_bytes(ok, std::path::Path::new("uri.gltf"), None).unwrap_err();
+    let e = soak_bake::load_gltf_bytes(ok, std::path::Path::new("uri.gltf"), None).unwrap_err();
     assert!(!e.to_string().contains("UTF-8"), "{e}");
 }

@@ -16,7 +16,7 @@ fn every_builtin_unwraps_to_a_bijective_atlas() {
         let mesh = load_mesh(name).unwrap().without_uvs();
         let (out, report) = unwrap(&mesh, UnwrapOptions::default()).unwrap();
         // Same checks as an artist's map: bijective, inside the square, closed.
-        validate::validate(&out).unwrap_or_else(|e| panic!("{name}: {e}"));
+        validate(&out).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(out.triangles.len(), mesh.triangles.len());
         assert!(report.charts >= 1);
         assert!(

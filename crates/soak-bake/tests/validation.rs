@@ -30,12 +30,12 @@ fn tetra() -> Mesh {
 }
 
 fn problem(mesh: &Mesh) -> MeshProblem {
-    validate::validate(mesh).expect_err("must be refused").problem
+    validate(mesh).expect_err("must be refused").problem
 }
 
 #[test]
 fn the_fixture_is_valid() {
-    validate::validate(&tetra()).unwrap();
+    validate(&tetra()).unwrap();
     Atlas::bake(&tetra(), BakeOptions::square(16)).unwrap();
 }
 
@@ -129,7 +129,7 @@ fn open_edge() {
     let mut m = tetra();
     m.triangles.pop();
     assert!(matches!(problem(&m), MeshProblem::OpenEdge { .. }));
-    let msg = validate::validate(&m).unwrap_err().to_string();
+    let msg = validate(&m).unwrap_err().to_string();
     assert!(msg.starts_with("mesh `tetra` triangle"), "{msg}");
     assert!(msg.contains("open edge"), "{msg}");
 }
@@ -185,7 +185,7 @@ fn overlapping_uvs_then_unwrap_fixes_them() {
             _ => Point2::new(0.1, 0.9),
         };
     }
-    let err = validate::validate(&m).unwrap_err();
+    let err = validate(&m).unwrap_err();
     assert!(
         matches!(err.problem, MeshProblem::OverlappingUvs { triangle: 0, .. }),
         "{err}"
@@ -193,7 +193,7 @@ fn overlapping_uvs_then_unwrap_fixes_them() {
     assert!(err.to_string().contains("overlapping UVs with triangle"));
     let (fixed, report) = soak_bake::unwrap(&m, Default::default()).unwrap();
     assert_eq!(report.charts, 6);
-    validate::validate(&fixed).unwrap();
+    validate(&fixed).unwrap();
     let atlas = Atlas::bake(&fixed, BakeOptions::square(128)).unwrap();
     assert!((atlas.volume() - 6.0).abs() < 1e-5);
 }

@@ -5,8 +5,7 @@ use std::time::Instant;
 
 use anyhow::Context;
 use serde::Serialize;
-use soak_bake::export::AtlasImage;
-use soak_bake::{Atlas, BakeOptions, UnwrapOptions, UnwrapReport, load_mesh, unwrap};
+use soak_bake::{Atlas, AtlasImage, BakeOptions, UnwrapOptions, UnwrapReport, load_mesh, unwrap};
 
 /// Arguments of `soak bake`.
 #[derive(clap::Args)]

@@ -330,7 +330,7 @@ fn the_wet_crate_scene_soaks_dries_and_snapshots() {
     assert_eq!(sim.soak.environment().temperature, 301.15);
     let mut snaps = Vec::new();
     let mut peak: Vec<f64> = vec![0.0; sim.soak.body(id).unwrap().atlas().len()];
-    let round = |x: f64| soak_rapier::soak_wet::stats::round_significant(x, 3);
+    let round = |x: f64| soak_rapier::soak_wet::round_significant(x, 3);
     for target in [0u64, 300, 600, 1200, 2400, 3600] {
         while sim.steps_taken() < target {
             sim.step().unwrap();

@@ -1,70 +1,6 @@
 //! Diffusion of the liquid over the surface through a voxel field (the
-//! thesis' *campo de densidad de líquido*, §5.4.1), in two modes.
-//!
-//! Texels are binned into a regular grid of cubic voxels; a voxel holding
-//! at least one texel is *defined*. (In a [`crate::SharedField`] each body
-//! has its own cell in a voxel it shares with others, and the cells of one
-//! voxel are neighbours: below, "voxel" means cell.) One diffusion step:
-//!
-//! 1. **texels → voxels.** [`DiffusionMode::Thesis`]: the voxel's value is
-//!    the Shepard average of its texels' `h` (Eq. 5.9–5.10, `p = 1`, the
-//!    distance to the voxel centre floored at 1/50 of a voxel).
-//!    [`DiffusionMode::Conservative`]: the voxel holds the liquid volume
-//!    `M_v = Σ a_i h_i` (m³) and the capacity `C_v = Σ a_i h_max,i`.
-//! 2. **the 3×3×3 kernel** (Eq. 5.12) over defined voxels, in substeps:
-//!    `V'_x = (1 − w·Count(x)) V_x + w Σ_{y defined} V_y`, `Count(x)` the
-//!    defined neighbours of `x`. The conservative mode writes the same
-//!    kernel in flux form on the fill fraction `φ_v = M_v / C_v`:
-//!    `M'_v = M_v + w Σ_u min(C_v, C_u) (φ_u − φ_v)`; each pair exchanges
-//!    equal and opposite amounts, so the total is conserved to rounding,
-//!    and where neighbours hold equal capacity it *is* Eq. 5.12 on the
-//!    liquid per area. Liquid flows from fuller to emptier surface, also
-//!    between materials of different saturation (a wet sponge on wood).
-//! 3. **voxels → texels.** Thesis: each texel takes the Shepard average of
-//!    the defined voxels among the 8 nearest voxel centres (Eq. 5.13–5.14),
-//!    clamped to `[0, h_max]`. This averages and re-interpolates, so it does
-//!    not conserve liquid (the thesis says it does); the step reports the
-//!    drift. Conservative: each voxel's change `M'_v − M_v` goes back to
-//!    its own texels, exactly. First a smooth share: the voxels' fill
-//!    changes `Δφ` interpolated trilinearly at the texel (over the defined
-//!    voxels among the 8 nearest), times `h_max`, clamped to keep the texel
-//!    in `[0, h_max]`; then the voxel's rest by area: a gain fills each
-//!    texel's remaining room by the same fraction, a loss takes the same
-//!    fraction of each texel's liquid. The rest always fits (the voxel's
-//!    new content lies in `[0, C_v]`), so every texel stays in
-//!    `[0, h_max]` and the voxel's texels gain exactly `M'_v − M_v`: smooth
-//!    across voxel borders, conservative, and changes are added, so detail
-//!    finer than a voxel (a waterline) survives.
-//!
-//! # The effective diffusion coefficient
-//!
-//! In one substep a defined voxel sends the fraction `w β` of its content
-//! to each defined neighbour (β = 1, or `min(C_v, C_u)/C_v` in the
-//! conservative mode, 1 between equal neighbours). Take a flat surface
-//! lying in one layer of voxels parallel to a grid plane: an interior voxel
-//! has the 8 neighbours of its layer, 6 of them one voxel (Δx) away along
-//! each in-plane axis. The variance of a spreading spot grows per substep
-//! by `Σ_u w (Δx_u)² = 6 w Δx²` along each in-plane axis (the cross
-//! moments cancel: the kernel is isotropic to second order), and a
-//! diffusion with coefficient `D` grows it by `2 D Δt_s`. Hence
-//!
-//! `D_eff = 3 w Δx² / Δt_s`, and we set `w = D Δt_s / (3 Δx²)`
-//!
-//! from the material's [`Diffusion::coefficient`] `D` (m²/s). A volume of
-//! defined voxels (all 26 neighbours) would give `9 w Δx² / Δt_s`, three
-//! times as much: surfaces that cross voxel layers (oblique or curved
-//! ones, or two sheets a voxel apart) spread somewhat faster than `D`; the
-//! test `diffusion_physics` measures a flat plate (grid-aligned, the
-//! formula holds) and a tilted one.
-//!
-//! # Stability
-//!
-//! The kernel is a convex combination, hence non-negative and free of new
-//! extrema, while `w · Count ≤ 1`. A step of `Δt` needs the weight
-//! `W = D Δt / (3 Δx²)`; it is split into `n = ⌈W · Count_max⌉` substeps of
-//! `w = W / n`. Past [`Diffusion::max_substeps`] the weight is capped at
-//! `1 / Count_max` per substep (diffusion slower than asked, still stable)
-//! and the step says so ([`DiffusionReport::limited`]).
+//! thesis' *campo de densidad de líquido*, §5.4.1), in two modes; the model
+//! is described on [`Diffusion`].
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -91,11 +27,76 @@ pub enum DiffusionMode {
 }
 
 /// Diffusion settings of a field.
+///
+/// Texels are binned into a regular grid of cubic voxels; a voxel holding
+/// at least one texel is *defined*. (In a [`crate::SharedField`] each body
+/// has its own cell in a voxel it shares with others, and the cells of one
+/// voxel are neighbours: below, "voxel" means cell.) One diffusion step:
+///
+/// 1. **texels → voxels.** [`DiffusionMode::Thesis`]: the voxel's value is
+///    the Shepard average of its texels' `h` (Eq. 5.9–5.10, `p = 1`, the
+///    distance to the voxel centre floored at 1/50 of a voxel).
+///    [`DiffusionMode::Conservative`]: the voxel holds the liquid volume
+///    `M_v = Σ a_i h_i` (m³) and the capacity `C_v = Σ a_i h_max,i`.
+/// 2. **the 3×3×3 kernel** (Eq. 5.12) over defined voxels, in substeps:
+///    `V'_x = (1 − w·Count(x)) V_x + w Σ_{y defined} V_y`, `Count(x)` the
+///    defined neighbours of `x`. The conservative mode writes the same
+///    kernel in flux form on the fill fraction `φ_v = M_v / C_v`:
+///    `M'_v = M_v + w Σ_u min(C_v, C_u) (φ_u − φ_v)`; each pair exchanges
+///    equal and opposite amounts, so the total is conserved to rounding,
+///    and where neighbours hold equal capacity it *is* Eq. 5.12 on the
+///    liquid per area. Liquid flows from fuller to emptier surface, also
+///    between materials of different saturation (a wet sponge on wood).
+/// 3. **voxels → texels.** Thesis: each texel takes the Shepard average of
+///    the defined voxels among the 8 nearest voxel centres (Eq. 5.13–5.14),
+///    clamped to `[0, h_max]`. This averages and re-interpolates, so it does
+///    not conserve liquid (the thesis says it does); the step reports the
+///    drift. Conservative: each voxel's change `M'_v − M_v` goes back to
+///    its own texels, exactly. First a smooth share: the voxels' fill
+///    changes `Δφ` interpolated trilinearly at the texel (over the defined
+///    voxels among the 8 nearest), times `h_max`, clamped to keep the texel
+///    in `[0, h_max]`; then the voxel's rest by area: a gain fills each
+///    texel's remaining room by the same fraction, a loss takes the same
+///    fraction of each texel's liquid. The rest always fits (the voxel's
+///    new content lies in `[0, C_v]`), so every texel stays in
+///    `[0, h_max]` and the voxel's texels gain exactly `M'_v − M_v`: smooth
+///    across voxel borders, conservative, and changes are added, so detail
+///    finer than a voxel (a waterline) survives.
+///
+/// # The effective diffusion coefficient
+///
+/// In one substep a defined voxel sends the fraction `w β` of its content
+/// to each defined neighbour (β = 1, or `min(C_v, C_u)/C_v` in the
+/// conservative mode, 1 between equal neighbours). Take a flat surface
+/// lying in one layer of voxels parallel to a grid plane: an interior voxel
+/// has the 8 neighbours of its layer, 6 of them one voxel (Δx) away along
+/// each in-plane axis. The variance of a spreading spot grows per substep
+/// by `Σ_u w (Δx_u)² = 6 w Δx²` along each in-plane axis (the cross
+/// moments cancel: the kernel is isotropic to second order), and a
+/// diffusion with coefficient `D` grows it by `2 D Δt_s`. Hence
+///
+/// `D_eff = 3 w Δx² / Δt_s`, and we set `w = D Δt_s / (3 Δx²)`
+///
+/// from the material's [`Diffusion::coefficient`] `D` (m²/s). A volume of
+/// defined voxels (all 26 neighbours) would give `9 w Δx² / Δt_s`, three
+/// times as much: surfaces that cross voxel layers (oblique or curved
+/// ones, or two sheets a voxel apart) spread somewhat faster than `D`; the
+/// test `diffusion_physics` measures a flat plate (grid-aligned, the
+/// formula holds) and a tilted one.
+///
+/// # Stability
+///
+/// The kernel is a convex combination, hence non-negative and free of new
+/// extrema, while `w · Count ≤ 1`. A step of `Δt` needs the weight
+/// `W = D Δt / (3 Δx²)`; it is split into `n = ⌈W · Count_max⌉` substeps of
+/// `w = W / n`. Past [`Diffusion::max_substeps`] the weight is capped at
+/// `1 / Count_max` per substep (diffusion slower than asked, still stable)
+/// and the step says so ([`SubstepPlan::limited`] in [`DiffusionReport::plan`]).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Diffusion {
     /// Diffusion coefficient D (thesis Table 5.1), m²/s: a spot's variance
     /// grows by `2 D` per second along each direction of the surface (see
-    /// the module docs for how the voxel kernel realises it). Zero turns
+    /// [`Diffusion`] for how the voxel kernel realises it). Zero turns
     /// diffusion off without dropping the field.
     pub coefficient: f64,
     /// The scheme.

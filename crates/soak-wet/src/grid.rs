@@ -91,6 +91,8 @@ impl FieldResolution {
 
 /// A regular grid of cubic voxels: voxel `(i, j, k)` spans
 /// `origin + voxel_size · [(i, j, k), (i+1, j+1, k+1)]`.
+///
+/// It carries a liquid density field (the thesis' CDL, Eq. 5.1–5.2).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct VoxelGrid {
     /// Lower corner of voxel (0, 0, 0), m, in the field's frame (object

@@ -1,18 +1,5 @@
 //! What a surface is made of and what soaks into it: the parameters of the
-//! thesis' Table 5.1 with their SI units.
-//!
-//! | Table 5.1 | here | unit |
-//! |---|---|---|
-//! | μ, viscosity of the liquid | [`Liquid::viscosity`] | Pa·s |
-//! | k_L, evaporation rate of the liquid | [`Liquid::evaporation_rate`] | 1/(m·s) |
-//! | C_M, permeability of the material | [`Material::permeability`] | m² |
-//! | (L, wall thickness, folded into C_M by the thesis) | [`Material::thickness`] | m |
-//! | (h_max, saturation) | [`Material::saturation`] | m³/m² = m |
-//! | D, diffusion coefficient | [`crate::Diffusion::coefficient`] | m²/s |
-//! | f_env, k_T, k_h, k_w | [`crate::Environment`], [`crate::EnvironmentResponse`] | K, –, m/s |
-//!
-//! The liquid's density and gravity, which make the pressure `ρ g d` that
-//! drives absorption, are the [`soak_hydro::Water`]'s.
+//! thesis' Table 5.1 with their SI units (the table is on [`Material`]).
 
 use serde::{Deserialize, Serialize};
 
@@ -22,6 +9,19 @@ use crate::error::{WetError, non_negative, positive};
 ///
 /// Liquid is stored per texel as a volume per area `h` (m³/m², that is
 /// metres of liquid film), between 0 and [`Material::saturation`].
+///
+/// | Table 5.1 | here | unit |
+/// |---|---|---|
+/// | μ, viscosity of the liquid | [`Liquid::viscosity`] | Pa·s |
+/// | k_L, evaporation rate of the liquid | [`Liquid::evaporation_rate`] | 1/(m·s) |
+/// | C_M, permeability of the material | [`Material::permeability`] | m² |
+/// | (L, wall thickness, folded into C_M by the thesis) | [`Material::thickness`] | m |
+/// | (h_max, saturation) | [`Material::saturation`] | m³/m² = m |
+/// | D, diffusion coefficient | [`crate::Diffusion::coefficient`] | m²/s |
+/// | f_env, k_T, k_h, k_w | [`crate::Environment`], [`crate::EnvironmentResponse`] | K, –, m/s |
+///
+/// The liquid's density and gravity, which make the pressure `ρ g d` that
+/// drives absorption, are the [`soak_hydro::Water`]'s.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Material {
     /// Intrinsic permeability C_M (thesis Table 5.1), m². Drives absorption

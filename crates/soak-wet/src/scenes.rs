@@ -13,10 +13,11 @@ use crate::diffusion::{Diffusion, DiffusionMode};
 use crate::environment::{Environment, EnvironmentTrack};
 use crate::error::WetError;
 use crate::grid::FieldResolution;
+use crate::ledger::StepReport;
 use crate::material::{Liquid, Material};
 use crate::shared_field::{FieldMember, SharedField, SharedReport};
 use crate::source::Rain;
-use crate::wetting::{StepReport, Wetting};
+use crate::wetting::Wetting;
 
 /// A closed slab of terrain: the height field `y = height(x, z)` over
 /// `[x0, x1] × [z0, z1]` on a grid of `cells` (along x, z), walled down to a

@@ -5,12 +5,13 @@ use nalgebra::{Isometry3, Point3};
 use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
 
+use crate::body_field::atlas_bounds;
 use crate::diffusion::{self, Diffusion, DiffusionMode, DiffusionReport, Scratch};
 use crate::error::WetError;
 use crate::grid::VoxelGrid;
 use crate::layout::{Layout, Placement};
 use crate::reduce::liquid_volume;
-use crate::wetting::{Wetting, atlas_bounds, check_pose};
+use crate::wetting::{Wetting, check_pose};
 
 /// A body taking part in a [`SharedField`] step.
 pub struct FieldMember<'a> {

@@ -1,4 +1,7 @@
 //! [`Wetting`]: the liquid texture of one body and its step.
+//!
+//! Its ledger and step report are in `ledger`, its own voxel field in
+//! `body_field`.
 
 use nalgebra::{Isometry3, Point3, Vector3};
 use rayon::prelude::*;
@@ -6,118 +9,17 @@ use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
 use soak_hydro::{SurfaceKind, Water};
 
-use crate::diffusion::{self, Diffusion, DiffusionReport, Scratch};
+use crate::body_field::BodyField;
+use crate::diffusion::{self, Diffusion, DiffusionReport};
 use crate::environment::{Environment, EnvironmentResponse};
 use crate::error::WetError;
 use crate::exchange::{Rates, exchange};
 use crate::grid::VoxelGrid;
-use crate::layout::{Layout, Placement};
+use crate::ledger::{Ledger, StepReport};
 use crate::material::{Liquid, Material};
 use crate::reduce::{CHUNK, chunks, liquid_volume};
 use crate::source::{LiquidImage, Splash};
 use crate::stats::LiquidStats;
-
-/// Where a body's liquid came from and went, cumulative, m³.
-///
-/// `total now − total at creation = absorbed + rained + splashed + painted
-/// − evaporated + drift + exchanged` ([`Ledger::net`]), to rounding: the
-/// conservation tests check exactly this.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Ledger {
-    /// Absorbed from the water through submerged texels.
-    pub absorbed: f64,
-    /// Caught from rain.
-    pub rained: f64,
-    /// Deposited by splashes.
-    pub splashed: f64,
-    /// Net change from setting the liquid directly (images, fills).
-    pub painted: f64,
-    /// Evaporated.
-    pub evaporated: f64,
-    /// Change made by the thesis' diffusion scheme (zero in the
-    /// conservative mode).
-    pub drift: f64,
-    /// Net liquid received from other bodies through a shared field.
-    pub exchanged: f64,
-}
-
-impl Ledger {
-    /// The net change of the body's liquid these entries account for, m³.
-    pub fn net(&self) -> f64 {
-        self.absorbed + self.rained + self.splashed + self.painted - self.evaporated
-            + self.drift
-            + self.exchanged
-    }
-}
-
-/// What one [`Wetting::step`] did, m³ unless stated.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct StepReport {
-    /// Absorbed from the water.
-    pub absorbed: f64,
-    /// Caught from rain.
-    pub rained: f64,
-    /// Evaporated.
-    pub evaporated: f64,
-    /// Texels under water.
-    pub submerged_texels: usize,
-    /// The diffusion on the body's own field, if it has one.
-    pub diffusion: Option<DiffusionReport>,
-}
-
-/// A body's own field: the binning of its texels in object space, built
-/// once (the texels do not move in object space) and reused every step.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct BodyField {
-    pub layout: Layout,
-    pub scratch: Scratch,
-}
-
-impl BodyField {
-    pub(crate) fn build(atlas: &Atlas, diffusion: &Diffusion, saturation: f64) -> Result<Self, WetError> {
-        let (min, max) = atlas_bounds(atlas);
-        let longest = (0..3).map(|k| max[k] - min[k]).fold(0.0, f64::max);
-        let texel = mean_texel_edge(atlas);
-        let size = diffusion
-            .resolution
-            .voxel_size(longest.max(texel.unwrap_or(0.0)), texel)?;
-        let grid = VoxelGrid::covering(min, max, size)?;
-        let mut layout = Layout::default();
-        layout.rebuild(
-            grid,
-            &[Placement {
-                atlas,
-                transform: Isometry3::identity(),
-                saturation,
-            }],
-        );
-        Ok(Self {
-            layout,
-            scratch: Scratch::default(),
-        })
-    }
-}
-
-/// Object-space bounds of an atlas' texels, m.
-pub(crate) fn atlas_bounds(atlas: &Atlas) -> (Point3<f64>, Point3<f64>) {
-    let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
-    for p in atlas.local_positions().iter() {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let o = atlas.origin();
-    (
-        o + Vector3::new(lo[0] as f64, lo[1] as f64, lo[2] as f64),
-        o + Vector3::new(hi[0] as f64, hi[1] as f64, hi[2] as f64),
-    )
-}
-
-/// `√(Σ a_i / N)`, m: the mean texel edge.
-pub(crate) fn mean_texel_edge(atlas: &Atlas) -> Option<f64> {
-    (!atlas.is_empty()).then(|| (atlas.area() / atlas.len() as f64).sqrt())
-}
 
 #[derive(Clone, Debug, Default)]
 struct Cache {

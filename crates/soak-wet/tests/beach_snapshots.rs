@@ -3,8 +3,8 @@
 //! histograms of the sand, the rock and the crate after fixed step counts.
 
 use serde::Serialize;
+use soak_wet::LiquidStats;
 use soak_wet::scenes::{Beach, BeachOptions};
-use soak_wet::stats::LiquidStats;
 
 #[derive(Serialize)]
 struct Body {

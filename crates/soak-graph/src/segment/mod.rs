@@ -282,7 +282,7 @@ pub fn segment(mesh: &Mesh, options: &SegmentOptions) -> Result<Segmentation, Se
     let mut timings = StageTimings::default();
 
     let t = Instant::now();
-    soak_bake::validate::validate_topology(mesh)?;
+    soak_bake::validate_topology(mesh)?;
     let topology = Topology::new(mesh);
     timings.topology = t.elapsed();
 

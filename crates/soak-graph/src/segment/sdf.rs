@@ -199,7 +199,7 @@ pub struct ShapeDiameter {
 /// outward wound, and the option errors of [`SegmentOptions::check`].
 pub fn shape_diameter(mesh: &Mesh, options: &SegmentOptions) -> Result<ShapeDiameter, SegmentError> {
     options.check()?;
-    soak_bake::validate::validate_topology(mesh)?;
+    soak_bake::validate_topology(mesh)?;
     let topology = Topology::new(mesh);
     let bvh = build_bvh(mesh, &topology)?;
     Ok(compute(mesh, &topology, &bvh, options))

@@ -3,7 +3,7 @@
 //!
 //! Vertices are welded by position ([`Mesh::welded_triangles`]) so UV seams
 //! do not cut the adjacency. The mesh must have passed
-//! [`soak_bake::validate::validate_topology`]: every welded edge is shared by
+//! [`soak_bake::validate_topology`]: every welded edge is shared by
 //! exactly two triangles with opposite orientations.
 
 use nalgebra::{Point3, Vector3};

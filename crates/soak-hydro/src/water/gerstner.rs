@@ -1,0 +1,284 @@
+//! A sea of Gerstner (trochoidal) waves, and the inversion of the Gerstner
+//! map that finds the particle above a horizontal position.
+
+use nalgebra::{Point3, Vector2, Vector3};
+use serde::{Deserialize, Serialize};
+
+use super::Surface;
+use crate::error::WaterError;
+
+/// One Gerstner (trochoidal) wave on deep water.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GerstnerWave {
+    /// Amplitude, m.
+    pub amplitude: f64,
+    /// Wavelength, m.
+    pub wavelength: f64,
+    /// Direction of travel in the horizontal plane, degrees from +x towards +z.
+    pub direction_deg: f64,
+    /// Steepness `Q` in [0, 1]: 0 is a sine wave, 1 the sharpest crest
+    /// without loops (scaled by `1/(k A N)` over the `N` waves of a sea).
+    pub steepness: f64,
+    /// Phase offset, radians.
+    #[serde(default)]
+    pub phase: f64,
+}
+
+impl GerstnerWave {
+    /// Wavenumber `k = 2π/λ`, 1/m.
+    pub fn wavenumber(&self) -> f64 {
+        std::f64::consts::TAU / self.wavelength
+    }
+    fn direction(&self) -> Vector2<f64> {
+        let a = self.direction_deg.to_radians();
+        Vector2::new(a.cos(), a.sin())
+    }
+}
+
+/// A sea made of Gerstner waves over a mean level, with deep-water
+/// dispersion `ω = √(g k)`. Horizontal particle displacement makes crests
+/// sharp; [`Surface::height`] inverts it by fixed-point iteration.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Gerstner {
+    /// Mean water level, m.
+    pub level: f64,
+    /// The waves.
+    pub waves: Vec<GerstnerWave>,
+    /// Gravity for the dispersion relation, m/s².
+    pub gravity: f64,
+    // Precomputed per wave: (k, ω, direction, Q·A scaled).
+    #[serde(skip)]
+    cache: Vec<WaveCache>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+struct WaveCache {
+    k: f64,
+    omega: f64,
+    dir: Vector2<f64>,
+    qa: f64,
+    a: f64,
+    phase: f64,
+}
+
+impl Gerstner {
+    /// A sea at mean `level` (m) with the given waves, validated.
+    pub fn new(level: f64, waves: Vec<GerstnerWave>, gravity: f64) -> Result<Self, WaterError> {
+        if !level.is_finite() {
+            return Err(WaterError::Parameter {
+                name: "level",
+                value: level,
+            });
+        }
+        if !(gravity.is_finite() && gravity > 0.0) {
+            return Err(WaterError::Parameter {
+                name: "gravity",
+                value: gravity,
+            });
+        }
+        for (i, w) in waves.iter().enumerate() {
+            let checks = [
+                ("amplitude", w.amplitude, w.amplitude >= 0.0),
+                ("wavelength", w.wavelength, w.wavelength > 0.0),
+                ("steepness", w.steepness, (0.0..=1.0).contains(&w.steepness)),
+                ("direction_deg", w.direction_deg, true),
+                ("phase", w.phase, true),
+            ];
+            for (field, value, ok) in checks {
+                if !(value.is_finite() && ok) {
+                    return Err(WaterError::Wave {
+                        index: i,
+                        field,
+                        value,
+                    });
+                }
+            }
+        }
+        let n = waves.len().max(1) as f64;
+        let cache = waves
+            .iter()
+            .map(|w| {
+                let k = w.wavenumber();
+                // Scale steepness so the sum never loops: Σ Q_i k_i A_i ≤ 1.
+                let q = if w.amplitude > 0.0 {
+                    w.steepness / (k * w.amplitude * n)
+                } else {
+                    0.0
+                };
+                WaveCache {
+                    k,
+                    omega: (gravity * k).sqrt(),
+                    dir: w.direction(),
+                    qa: q * w.amplitude,
+                    a: w.amplitude,
+                    phase: w.phase,
+                }
+            })
+            .collect();
+        Ok(Self {
+            level,
+            waves,
+            gravity,
+            cache,
+        })
+    }
+
+    /// Rebuilds the cache after deserialisation or edits to `waves`.
+    pub fn rebuild(self) -> Result<Self, WaterError> {
+        Self::new(self.level, self.waves, self.gravity)
+    }
+
+    /// Position of the surface particle whose rest position is `(x0, z0)`, m.
+    pub fn particle(&self, x0: f64, z0: f64, t: f64) -> Point3<f64> {
+        let mut p = Point3::new(x0, self.level, z0);
+        for w in &self.cache {
+            let th = w.k * (w.dir.x * x0 + w.dir.y * z0) - w.omega * t + w.phase;
+            let (s, c) = th.sin_cos();
+            p.x -= w.qa * w.dir.x * s;
+            p.z -= w.qa * w.dir.y * s;
+            p.y += w.a * c;
+        }
+        p
+    }
+
+    fn rest_position(&self, x: f64, z: f64, t: f64) -> (f64, f64) {
+        self.rest_position_from(x, z, t, [0.0, 0.0])
+    }
+
+    /// Rest position of the particle above `(x, z)`, starting from the guess
+    /// that its horizontal displacement is `shift`.
+    fn rest_position_from(&self, x: f64, z: f64, t: f64, shift: [f64; 2]) -> (f64, f64) {
+        // Newton's method on P(x0) = (x, z), with the Jacobian
+        // J = I − Σ Q A k cos θ d dᵀ; a fixed-point step where J is near
+        // singular (the sharpest crests). Converges in a few iterations.
+        let (mut x0, mut z0) = (x - shift[0], z - shift[1]);
+        for _ in 0..16 {
+            let jet = self.jet(x0, z0, t);
+            let [jxx, jxz, jzz] = jet.jacobian;
+            let (rx, rz) = (jet.position[0] - x, jet.position[1] - z);
+            let det = jxx * jzz - jxz * jxz;
+            let (dx, dz) = if det > 1e-3 {
+                ((jzz * rx - jxz * rz) / det, (jxx * rz - jxz * rx) / det)
+            } else {
+                (rx, rz)
+            };
+            x0 -= dx;
+            z0 -= dz;
+            if rx.abs() + rz.abs() < 1e-12 * (1.0 + x.abs() + z.abs()) {
+                break;
+            }
+        }
+        (x0, z0)
+    }
+
+    /// The horizontal position of the particle at rest position `(x0, z0)`,
+    /// its Jacobian over the rest position and the gradient of its height.
+    fn jet(&self, x0: f64, z0: f64, t: f64) -> Jet {
+        let (mut px, mut pz) = (x0, z0);
+        let (mut jxx, mut jxz, mut jzz) = (1.0, 0.0, 1.0);
+        let (mut gx, mut gz) = (0.0, 0.0);
+        for w in &self.cache {
+            let th = w.k * (w.dir.x * x0 + w.dir.y * z0) - w.omega * t + w.phase;
+            let (s, c) = th.sin_cos();
+            px -= w.qa * w.dir.x * s;
+            pz -= w.qa * w.dir.y * s;
+            let f = w.qa * w.k * c;
+            jxx -= f * w.dir.x * w.dir.x;
+            jxz -= f * w.dir.x * w.dir.y;
+            jzz -= f * w.dir.y * w.dir.y;
+            let e = w.a * w.k * s;
+            gx -= e * w.dir.x;
+            gz -= e * w.dir.y;
+        }
+        Jet {
+            position: [px, pz],
+            jacobian: [jxx, jxz, jzz],
+            height_gradient: [gx, gz],
+        }
+    }
+}
+
+/// A Gerstner particle's horizontal position (m), the symmetric Jacobian
+/// `[xx, xz, zz]` of that position over its rest position, and the gradient
+/// of its height over its rest position.
+struct Jet {
+    position: [f64; 2],
+    jacobian: [f64; 3],
+    height_gradient: [f64; 2],
+}
+
+impl Surface for Gerstner {
+    fn height_bounds(&self, _t: f64) -> Option<(f64, f64)> {
+        let a: f64 = self.waves.iter().map(|w| w.amplitude).sum();
+        Some((self.level - a, self.level + a))
+    }
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+    fn height(&self, x: f64, z: f64, t: f64) -> f64 {
+        let (x0, z0) = self.rest_position(x, z, t);
+        self.particle(x0, z0, t).y
+    }
+
+    fn probe(
+        &self,
+        p: &Point3<f64>,
+        t: f64,
+        with_velocity: bool,
+        hint: &mut [f64; 2],
+    ) -> (f64, Vector3<f64>) {
+        let (x0, z0) = self.rest_position_from(p.x, p.z, t, *hint);
+        *hint = [p.x - x0, p.z - z0];
+        let height = self.particle(x0, z0, t).y;
+        let v = if with_velocity {
+            self.velocity_at_rest(x0, z0, p.y, t)
+        } else {
+            Vector3::zeros()
+        };
+        (height - p.y, v)
+    }
+
+    /// `(∂f/∂x, ∂f/∂z) = J⁻¹ ∇y` at the particle's rest position, with `J`
+    /// the Jacobian of its horizontal position and `∇y` the gradient of its
+    /// height, both over the rest position.
+    fn slope(&self, x: f64, z: f64, t: f64, hint: &[f64; 2]) -> [f64; 2] {
+        // After a probe at the same point the hint holds the particle's
+        // displacement, so the first guess is its rest position: the same
+        // pass over the waves checks it and takes J and ∇y.
+        let mut jet = self.jet(x - hint[0], z - hint[1], t);
+        let off = (jet.position[0] - x).abs() + (jet.position[1] - z).abs();
+        if off > 1e-9 * (1.0 + x.abs() + z.abs()) {
+            let (x0, z0) = self.rest_position_from(x, z, t, *hint);
+            jet = self.jet(x0, z0, t);
+        }
+        let [jxx, jxz, jzz] = jet.jacobian;
+        let [gx, gz] = jet.height_gradient;
+        let det = jxx * jzz - jxz * jxz;
+        if det.abs() < 1e-12 {
+            return [0.0, 0.0];
+        }
+        [(jzz * gx - jxz * gz) / det, (jxx * gz - jxz * gx) / det]
+    }
+
+    /// Orbital velocity of the surface particle above `p`, decaying as
+    /// `e^{k·(y − level)}` below the mean level (Airy theory).
+    fn velocity(&self, p: &Point3<f64>, t: f64) -> Vector3<f64> {
+        let (x0, z0) = self.rest_position(p.x, p.z, t);
+        self.velocity_at_rest(x0, z0, p.y, t)
+    }
+}
+
+impl Gerstner {
+    fn velocity_at_rest(&self, x0: f64, z0: f64, y: f64, t: f64) -> Vector3<f64> {
+        let mut v = Vector3::zeros();
+        for w in &self.cache {
+            let th = w.k * (w.dir.x * x0 + w.dir.y * z0) - w.omega * t + w.phase;
+            let (s, c) = th.sin_cos();
+            let decay = (w.k * (y - self.level).min(0.0)).exp();
+            v.x += w.qa * w.dir.x * w.omega * c * decay;
+            v.z += w.qa * w.dir.y * w.omega * c * decay;
+            v.y += w.a * w.omega * s * decay;
+        }
+        v
+    }
+}

@@ -1,0 +1,25 @@
+//! Water: a surface `y = f(x, z, t)` in the world frame (y up), its velocity
+//! field, and the fluid's density.
+//!
+//! One file for the trait and one per surface:
+//!
+//! - `surface`: [`Surface`](crate::Surface), [`SurfaceKind`](crate::SurfaceKind),
+//!   [`Water`](crate::Water) and the constants.
+//! - `plane`: [`Plane`](crate::Plane).
+//! - `gerstner`: [`Gerstner`](crate::Gerstner) and
+//!   [`GerstnerWave`](crate::GerstnerWave), with the inversion of the
+//!   Gerstner map.
+//! - `height_field`: [`HeightField`](crate::HeightField).
+//! - `unbounded`: [`Unbounded`](crate::Unbounded).
+
+mod gerstner;
+mod height_field;
+mod plane;
+mod surface;
+mod unbounded;
+
+pub use self::gerstner::{Gerstner, GerstnerWave};
+pub use self::height_field::HeightField;
+pub use self::plane::Plane;
+pub use self::surface::{AIR_DENSITY, STANDARD_GRAVITY, Surface, SurfaceKind, WATER_DENSITY, Water};
+pub use self::unbounded::Unbounded;

@@ -1,0 +1,76 @@
+//! A plane surface, horizontal or tilted, with a uniform current.
+
+use nalgebra::{Point3, Vector3};
+use serde::{Deserialize, Serialize};
+
+use super::{Surface, SurfaceKind};
+use crate::error::WaterError;
+
+/// A plane surface `normal·p = offset`, horizontal unless tilted.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Plane {
+    /// Unit normal pointing up out of the water (`normal.y > 0`).
+    pub normal: Vector3<f64>,
+    /// `normal·p` on the surface, m.
+    pub offset: f64,
+    /// Uniform current, m/s.
+    pub current: Vector3<f64>,
+}
+
+impl Plane {
+    /// The horizontal plane `y = level` (m), still water.
+    pub fn horizontal(level: f64) -> Self {
+        Self {
+            normal: Vector3::y(),
+            offset: level,
+            current: Vector3::zeros(),
+        }
+    }
+
+    /// A plane through `point` (m) with the given up normal (normalised here).
+    pub fn tilted(point: Point3<f64>, normal: Vector3<f64>) -> Result<Self, WaterError> {
+        let n = normal.try_normalize(1e-12).ok_or(WaterError::PlaneNormal {
+            normal: normal.into(),
+        })?;
+        if n.y <= 1e-6 || !n.iter().all(|c| c.is_finite()) || !point.iter().all(|c| c.is_finite()) {
+            return Err(WaterError::PlaneNormal {
+                normal: normal.into(),
+            });
+        }
+        Ok(Self {
+            normal: n,
+            offset: n.dot(&point.coords),
+            current: Vector3::zeros(),
+        })
+    }
+
+    /// The same plane with a uniform current (m/s).
+    pub fn with_current(mut self, current: Vector3<f64>) -> Self {
+        self.current = current;
+        self
+    }
+}
+
+impl Surface for Plane {
+    fn height_bounds(&self, _t: f64) -> Option<(f64, f64)> {
+        (self.normal.x == 0.0 && self.normal.z == 0.0).then_some((self.offset, self.offset))
+    }
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+    fn height(&self, x: f64, z: f64, _t: f64) -> f64 {
+        (self.offset - self.normal.x * x - self.normal.z * z) / self.normal.y
+    }
+    fn slope(&self, _x: f64, _z: f64, _t: f64, _hint: &[f64; 2]) -> [f64; 2] {
+        [-self.normal.x / self.normal.y, -self.normal.z / self.normal.y]
+    }
+    fn velocity(&self, _p: &Point3<f64>, _t: f64) -> Vector3<f64> {
+        self.current
+    }
+    fn kind(&self, _t: f64) -> SurfaceKind {
+        SurfaceKind::Plane {
+            normal: self.normal,
+            offset: self.offset,
+        }
+    }
+}

@@ -1,0 +1,182 @@
+//! The surface trait every fluid implements, the fluid itself ([`Water`]:
+//! a surface, a density and a gravity), and the standard constants.
+
+use nalgebra::{Point3, Vector3};
+
+use super::{Plane, Unbounded};
+use crate::error::WaterError;
+
+/// Density of fresh water, kg/m³.
+pub const WATER_DENSITY: f64 = 1000.0;
+/// Density of air at sea level and 20 °C, kg/m³.
+pub const AIR_DENSITY: f64 = 1.2;
+/// Standard gravity, m/s².
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+
+/// How the hydrostatics may treat a surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SurfaceKind {
+    /// A plane `n·p = offset` (unit `n` with `n.y > 0`): depth is affine in
+    /// position, so the tiled closed forms apply.
+    Plane {
+        /// Unit normal pointing out of the fluid.
+        normal: Vector3<f64>,
+        /// Plane offset, m.
+        offset: f64,
+    },
+    /// Any height field `y = f(x, z, t)`.
+    General,
+    /// No free surface: the body is wholly immersed (air around a balloon).
+    Unbounded,
+}
+
+/// A fluid's free surface and velocity field, world frame, y up: the
+/// surface is `y = f(x, z, t)`.
+///
+/// Four surfaces are provided: a [`Plane`] (horizontal or tilted), a sum of
+/// [`Gerstner`](super::Gerstner) waves, a bilinear
+/// [`HeightField`](super::HeightField), and an [`Unbounded`] medium (a
+/// balloon in air: everything is immersed). Implement [`Surface`] for your
+/// own.
+pub trait Surface: Send + Sync {
+    /// Surface height `f(x, z, t)` at horizontal position `(x, z)` (m) and time `t` (s), m.
+    fn height(&self, x: f64, z: f64, t: f64) -> f64;
+
+    /// Fluid velocity at world point `p` (m) and time `t` (s), m/s.
+    fn velocity(&self, _p: &Point3<f64>, _t: f64) -> Vector3<f64> {
+        Vector3::zeros()
+    }
+
+    /// The surface's kind at time `t`; the default is [`SurfaceKind::General`].
+    fn kind(&self, _t: f64) -> SurfaceKind {
+        SurfaceKind::General
+    }
+
+    /// Lowest and highest surface height over all `(x, z)` at time `t`, m,
+    /// if known: a body whose lowest point is above the highest crest is dry
+    /// and needs no texel work. `None` (the default) means unknown.
+    fn height_bounds(&self, _t: f64) -> Option<(f64, f64)> {
+        None
+    }
+
+    /// The concrete surface, for backends that handle known surfaces
+    /// natively (the GPU evaluates [`Plane`], [`Gerstner`](super::Gerstner),
+    /// [`HeightField`](super::HeightField) and [`Unbounded`] itself). `None`
+    /// for other surfaces.
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        None
+    }
+
+    /// Depth of `p` below the surface (m) and, when `with_velocity`, the
+    /// fluid velocity there (m/s), in one call. `hint` carries state between
+    /// calls at nearby points (it starts zeroed); surfaces that solve for the
+    /// height iteratively use it to warm-start.
+    fn probe(
+        &self,
+        p: &Point3<f64>,
+        t: f64,
+        with_velocity: bool,
+        hint: &mut [f64; 2],
+    ) -> (f64, Vector3<f64>) {
+        let _ = hint;
+        let v = if with_velocity {
+            self.velocity(p, t)
+        } else {
+            Vector3::zeros()
+        };
+        (self.depth(p, t), v)
+    }
+
+    /// Slope `(∂f/∂x, ∂f/∂z)` of the surface above `(x, z)` (m) at time `t`
+    /// (s), dimensionless. Archimedes buoyancy needs it where the surface is
+    /// not flat, so that its torque is the derivative of the water's
+    /// potential. `hint` is [`Surface::probe`]'s, left by a probe at the
+    /// same point. The default takes central differences of
+    /// [`Surface::height`] 10⁻⁵ (1 + |x| + |z|) m apart.
+    fn slope(&self, x: f64, z: f64, t: f64, hint: &[f64; 2]) -> [f64; 2] {
+        let _ = hint;
+        let h = 1e-5 * (1.0 + x.abs() + z.abs());
+        [
+            (self.height(x + h, z, t) - self.height(x - h, z, t)) / (2.0 * h),
+            (self.height(x, z + h, t) - self.height(x, z - h, t)) / (2.0 * h),
+        ]
+    }
+
+    /// Depth of `p` below the surface, m (positive under water, measured vertically).
+    fn depth(&self, p: &Point3<f64>, t: f64) -> f64 {
+        self.height(p.x, p.z, t) - p.y
+    }
+}
+
+/// A fluid: its surface, density and the gravity that makes its pressure.
+pub struct Water {
+    /// The free surface and velocity field.
+    pub surface: Box<dyn Surface>,
+    /// Density, kg/m³.
+    pub density: f64,
+    /// Magnitude of gravity for hydrostatic pressure, m/s² (acting along −y).
+    pub gravity: f64,
+}
+
+impl Water {
+    /// Still fresh water with its surface at `y = level` (m).
+    pub fn calm(level: f64) -> Self {
+        Self::new(Plane::horizontal(level))
+    }
+
+    /// Fresh water (1000 kg/m³, standard gravity) with the given surface.
+    pub fn new(surface: impl Surface + 'static) -> Self {
+        Self {
+            surface: Box::new(surface),
+            density: WATER_DENSITY,
+            gravity: STANDARD_GRAVITY,
+        }
+    }
+
+    /// Air (1.2 kg/m³) everywhere: no free surface.
+    pub fn air() -> Self {
+        Self {
+            surface: Box::new(Unbounded::default()),
+            density: AIR_DENSITY,
+            gravity: STANDARD_GRAVITY,
+        }
+    }
+
+    /// The same water with another density (kg/m³).
+    pub fn with_density(mut self, density: f64) -> Self {
+        self.density = density;
+        self
+    }
+
+    /// The same water with another gravity magnitude (m/s²).
+    pub fn with_gravity(mut self, gravity: f64) -> Self {
+        self.gravity = gravity;
+        self
+    }
+
+    /// Checks density and gravity are finite and positive.
+    pub fn validate(&self) -> Result<(), WaterError> {
+        if !(self.density.is_finite() && self.density > 0.0) {
+            return Err(WaterError::Parameter {
+                name: "density",
+                value: self.density,
+            });
+        }
+        if !(self.gravity.is_finite() && self.gravity >= 0.0) {
+            return Err(WaterError::Parameter {
+                name: "gravity",
+                value: self.gravity,
+            });
+        }
+        Ok(())
+    }
+}
+
+impl std::fmt::Debug for Water {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Water")
+            .field("density", &self.density)
+            .field("gravity", &self.gravity)
+            .finish_non_exhaustive()
+    }
+}
