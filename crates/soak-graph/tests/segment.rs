@@ -2,6 +2,9 @@
 //! chords, the dumbbell's three compartments, rotation invariance,
 //! determinism across thread counts, the max-flow solvers against each
 //! other, and the stage timings (printed, not asserted).
+//!
+//! One file on purpose: the stages share the meshes built here and are
+//! checked in pipeline order.
 
 use nalgebra::{Point3, UnitQuaternion, Vector3};
 use proptest::prelude::*;

@@ -3,6 +3,9 @@
 //! within stated tolerances. Also: batching, deformation on the device,
 //! split atlases, and the typed errors.
 //!
+//! One file on purpose: the parity suite shares one harness (the `Backend`
+//! trait and its two implementations) that every test runs through.
+//!
 //! Needs a wgpu adapter: Mesa's lavapipe (`WGPU_BACKEND=vulkan`) or llvmpipe
 //! (`WGPU_BACKEND=gl`) do. Without one the tests print a notice and pass,
 //! except under `CI=true`, where they fail.

@@ -1,4 +1,7 @@
 //! Buoyancy and drag from texel sums against exact clipping and physics.
+//!
+//! One file on purpose: its tests share the fixtures and the comparison
+//! helpers against exact clipping; each test names the case it checks.
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin, load_mesh};

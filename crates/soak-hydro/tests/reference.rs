@@ -1,6 +1,9 @@
 //! The exact references of `soak_hydro::reference`, checked against answers
 //! derived by hand (closed forms, quadrature, symmetry), never against the
 //! code itself.
+//!
+//! One file on purpose: one test per reference function, each with the
+//! closed form it is checked against beside it.
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
