@@ -91,5 +91,5 @@ pub fn film_specular(n_dot_l: f64, n_dot_v: f64, n_dot_h: f64, v_dot_h: f64, alp
 pub fn wet_roughness(dry_roughness: f64, film_roughness: f64, wetness: f64) -> f64 {
     let dry = unit(dry_roughness);
     let film = unit(film_roughness).min(dry);
-    crate::blend(dry, film, wetness)
+    crate::gamma::blend(dry, film, wetness)
 }
