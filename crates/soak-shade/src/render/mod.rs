@@ -67,3 +67,4 @@ pub use scene::{
 /// The device helpers every GPU path of soak shares, re-exported from soak-gpu.
 pub use soak_gpu::{GpuError, adapter_label, headless_device, is_software, test_device};
 pub use subsurface::{Subsurface, SubsurfaceGaussian};
+pub use text::{TextLayout, layout_text};
