@@ -11,7 +11,7 @@ use soak::bake::{Atlas, BakeOptions, builtin};
 use soak::hydro::{BodyState, Gerstner, GerstnerWave, HydroOptions, MassModel, Water, evaluate};
 use soak::shade::render::{
     Albedo, Arrow, Camera, DebugView, DirectionalLight, RenderObject, RenderScene, RenderWater, Renderer,
-    adapter_label, headless_device, liquid_image_from_texels, procedural,
+    adapter_label, fractal_noise, headless_device, liquid_image_from_texels, wood_planks,
 };
 use soak::shade::{Gamma, Liquid, WetMaterial};
 
@@ -101,7 +101,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let above = p.y - water.surface.height(p.x, p.z, TIME) - 0.12;
             let hull = if above <= 0.0 { 1.0 } else { (-above / 0.03).exp() };
             let q = atlas.position(i);
-            let splash = procedural::fractal_noise(1.6 * q.x + 7.0, 1.6 * q.z, 4, 11);
+            let splash = fractal_noise(1.6 * q.x + 7.0, 1.6 * q.z, 4, 11);
             let deck = if atlas.area_vectors().get(i)[1] > 0.0 && q.y > 0.55 {
                 ((splash - 0.58) / 0.04).clamp(0.0, 1.0)
             } else {
@@ -114,13 +114,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let hull = RenderObject::new(mesh, pose)
         .with_name("boat")
-        .with_albedo(Albedo::texture(procedural::wood_planks(
-            512,
-            512,
-            14,
-            [0.62, 0.40, 0.22],
-            7,
-        )))
+        .with_albedo(Albedo::texture(wood_planks(512, 512, 14, [0.62, 0.40, 0.22], 7)))
         .with_liquid(liquid)
         .with_material(WetMaterial {
             liquid: Liquid::water(),

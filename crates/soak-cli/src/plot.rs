@@ -3,8 +3,9 @@
 //! that never covers the data, and text notes at data coordinates. Several
 //! charts side by side make one figure.
 //!
-//! Text is set in DejaVu Sans, embedded in the binary (`assets/`) and drawn
-//! with `ab_glyph` by the backend here, so the plots look the same on every
+//! Text is set in DejaVu Sans, embedded in the binary (`assets/`), laid out
+//! by [`soak_shade::render::layout_text`] (as the renderer's figure labels)
+//! and drawn by the backend here, so the plots look the same on every
 //! machine and need no system fonts.
 //!
 //! ```ignore
@@ -21,7 +22,7 @@
 use std::path::Path;
 use std::sync::OnceLock;
 
-use ab_glyph::{Font, FontRef, PxScale, ScaleFont, point};
+use ab_glyph::Font as _;
 use anyhow::{Context, anyhow};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -31,6 +32,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters_backend::{
     BackendColor, BackendCoord, BackendStyle, BackendTextStyle, DrawingErrorKind, FontTransform,
 };
+use soak_shade::render::{Font, TextLayout, layout_text};
 
 /// DejaVu Sans (Bitstream Vera licence, see `assets/DejaVuSans-LICENSE.txt`).
 pub(crate) const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
@@ -38,10 +40,10 @@ pub(crate) const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 const FAMILY: &str = "sans-serif";
 
 /// The embedded font, parsed once per process.
-fn font() -> anyhow::Result<&'static FontRef<'static>> {
-    static PARSED: OnceLock<Option<FontRef<'static>>> = OnceLock::new();
+fn font() -> anyhow::Result<&'static Font> {
+    static PARSED: OnceLock<Option<Font>> = OnceLock::new();
     PARSED
-        .get_or_init(|| FontRef::try_from_slice(FONT).ok())
+        .get_or_init(|| Font::try_from_slice(FONT).ok())
         .as_ref()
         .ok_or_else(|| anyhow!("the embedded DejaVu Sans font could not be parsed"))
 }
@@ -52,27 +54,13 @@ fn font() -> anyhow::Result<&'static FontRef<'static>> {
 /// plotters' `BitMapBackend`.
 struct Canvas<'a> {
     inner: BitMapBackend<'a>,
-    font: &'static FontRef<'static>,
+    font: &'static Font,
 }
 
 /// Glyphs of `text` at `size` px laid out from the origin on the ascent line:
 /// the glyphs, the advance width and the line height (ascent − descent), px.
-fn layout(font: &FontRef<'static>, text: &str, size: f64) -> (Vec<ab_glyph::Glyph>, f32, f32) {
-    let scale = PxScale::from(size as f32);
-    let sf = font.as_scaled(scale);
-    let mut caret = 0.0f32;
-    let mut prev = None;
-    let mut glyphs = Vec::with_capacity(text.len());
-    for c in text.chars() {
-        let id = sf.glyph_id(c);
-        if let Some(p) = prev {
-            caret += sf.kern(p, id);
-        }
-        glyphs.push(id.with_scale_and_position(scale, point(caret, sf.ascent())));
-        caret += sf.h_advance(id);
-        prev = Some(id);
-    }
-    (glyphs, caret, sf.ascent() - sf.descent())
+fn layout(font: &Font, text: &str, size: f64) -> TextLayout {
+    layout_text(font, size as f32, 0.0, 0.0, text)
 }
 
 impl DrawingBackend for Canvas<'_> {
@@ -162,7 +150,11 @@ impl DrawingBackend for Canvas<'_> {
         if color.alpha == 0.0 {
             return Ok(());
         }
-        let (glyphs, width, height) = layout(self.font, text, style.size());
+        let TextLayout {
+            glyphs,
+            width,
+            height,
+        } = layout(self.font, text, style.size());
         let dx = match style.anchor().h_pos {
             HPos::Left => 0.0,
             HPos::Center => -width / 2.0,
@@ -204,7 +196,7 @@ impl DrawingBackend for Canvas<'_> {
         text: &str,
         style: &T,
     ) -> Result<(u32, u32), DrawingErrorKind<Self::ErrorType>> {
-        let (_, width, height) = layout(self.font, text, style.size());
+        let TextLayout { width, height, .. } = layout(self.font, text, style.size());
         Ok((width.ceil() as u32, height.ceil() as u32))
     }
 }

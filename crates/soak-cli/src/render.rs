@@ -22,7 +22,7 @@ use soak_rapier::scene::{LoadedScene, WaterKind};
 use soak_rapier::{Simulation, convert};
 use soak_shade::render::{
     Albedo, Arrow, Camera, DebugView, DirectionalLight, RenderObject, RenderScene, RenderWater, Renderer,
-    adapter_label, headless_device, liquid_image_from_texels, procedural,
+    adapter_label, headless_device, liquid_image_from_texels, speckled, wood_planks,
 };
 use soak_shade::{Gamma, Liquid, WetMaterial};
 
@@ -339,15 +339,9 @@ fn nearest_node_per_triangle(mesh: &Mesh, nodes: &[Point3<f64>]) -> Vec<u32> {
 fn albedo_for(name: &str, mesh: &str, index: usize, fixed: bool) -> Albedo {
     let n = format!("{name} {mesh}").to_lowercase();
     if n.contains("boat") || n.contains("crate") || n.contains("hull") || n.contains("wood") {
-        Albedo::texture(procedural::wood_planks(
-            512,
-            512,
-            14,
-            [0.62, 0.40, 0.22],
-            7 + index as u64,
-        ))
+        Albedo::texture(wood_planks(512, 512, 14, [0.62, 0.40, 0.22], 7 + index as u64))
     } else if fixed || n.contains("beach") || n.contains("sand") || n.contains("terrain") {
-        Albedo::texture(procedural::speckled(
+        Albedo::texture(speckled(
             512,
             512,
             [0.76, 0.66, 0.47],

@@ -12,7 +12,7 @@ use soak_rapier::Simulation;
 use soak_rapier::scene::LoadedScene;
 use soak_shade::render::{
     Albedo, Camera, DebugView, DirectionalLight, RenderObject, RenderScene, RenderWater, Renderer,
-    headless_device, liquid_image_from_texels, procedural,
+    fractal_noise, headless_device, liquid_image_from_texels, speckled, wood_planks,
 };
 use soak_shade::{Gamma, Liquid, WetMaterial};
 use soak_wet::scenes::{Beach, BeachOptions};
@@ -119,23 +119,9 @@ fn beach_still(out: &Path, quick: bool) -> Result<Vec<String>> {
         let liquid =
             liquid_image_from_texels(b.atlas.width(), b.atlas.height(), b.atlas.texels(), &values, 3);
         let albedo = match b.name {
-            "sand" => Albedo::texture(procedural::speckled(
-                1024,
-                1024,
-                [0.72, 0.60, 0.42],
-                0.10,
-                60.0,
-                5,
-            )),
-            "crate" => Albedo::texture(procedural::wood_planks(512, 512, 6, [0.62, 0.42, 0.24], 9)),
-            _ => Albedo::texture(procedural::speckled(
-                512,
-                512,
-                [0.42, 0.40, 0.38],
-                0.25,
-                12.0,
-                7 + i as u64,
-            )),
+            "sand" => Albedo::texture(speckled(1024, 1024, [0.72, 0.60, 0.42], 0.10, 60.0, 5)),
+            "crate" => Albedo::texture(wood_planks(512, 512, 6, [0.62, 0.42, 0.24], 9)),
+            _ => Albedo::texture(speckled(512, 512, [0.42, 0.40, 0.38], 0.25, 12.0, 7 + i as u64)),
         };
         objects.push(
             RenderObject::new(b.mesh.clone(), b.pose)
@@ -188,7 +174,7 @@ fn stain_still(out: &Path) -> Result<String> {
                 return 0.0;
             }
             let (x, z) = (p.x + 0.15, p.z - 0.05);
-            let wobble = 0.18 * (procedural::fractal_noise(2.5 * x + 3.0, 2.5 * z + 1.0, 4, 3) - 0.5);
+            let wobble = 0.18 * (fractal_noise(2.5 * x + 3.0, 2.5 * z + 1.0, 4, 3) - 0.5);
             let r = (x * x / 0.36 + z * z / 0.20).sqrt() + wobble;
             let splash = (-(((x - 0.62).powi(2) + (z + 0.28).powi(2)) / 0.004)).exp();
             (((0.62 - r) / 0.05).clamp(0.0, 1.0) + splash).min(1.0) as f32
@@ -201,13 +187,7 @@ fn stain_still(out: &Path) -> Result<String> {
         Isometry3::new(Vector3::zeros(), Vector3::new(0.0, 0.25, 0.0)),
     )
     .with_name("board")
-    .with_albedo(Albedo::texture(procedural::wood_planks(
-        1024,
-        1024,
-        5,
-        [0.78, 0.66, 0.50],
-        3,
-    )))
+    .with_albedo(Albedo::texture(wood_planks(1024, 1024, 5, [0.78, 0.66, 0.50], 3)))
     .with_liquid(liquid)
     .with_material(WetMaterial {
         liquid: wine,

@@ -15,7 +15,7 @@ use soak_bake::builtin;
 use soak_hydro::{Gerstner, GerstnerWave};
 use soak_shade::render::{
     Albedo, Arrow, Camera, DebugView, LiquidImage, RenderObject, RenderScene, RenderWater, Renderer,
-    Subsurface, adapter_label, headless_device, is_software, procedural,
+    Subsurface, adapter_label, blotches, headless_device, is_software, speckled, wood_planks,
 };
 use soak_shade::{Liquid, WetMaterial};
 
@@ -51,13 +51,7 @@ fn scene() -> RenderScene {
             builtin::boat(4.0, 1.2, 0.6),
             Isometry3::new(Vector3::new(0.0, -0.25, 0.0), Vector3::new(0.1, 0.45, 0.0)),
         )
-        .with_albedo(Albedo::texture(procedural::wood_planks(
-            512,
-            512,
-            14,
-            [0.62, 0.40, 0.22],
-            7,
-        )))
+        .with_albedo(Albedo::texture(wood_planks(512, 512, 14, [0.62, 0.40, 0.22], 7)))
         .with_liquid(band.clone()),
     );
     scene.objects.push(
@@ -66,7 +60,7 @@ fn scene() -> RenderScene {
             Isometry3::translation(2.4, 0.1, -1.5),
         )
         .with_albedo(Albedo::Constant([0.7, 0.3, 0.2]))
-        .with_liquid(procedural::blotches(256, 128, 5.0, 0.5, 0.03, 3))
+        .with_liquid(blotches(256, 128, 5.0, 0.5, 0.03, 3))
         .with_material(WetMaterial {
             liquid: Liquid::from_colour(1.34, [0.45, 0.2, 0.06], 1e-2, 2e-3),
             ..WetMaterial::default()
@@ -77,7 +71,7 @@ fn scene() -> RenderScene {
             builtin::cuboid(0.8, 0.8, 0.8),
             Isometry3::new(Vector3::new(-2.5, 0.1, -2.0), Vector3::new(0.0, 0.6, 0.2)),
         )
-        .with_albedo(Albedo::texture(procedural::speckled(
+        .with_albedo(Albedo::texture(speckled(
             256,
             256,
             [0.6, 0.55, 0.45],

@@ -1,11 +1,11 @@
 //! Typed errors for invalid optical parameters.
-//!
-//! The hot shading functions never panic and never return errors: they clamp
-//! or propagate NaN as documented on each. Parameters are checked once, up
-//! front, with the `validate` methods and the free functions in this module,
-//! which name the offending parameter and its value.
 
 /// An optical parameter outside its physical range.
+///
+/// The hot shading functions never panic and never return errors: they clamp
+/// or propagate NaN as documented on each. Parameters are checked once, up
+/// front, with the `validate` methods and the free `check_*` functions,
+/// which name the offending parameter and its value.
 ///
 /// Every variant names the parameter (e.g. `"liquid.refractive_index"`,
 /// `"albedo.g"`) and carries the rejected value.

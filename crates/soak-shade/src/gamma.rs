@@ -1,21 +1,4 @@
 //! Γ(h): how much of the wet look a texel with liquid saturation `h` shows.
-//!
-//! The thesis blends the dry and the wet reflectance with a weight Γ(h) that
-//! must satisfy Γ(0) = 0, Γ(1) = 1 and be non-decreasing (§6.1.1). Its printed
-//! blend `Γ(h)·BRDF_dry + (1 − Γ(h))·BSSRDF_wet` has the two weights swapped
-//! (it would make a dry texel look wet); the blend here is
-//! `(1 − Γ(h))·dry + Γ(h)·wet`.
-//!
-//! Families (all map `[0, 1]` onto `[0, 1]` with exact ends, for every
-//! parameter value; `h` outside `[0, 1]` is clamped, NaN counts as 0):
-//!
-//! | family | Γ(h) | parameter |
-//! |---|---|---|
-//! | linear | `h` | — |
-//! | log | `ln(1 + k h) / ln(1 + k)` | `k > 0`: larger darkens sooner |
-//! | power | `h^γ` | `γ > 0`: `< 1` darkens sooner |
-//! | arctan sigmoid | `½(atan(r(h − ½))/atan(r/2) + 1)` | roughness `r > 0`: larger is more abrupt |
-//! | artist | piecewise linear through a 1-D table | [`ArtistCurve`] |
 
 use crate::artist_curve::ArtistCurve;
 use crate::error::{ParameterError, check_positive};
@@ -100,6 +83,23 @@ pub fn blend_rgb(dry: [f64; 3], wet: [f64; 3], gamma: f64) -> [f64; 3] {
 }
 
 /// A Γ family with its parameter.
+///
+/// The thesis blends the dry and the wet reflectance with a weight Γ(h) that
+/// must satisfy Γ(0) = 0, Γ(1) = 1 and be non-decreasing (§6.1.1). Its printed
+/// blend `Γ(h)·BRDF_dry + (1 − Γ(h))·BSSRDF_wet` has the two weights swapped
+/// (it would make a dry texel look wet); the blend here is
+/// `(1 − Γ(h))·dry + Γ(h)·wet`.
+///
+/// Families (all map `[0, 1]` onto `[0, 1]` with exact ends, for every
+/// parameter value; `h` outside `[0, 1]` is clamped, NaN counts as 0):
+///
+/// | family | Γ(h) | parameter |
+/// |---|---|---|
+/// | linear | `h` | — |
+/// | log | `ln(1 + k h) / ln(1 + k)` | `k > 0`: larger darkens sooner |
+/// | power | `h^γ` | `γ > 0`: `< 1` darkens sooner |
+/// | arctan sigmoid | `½(atan(r(h − ½))/atan(r/2) + 1)` | roughness `r > 0`: larger is more abrupt |
+/// | artist | piecewise linear through a 1-D table | [`ArtistCurve`] |
 ///
 /// # Example
 /// ```

@@ -1,24 +1,5 @@
 //! The Lekner–Dorf wet albedo: why absorbent things look darker when wet,
 //! extended to coloured liquids (thesis Ch. 6, Eq. 6.1).
-//!
-//! A thin liquid film of relative index `n` covers a diffuse surface of
-//! albedo `a`. Of the light reaching the film, `R_spec` is reflected
-//! specularly at the air–liquid interface; the rest crosses the film
-//! (transmittance `σ` per pass), meets the surface (absorbed `1 − a`,
-//! scattered diffusely `a`), crosses the film again (`σ`), and at the
-//! liquid–air interface escapes with probability `1 − p` or is reflected back
-//! down with probability `p` (the internal diffuse reflectance). Summing the
-//! geometric series of bounces, with `D = 1 − p·a·σ²`:
-//!
-//! ```text
-//! absorbed by the surface  A = (1 − R_spec)(1 − a) σ / D
-//! albedo seen by the eye   W = (1 − R_spec) σ² a (1 − p) / D
-//! absorbed by the liquid   L = (1 − R_spec)(1 − σ)(1 + a σ) / D
-//! and R_spec + W + A + L = 1 exactly.
-//! ```
-//!
-//! Every function here works per wavelength band: call it per RGB channel,
-//! or use the `_rgb` variants, with `a` and `σ` as RGB triples.
 
 use crate::fresnel::unit;
 
@@ -33,6 +14,25 @@ fn bounce_denominator(a: f64, sigma: f64, p: f64) -> f64 {
 /// The Lekner–Dorf wet albedo `W = (1 − R_spec) σ² a (1 − p) / (1 − p a σ²)`:
 /// the fraction of incident light a liquid-covered diffuse surface sends back
 /// diffusely to the eye, for one wavelength band.
+///
+/// A thin liquid film of relative index `n` covers a diffuse surface of
+/// albedo `a`. Of the light reaching the film, `R_spec` is reflected
+/// specularly at the air–liquid interface; the rest crosses the film
+/// (transmittance `σ` per pass), meets the surface (absorbed `1 − a`,
+/// scattered diffusely `a`), crosses the film again (`σ`), and at the
+/// liquid–air interface escapes with probability `1 − p` or is reflected back
+/// down with probability `p` (the internal diffuse reflectance). Summing the
+/// geometric series of bounces, with `D = 1 − p·a·σ²`:
+///
+/// ```text
+/// absorbed by the surface  A = (1 − R_spec)(1 − a) σ / D
+/// albedo seen by the eye   W = (1 − R_spec) σ² a (1 − p) / D
+/// absorbed by the liquid   L = (1 − R_spec)(1 − σ)(1 + a σ) / D
+/// and R_spec + W + A + L = 1 exactly.
+/// ```
+///
+/// Every function here works per wavelength band: call it per RGB channel,
+/// or use the `_rgb` variants, with `a` and `σ` as RGB triples.
 ///
 /// - `albedo`: dry diffuse albedo `a`, fraction in `[0, 1]`;
 /// - `transmittance`: liquid transmittance `σ` per pass through the film,

@@ -1,18 +1,18 @@
 #![doc = include_str!("../README.md")]
 
-pub mod artist_curve;
-pub mod error;
-pub mod fresnel;
-pub mod gamma;
-pub mod lekner_dorf;
-pub mod liquid;
-pub mod mean_reflectance;
-pub mod optics_table;
-pub mod porosity_shortcut;
+mod artist_curve;
+mod error;
+mod fresnel;
+mod gamma;
+mod lekner_dorf;
+mod liquid;
+mod mean_reflectance;
+mod optics_table;
+mod porosity_shortcut;
 #[cfg(feature = "render")]
 pub mod render;
-pub mod specular;
-pub mod wet_material;
+mod specular;
+mod wet_material;
 
 pub use artist_curve::{ARTIST_CURVE_GPU_SAMPLES, ArtistCurve, ArtistCurveGpu};
 pub use error::{

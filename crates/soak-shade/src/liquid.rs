@@ -110,13 +110,13 @@ impl Liquid {
     /// Normal-incidence reflectance `F0` of the air–liquid interface
     /// ([`fresnel_f0`](crate::fresnel_f0)).
     pub fn f0(&self) -> f64 {
-        crate::fresnel_f0(self.refractive_index)
+        crate::fresnel::fresnel_f0(self.refractive_index)
     }
 
     /// Internal diffuse reflectance `p` of the liquid–air interface
     /// ([`internal_reflectance`](crate::internal_reflectance)).
     pub fn internal_reflectance(&self) -> f64 {
-        crate::internal_reflectance(self.refractive_index)
+        crate::mean_reflectance::internal_reflectance(self.refractive_index)
     }
 
     /// Checks every field: `refractive_index > 1` and finite, transmittance

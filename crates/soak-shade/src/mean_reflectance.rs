@@ -1,49 +1,4 @@
 //! Hemispherical mean reflectances of a flat dielectric interface.
-//!
-//! Stern (1964) integrated Fresnel's equations for unpolarised light over a
-//! hemisphere of *isotropic* (diffuse, cosine-weighted) incidence:
-//!
-//! ```text
-//! R̄(n) = 2 ∫₀^{π/2} R(θ, n) cos θ sin θ dθ
-//! ```
-//!
-//! and found the closed form (thesis Eq. 6.7), for a relative index `n > 1`
-//! (light arriving from the optically thinner side, e.g. air → water):
-//!
-//! ```text
-//! R̄(n) = (3n² + 2n + 1) / (3(n+1)²)
-//!       − 2n³(n² + 2n − 1) / ((n²+1)²(n²−1))
-//!       + n²(n²+1) / (n²−1)² · ln n
-//!       − n²(n²−1)² / (n²+1)³ · ln(n(n+1)/(n−1))
-//! ```
-//!
-//! Light going the other way (liquid → air) is totally reflected beyond the
-//! critical angle; by reciprocity its mean reflectance is
-//!
-//! ```text
-//! p = 1 − (1 − R̄(n)) / n²
-//! ```
-//!
-//! which Lekner & Dorf (1988) call the probability that diffusely scattered
-//! light is reflected back at the liquid–air interface. The thesis writes the
-//! same as `p = 1 − n²[1 − R̄(1/n)]` with `n = n_air/n_liquid < 1`
-//! (Eq. 6.6); here `n` is always the liquid's index relative to air, `> 1`.
-//!
-//! # Numerics
-//!
-//! The closed form cancels catastrophically as `n → 1` (its terms grow like
-//! `1/(n−1)` while the result shrinks like `(n−1)/3`): evaluated directly in
-//! f64 it loses half its digits at `n = 1.0001` and is wrong in the first
-//! digit at `n = 1.000001`. For `n − 1 < 0.1` this module uses instead the
-//! series of the same closed form in `ε = n − 1`,
-//!
-//! ```text
-//! R̄(1+ε) = ε/3 + ε²(19/24 − ½ln 2 + ½ln ε) − 79ε³/60 + …   (16 terms)
-//! ```
-//!
-//! whose truncation error is below 2·10⁻¹⁸ there, while the closed form's
-//! rounding error stays below 6·10⁻¹⁵ above it. Both branches agree with a
-//! numerical integration of Fresnel's equations to ~1e-14 over `(1, 4]`.
 
 use std::f64::consts::LN_2;
 
@@ -98,6 +53,35 @@ fn stern_series(eps: f64) -> f64 {
 /// relative refractive index `n` (dimensionless; e.g. 1.333 for water
 /// relative to air).
 ///
+/// Stern (1964) integrated Fresnel's equations for unpolarised light over a
+/// hemisphere of *isotropic* (diffuse, cosine-weighted) incidence:
+///
+/// ```text
+/// R̄(n) = 2 ∫₀^{π/2} R(θ, n) cos θ sin θ dθ
+/// ```
+///
+/// and found the closed form (thesis Eq. 6.7), for a relative index `n > 1`
+/// (light arriving from the optically thinner side, e.g. air → water):
+///
+/// ```text
+/// R̄(n) = (3n² + 2n + 1) / (3(n+1)²)
+///       − 2n³(n² + 2n − 1) / ((n²+1)²(n²−1))
+///       + n²(n²+1) / (n²−1)² · ln n
+///       − n²(n²−1)² / (n²+1)³ · ln(n(n+1)/(n−1))
+/// ```
+///
+/// Light going the other way (liquid → air) is totally reflected beyond the
+/// critical angle; by reciprocity its mean reflectance is
+///
+/// ```text
+/// p = 1 − (1 − R̄(n)) / n²
+/// ```
+///
+/// which Lekner & Dorf (1988) call the probability that diffusely scattered
+/// light is reflected back at the liquid–air interface. The thesis writes the
+/// same as `p = 1 − n²[1 − R̄(1/n)]` with `n = n_air/n_liquid < 1`
+/// (Eq. 6.6); here `n` is always the liquid's index relative to air, `> 1`.
+///
 /// Returns a fraction in `[0, 1]`:
 /// - `n > 1`: Stern's closed form (thesis Eq. 6.7), e.g. `R̄(1.333) ≈ 0.066406`;
 /// - `n = 1`: 0 (no interface);
@@ -107,6 +91,22 @@ fn stern_series(eps: f64) -> f64 {
 ///
 /// This is also the right `R_spec` for the wet albedo under diffuse (ambient)
 /// lighting, being the cosine-weighted hemispherical average of Fresnel.
+///
+/// # Numerics
+///
+/// The closed form cancels catastrophically as `n → 1` (its terms grow like
+/// `1/(n−1)` while the result shrinks like `(n−1)/3`): evaluated directly in
+/// f64 it loses half its digits at `n = 1.0001` and is wrong in the first
+/// digit at `n = 1.000001`. For `n − 1 < 0.1` this function uses instead the
+/// series of the same closed form in `ε = n − 1`,
+///
+/// ```text
+/// R̄(1+ε) = ε/3 + ε²(19/24 − ½ln 2 + ½ln ε) − 79ε³/60 + …   (16 terms)
+/// ```
+///
+/// whose truncation error is below 2·10⁻¹⁸ there, while the closed form's
+/// rounding error stays below 6·10⁻¹⁵ above it. Both branches agree with a
+/// numerical integration of Fresnel's equations to ~1e-14 over `(1, 4]`.
 ///
 /// # Example
 /// ```

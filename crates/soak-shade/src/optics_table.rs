@@ -1,32 +1,6 @@
 //! A flat table of inputs and outputs laid out for the GPU, and the CPU
 //! reference that fills it: one test body can run [`evaluate_table`] and the
 //! WGSL `evaluate_optics` on the same rows and compare.
-//!
-//! Both structs are `#[repr(C)]` plain f32/u32 (bytemuck `Pod`), mirrored
-//! field by field by `OpticsInput` / `OpticsOutput` in
-//! [`WET_OPTICS_WGSL`]; RGB triples are padded to `vec4<f32>` (the `w` lane
-//! is ignored on input and 0 on output), so the WGSL storage-buffer layout
-//! matches without implicit padding: 80 bytes per input, 96 per output.
-//!
-//! A compute kernel for the parity test needs only
-//!
-//! ```wgsl
-//! @group(0) @binding(0) var<storage, read> inputs: array<OpticsInput>;
-//! @group(0) @binding(1) var<storage, read_write> outputs: array<OpticsOutput>;
-//! @compute @workgroup_size(64)
-//! fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-//!     if (id.x < arrayLength(&inputs)) { outputs[id.x] = evaluate_optics(inputs[id.x]); }
-//! }
-//! ```
-//!
-//! appended to [`WET_OPTICS_WGSL`] (the crate's tests validate this kernel,
-//! plus an artist curve, with naga). Measured agreement of the f32 GPU code
-//! with this f64 reference on Mesa llvmpipe, GL and Vulkan, over 5,500 rows
-//! spanning `n ∈ (1, 4]`: ≤ 9e-7 absolute on every fraction (worst: `stern`,
-//! from the closed form's cancellation in f32) and ≤ 7e-6 relative on
-//! `film_specular` (whose peak `1/(π α²)` amplifies the rounding of `n·h`).
-//! Tolerances of 1e-5 absolute and 1e-4 relative leave room for hardware
-//! whose transcendentals are less exact.
 
 use crate::artist_curve::ArtistCurveGpu;
 use crate::fresnel::{fresnel_f0, schlick, unit};
@@ -195,6 +169,32 @@ pub fn evaluate(input: &OpticsInput) -> OpticsOutput {
 /// [`evaluate`] over a table of rows, in order: the CPU side of a GPU
 /// parity test (upload `inputs` with `bytemuck::cast_slice`, read back
 /// `OpticsOutput`s, compare).
+///
+/// Both structs are `#[repr(C)]` plain f32/u32 (bytemuck `Pod`), mirrored
+/// field by field by `OpticsInput` / `OpticsOutput` in
+/// [`WET_OPTICS_WGSL`]; RGB triples are padded to `vec4<f32>` (the `w` lane
+/// is ignored on input and 0 on output), so the WGSL storage-buffer layout
+/// matches without implicit padding: 80 bytes per input, 96 per output.
+///
+/// A compute kernel for the parity test needs only
+///
+/// ```wgsl
+/// @group(0) @binding(0) var<storage, read> inputs: array<OpticsInput>;
+/// @group(0) @binding(1) var<storage, read_write> outputs: array<OpticsOutput>;
+/// @compute @workgroup_size(64)
+/// fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+///     if (id.x < arrayLength(&inputs)) { outputs[id.x] = evaluate_optics(inputs[id.x]); }
+/// }
+/// ```
+///
+/// appended to [`WET_OPTICS_WGSL`] (the crate's tests validate this kernel,
+/// plus an artist curve, with naga). Measured agreement of the f32 GPU code
+/// with this f64 reference on Mesa llvmpipe, GL and Vulkan, over 5,500 rows
+/// spanning `n ∈ (1, 4]`: ≤ 9e-7 absolute on every fraction (worst: `stern`,
+/// from the closed form's cancellation in f32) and ≤ 7e-6 relative on
+/// `film_specular` (whose peak `1/(π α²)` amplifies the rounding of `n·h`).
+/// Tolerances of 1e-5 absolute and 1e-4 relative leave room for hardware
+/// whose transcendentals are less exact.
 ///
 /// # Example
 /// ```

@@ -1,18 +1,4 @@
 //! The liquid film's specular lobe and the gloss change of a wetting surface.
-//!
-//! The film's free surface is smooth (surface tension), so a wet texel
-//! reflects a sharp highlight with the liquid's Fresnel reflectance on top of
-//! the darkened diffuse term of [`wet_albedo`](crate::wet_albedo). The lobe is
-//! the usual microfacet BRDF
-//!
-//! ```text
-//! f_s = D(n·h; α) · V(n·l, n·v; α) · F(v·h)        [1/sr]
-//! ```
-//!
-//! with the GGX / Trowbridge–Reitz distribution `D`, the height-correlated
-//! Smith visibility `V = G₂ / (4 (n·l)(n·v))` (Heitz 2014) and Schlick's `F`
-//! with the liquid's `F0`. Roughness is *perceptual* in the structs
-//! (`α = roughness²`) and GGX `α` in these functions.
 
 use crate::fresnel::{clamp_nan_to_low, schlick, unit};
 
@@ -57,6 +43,20 @@ pub fn smith_visibility(n_dot_l: f64, n_dot_v: f64, alpha: f64) -> f64 {
 
 /// The liquid film's specular BRDF `D · V · F` in 1/sr.
 ///
+/// The film's free surface is smooth (surface tension), so a wet texel
+/// reflects a sharp highlight with the liquid's Fresnel reflectance on top of
+/// the darkened diffuse term of [`wet_albedo`](crate::wet_albedo). The lobe is
+/// the usual microfacet BRDF
+///
+/// ```text
+/// f_s = D(n·h; α) · V(n·l, n·v; α) · F(v·h)        [1/sr]
+/// ```
+///
+/// with the GGX / Trowbridge–Reitz distribution `D`, the height-correlated
+/// Smith visibility `V = G₂ / (4 (n·l)(n·v))` (Heitz 2014) and Schlick's `F`
+/// with the liquid's `F0`. Roughness is *perceptual* in the structs
+/// (`α = roughness²`) and GGX `α` in these functions.
+///
 /// - `n_dot_l`, `n_dot_v`, `n_dot_h`: cosines between the surface normal and
 ///   the light, view and half vectors; `v_dot_h` between view and half
 ///   vector (all clamped to `[0, 1]`);
@@ -91,5 +91,5 @@ pub fn film_specular(n_dot_l: f64, n_dot_v: f64, n_dot_h: f64, v_dot_h: f64, alp
 pub fn wet_roughness(dry_roughness: f64, film_roughness: f64, wetness: f64) -> f64 {
     let dry = unit(dry_roughness);
     let film = unit(film_roughness).min(dry);
-    crate::blend(dry, film, wetness)
+    crate::gamma::blend(dry, film, wetness)
 }

@@ -9,11 +9,11 @@ use std::sync::Arc;
 
 use nalgebra::{Isometry3, Point3, Vector3};
 use soak_bake::builtin;
-use soak_shade::render::colour::{luminance, mean_linear};
 use soak_shade::render::{
     Albedo, Arrow, Camera, DebugView, DirectionalLight, Environment, LiquidImage, RenderError, RenderObject,
     RenderScene, RenderWater, Renderer, RendererOptions, Subsurface, ToneMap,
 };
+use soak_shade::render::{luminance, mean_linear};
 use soak_shade::{Liquid, WetMaterial};
 
 fn renderer(d: &common::Device, w: u32, h: u32) -> Renderer {
@@ -225,14 +225,7 @@ fn cached_uploads_follow_their_arcs() {
     let camera = Camera::perspective(Point3::new(0.0, 0.5, 4.0), Point3::origin(), 40.0);
     let mut scene = RenderScene::new(camera);
     scene.dither = false;
-    let texture = Arc::new(soak_shade::render::procedural::speckled(
-        64,
-        64,
-        [0.6, 0.3, 0.2],
-        0.3,
-        4.0,
-        1,
-    ));
+    let texture = Arc::new(soak_shade::render::speckled(64, 64, [0.6, 0.3, 0.2], 0.3, 4.0, 1));
     scene.objects.push(
         RenderObject::new(builtin::sphere(0.5, 32, 16), Isometry3::identity()).with_albedo(Albedo::Texture {
             image: texture,

@@ -6,8 +6,8 @@
 mod common;
 
 use nalgebra::{Isometry3, Point3};
-use soak_shade::render::colour::{hue_degrees, hue_distance, luminance, mean_linear};
 use soak_shade::render::{Albedo, Camera, LiquidImage, RenderObject, RenderScene, Renderer, RendererOptions};
+use soak_shade::render::{hue_degrees, hue_distance, luminance, mean_linear};
 use soak_shade::{Liquid, WetMaterial};
 
 const SIZE: u32 = 128;

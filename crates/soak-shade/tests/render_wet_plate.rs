@@ -17,11 +17,11 @@
 mod common;
 
 use nalgebra::{Isometry3, Point3, Vector3};
-use soak_shade::render::colour::{luminance, mean_linear};
 use soak_shade::render::{
     Albedo, Camera, DirectionalLight, Environment, LiquidImage, RenderObject, RenderScene, Renderer,
     RendererOptions, ToneMap,
 };
+use soak_shade::render::{luminance, mean_linear};
 use soak_shade::{ArtistCurve, Gamma, Liquid, WetMaterial, schlick};
 
 const SIZE: u32 = 128;

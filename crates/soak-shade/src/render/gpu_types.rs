@@ -115,3 +115,13 @@ pub(crate) struct PostUniform {
 const _: () = assert!(size_of::<MeshVertex>() == 36);
 const _: () = assert!(size_of::<FrameUniform>() == 3 * 64 + 11 * 16);
 const _: () = assert!(size_of::<ObjectUniform>() == 64 + 5 * 16 + 272);
+
+/// An RGB triple and a fourth lane as a `vec4<f32>`.
+pub(crate) fn rgba(v: [f64; 3], w: f64) -> [f32; 4] {
+    [v[0] as f32, v[1] as f32, v[2] as f32, w as f32]
+}
+
+/// A vector and a fourth lane as a `vec4<f32>`.
+pub(crate) fn vec4(v: &nalgebra::Vector3<f64>, w: f64) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, w as f32]
+}

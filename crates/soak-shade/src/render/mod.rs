@@ -30,19 +30,23 @@
 //! optics on a table for the CPU/GPU parity check, and [`material_sweep()`]
 //! draws the thesis' Fig. 6.3.
 
-pub mod camera;
-pub mod colour;
-pub mod error;
+mod camera;
+mod colour;
+mod error;
+mod frame;
 mod geometry;
 mod gpu_types;
-pub mod liquid_texture;
-pub mod material_sweep;
-pub mod optics_gpu;
+mod liquid_texture;
+mod material_sweep;
+mod optics_gpu;
+mod passes;
 mod pipelines;
-pub mod procedural;
-pub mod renderer;
-pub mod scene;
-pub mod subsurface;
+mod procedural;
+mod readback;
+mod renderer;
+mod scene;
+mod subsurface;
+mod targets;
 mod text;
 mod upload;
 mod validation;
@@ -50,11 +54,16 @@ mod validation;
 /// The font type of [`MaterialSweep::font`] (ab_glyph's).
 pub use ab_glyph::FontArc as Font;
 pub use camera::{Camera, Projection};
+pub use colour::{
+    hue_degrees, hue_distance, linear_to_pixel, linear_to_srgb, luminance, mean_linear, pixel_to_linear,
+    srgb_to_linear,
+};
 pub use error::RenderError;
 pub use liquid_texture::liquid_image_from_texels;
 pub use material_sweep::{MaterialSweep, SweepColumn, SweepRow, SweepWetness, material_sweep};
 pub use optics_gpu::{GpuOpticsTable, evaluate_table_gpu, optics_kernel_source};
 pub use pipelines::shader_sources;
+pub use procedural::{blotches, fractal_noise, speckled, value_noise, wood_planks};
 pub use renderer::{Renderer, RendererOptions};
 pub use scene::{
     Albedo, Arrow, DebugView, DirectionalLight, Environment, LiquidImage, RenderObject, RenderScene,
@@ -63,3 +72,4 @@ pub use scene::{
 /// The device helpers every GPU path of soak shares, re-exported from soak-gpu.
 pub use soak_gpu::{GpuError, adapter_label, headless_device, is_software, test_device};
 pub use subsurface::{Subsurface, SubsurfaceGaussian};
+pub use text::{TextLayout, layout_text};

@@ -1,10 +1,5 @@
 //! What to draw: a [`RenderScene`] of textured, wetting meshes with poses, a
 //! camera, a sun and sky, optional water and force arrows.
-//!
-//! Plain data: a scene file, a simulation or a demo fills these in and
-//! hands them to [`Renderer::render`](super::Renderer::render). Colours are
-//! linear RGB unless a field says otherwise; lengths are metres in the
-//! world frame (y up).
 
 use std::sync::Arc;
 
@@ -352,6 +347,11 @@ pub enum ToneMap {
 }
 
 /// Everything one frame needs.
+///
+/// Plain data: a scene file, a simulation or a demo fills these in and
+/// hands them to [`Renderer::render`](super::Renderer::render). Colours are
+/// linear RGB unless a field says otherwise; lengths are metres in the
+/// world frame (y up).
 #[derive(Debug, Clone)]
 pub struct RenderScene {
     /// The eye.

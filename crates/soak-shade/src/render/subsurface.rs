@@ -2,16 +2,6 @@
 //! thesis' §6.1.2 after Borshukov & Lewis 2003): light entering the wet
 //! film at one point leaves it at another, so the wet diffuse term uses the
 //! transmitted irradiance blurred over the surface by a sum of Gaussians.
-//!
-//! Per object with UVs: the irradiance transmitted into the film,
-//! `(1 − R_spec)·E_sun + (1 − R̄)·E_env`, is rasterised into its UV square
-//! together with each texel's world area (so texels stretched by the UV map
-//! weigh what they cover, and the kernel is in metres, not texels); each
-//! Gaussian blurs it in two separable passes; the weighted sum replaces the
-//! local irradiance of the wet term, `T·E_blurred/π` with the Lekner–Dorf
-//! transmission `T = σ² a (1 − p)/(1 − p a σ²)`. The dry term stays local.
-//! Where the blur sees constant irradiance it changes nothing: it only
-//! moves light across edges (shadow boundaries, creases).
 
 use super::error::RenderError;
 
@@ -25,6 +15,16 @@ pub struct SubsurfaceGaussian {
 }
 
 /// The texture-space subsurface option of a [`RenderScene`](super::RenderScene).
+///
+/// Per object with UVs: the irradiance transmitted into the film,
+/// `(1 − R_spec)·E_sun + (1 − R̄)·E_env`, is rasterised into its UV square
+/// together with each texel's world area (so texels stretched by the UV map
+/// weigh what they cover, and the kernel is in metres, not texels); each
+/// Gaussian blurs it in two separable passes; the weighted sum replaces the
+/// local irradiance of the wet term, `T·E_blurred/π` with the Lekner–Dorf
+/// transmission `T = σ² a (1 − p)/(1 − p a σ²)`. The dry term stays local.
+/// Where the blur sees constant irradiance it changes nothing: it only
+/// moves light across edges (shadow boundaries, creases).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Subsurface {
     /// The diffusion profile, a sum of Gaussians (at most 8).

@@ -1,22 +1,50 @@
-//! Minimal text drawing for figure labels (ab_glyph coverage, alpha-blended
-//! in sRGB space).
+//! Text for figure labels: one line laid out with ab_glyph (kerning and
+//! advances), and drawn by glyph coverage, alpha-blended in sRGB space.
 
-use ab_glyph::{Font, FontArc, PxScale, ScaleFont};
+use ab_glyph::{Font as _, FontArc, Glyph, PxScale, ScaleFont, point};
 
-/// Advance width of `text` at `px` pixels.
-pub(crate) fn width(font: &FontArc, px: f32, text: &str) -> f32 {
-    let f = font.as_scaled(PxScale::from(px));
-    let mut w = 0.0;
+/// One line of text laid out by [`layout_text`].
+#[derive(Debug, Clone)]
+pub struct TextLayout {
+    /// The glyphs, kerned and advanced along the baseline, which lies the
+    /// font's ascent below the line's top.
+    pub glyphs: Vec<Glyph>,
+    /// Advance width of the line, px.
+    pub width: f32,
+    /// Line height (ascent − descent), px.
+    pub height: f32,
+}
+
+/// Lays out `text` as one line `px` pixels high with its top-left at
+/// `(x, y)`, in ab_glyph's pixel coordinates (y down). The glyphs are
+/// ready for [`ab_glyph::Font::outline_glyph`]; the material sweep's labels
+/// and the `soak` command's charts are both set with it.
+pub fn layout_text(font: &FontArc, px: f32, x: f32, y: f32, text: &str) -> TextLayout {
+    let scale = PxScale::from(px);
+    let f = font.as_scaled(scale);
+    let baseline = y + f.ascent();
+    let mut pen = x;
     let mut last = None;
+    let mut glyphs = Vec::with_capacity(text.len());
     for ch in text.chars() {
         let id = f.glyph_id(ch);
         if let Some(prev) = last {
-            w += f.kern(prev, id);
+            pen += f.kern(prev, id);
         }
-        w += f.h_advance(id);
+        glyphs.push(id.with_scale_and_position(scale, point(pen, baseline)));
+        pen += f.h_advance(id);
         last = Some(id);
     }
-    w
+    TextLayout {
+        glyphs,
+        width: pen - x,
+        height: f.ascent() - f.descent(),
+    }
+}
+
+/// Advance width of `text` at `px` pixels.
+pub(crate) fn width(font: &FontArc, px: f32, text: &str) -> f32 {
+    layout_text(font, px, 0.0, 0.0, text).width
 }
 
 /// Draws `text` with its top-left at `(x, y)`, `px` pixels high.
@@ -29,18 +57,7 @@ pub(crate) fn draw(
     ink: [u8; 3],
     text: &str,
 ) {
-    let f = font.as_scaled(PxScale::from(px));
-    let baseline = y + f.ascent();
-    let mut pen = x;
-    let mut last = None;
-    for ch in text.chars() {
-        let id = f.glyph_id(ch);
-        if let Some(prev) = last {
-            pen += f.kern(prev, id);
-        }
-        let glyph = id.with_scale_and_position(PxScale::from(px), ab_glyph::point(pen, baseline));
-        pen += f.h_advance(id);
-        last = Some(id);
+    for glyph in layout_text(font, px, x, y, text).glyphs {
         let Some(outline) = font.outline_glyph(glyph) else {
             continue;
         };

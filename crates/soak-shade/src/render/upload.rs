@@ -2,6 +2,7 @@
 //! and albedo uploads (cached per `Arc` across frames), liquid textures, and
 //! the subsurface term's targets.
 
+use std::collections::HashMap;
 use std::sync::{Arc, Weak};
 
 use soak_bake::Mesh;
@@ -9,13 +10,13 @@ use wgpu::util::DeviceExt;
 
 use super::camera::to_gpu;
 use super::geometry::{areas, mesh_vertices};
-use super::gpu_types::{BlurUniform, ObjectUniform};
-use super::pipelines::{ALBEDO_FORMAT, LIQUID_FORMAT, SUBSURFACE_FORMAT};
-use super::renderer::{Renderer, rgba};
-use super::scene::{Albedo, RenderObject};
+use super::gpu_types::{BlurUniform, ObjectUniform, rgba};
+use super::pipelines::{ALBEDO_FORMAT, LIQUID_FORMAT, Pipelines, SUBSURFACE_FORMAT};
+use super::scene::{Albedo, LiquidImage, RenderObject};
 use super::subsurface::Subsurface;
 use crate::artist_curve::ArtistCurveGpu;
 use crate::gamma::Gamma;
+use crate::mean_reflectance::stern_mean_reflectance;
 use crate::specular::alpha_from_roughness;
 
 /// A mesh's vertex buffer is reused while the same `Arc<Mesh>` (and segment
@@ -23,26 +24,26 @@ use crate::specular::alpha_from_roughness;
 /// checked through `Weak`s (an `Arc` mutated in place through `make_mut`
 /// loses its `Weak`s, so it is uploaded again).
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
-pub(super) struct MeshKey {
-    pub(super) mesh: usize,
-    pub(super) segments: usize,
-    pub(super) crease: u64,
+struct MeshKey {
+    mesh: usize,
+    segments: usize,
+    crease: u64,
 }
 
-pub(super) struct CachedMesh {
-    pub(super) mesh: Weak<Mesh>,
-    pub(super) segments: Option<Weak<Vec<u32>>>,
-    pub(super) buffer: wgpu::Buffer,
-    pub(super) count: u32,
+struct CachedMesh {
+    mesh: Weak<Mesh>,
+    segments: Option<Weak<Vec<u32>>>,
+    buffer: wgpu::Buffer,
+    count: u32,
     /// Surface area (m²) and UV area.
-    pub(super) areas: (f64, f64),
-    pub(super) used: bool,
+    areas: (f64, f64),
+    used: bool,
 }
 
-pub(super) struct CachedAlbedo {
-    pub(super) image: Weak<image::RgbaImage>,
-    pub(super) view: wgpu::TextureView,
-    pub(super) used: bool,
+struct CachedAlbedo {
+    image: Weak<image::RgbaImage>,
+    view: wgpu::TextureView,
+    used: bool,
 }
 
 /// A mesh ready to draw.
@@ -69,7 +70,88 @@ pub(super) struct ObjectSubsurface {
     pub(super) blurs: Vec<(wgpu::BindGroup, wgpu::BindGroup)>,
 }
 
-impl Renderer {
+/// Uploads a frame's objects, keeping mesh vertex buffers and albedo
+/// textures across frames while the same `Arc`s come back, and the
+/// stand-in textures and the sampler of objects without them.
+pub(super) struct Uploader {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    /// Albedo of objects without a texture.
+    white: wgpu::TextureView,
+    /// Liquid of objects without a liquid texture.
+    dry: wgpu::TextureView,
+    /// Subsurface result of objects without the subsurface term.
+    no_subsurface: wgpu::TextureView,
+    linear_sampler: wgpu::Sampler,
+    meshes: HashMap<MeshKey, CachedMesh>,
+    albedos: HashMap<usize, CachedAlbedo>,
+}
+
+impl Uploader {
+    pub(super) fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
+        let linear_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("linear"),
+            address_mode_u: wgpu::AddressMode::ClampToEdge,
+            address_mode_v: wgpu::AddressMode::ClampToEdge,
+            address_mode_w: wgpu::AddressMode::ClampToEdge,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            anisotropy_clamp: 1,
+            ..Default::default()
+        });
+        let pixel = |label, format, bytes: &[u8]| {
+            device
+                .create_texture_with_data(
+                    queue,
+                    &wgpu::TextureDescriptor {
+                        label: Some(label),
+                        size: wgpu::Extent3d {
+                            width: 1,
+                            height: 1,
+                            depth_or_array_layers: 1,
+                        },
+                        mip_level_count: 1,
+                        sample_count: 1,
+                        dimension: wgpu::TextureDimension::D2,
+                        format,
+                        usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                        view_formats: &[],
+                    },
+                    wgpu::util::TextureDataOrder::LayerMajor,
+                    bytes,
+                )
+                .create_view(&Default::default())
+        };
+        Self {
+            device: device.clone(),
+            queue: queue.clone(),
+            white: pixel("white albedo", ALBEDO_FORMAT, &[255; 4]),
+            dry: pixel("dry liquid", LIQUID_FORMAT, &[0; 2]),
+            no_subsurface: pixel("no subsurface", SUBSURFACE_FORMAT, &[0; 8]),
+            linear_sampler,
+            meshes: HashMap::new(),
+            albedos: HashMap::new(),
+        }
+    }
+
+    /// Starts a frame: nothing cached is used yet.
+    pub(super) fn begin_frame(&mut self) {
+        for c in self.meshes.values_mut() {
+            c.used = false;
+        }
+        for c in self.albedos.values_mut() {
+            c.used = false;
+        }
+    }
+
+    /// Ends a frame: keeps what it used if it succeeded (`ok`), drops the
+    /// rest (and everything after a failure).
+    pub(super) fn end_frame(&mut self, ok: bool) {
+        self.meshes.retain(|_, c| ok && c.used);
+        self.albedos.retain(|_, c| ok && c.used);
+    }
+
     pub(super) fn cached_mesh(&mut self, o: &RenderObject) -> MeshBuffer {
         let key = MeshKey {
             mesh: Arc::as_ptr(&o.mesh) as usize,
@@ -143,6 +225,7 @@ impl Renderer {
 
     pub(super) fn upload_object(
         &self,
+        pipelines: &Pipelines,
         o: &RenderObject,
         mesh: MeshBuffer,
         albedo_view: Option<wgpu::TextureView>,
@@ -169,7 +252,7 @@ impl Renderer {
                 let (world, uv) = mesh.areas;
                 let n = f64::from(s.resolution);
                 let mean = if uv > 0.0 { world / (uv * n * n) } else { 1.0 };
-                (mean, Some(self.subsurface_targets(s, mean)))
+                (mean, Some(self.subsurface_targets(pipelines, s, mean)))
             }
             None => (1.0, None),
         };
@@ -178,7 +261,7 @@ impl Renderer {
             albedo: rgba(tint, 1.0),
             transmittance: rgba(liquid.transmittance, liquid.refractive_index),
             optics: [
-                crate::stern_mean_reflectance(liquid.refractive_index) as f32,
+                stern_mean_reflectance(liquid.refractive_index) as f32,
                 liquid.internal_reflectance() as f32,
                 liquid.f0() as f32,
                 alpha_from_roughness(liquid.film_roughness) as f32,
@@ -199,7 +282,7 @@ impl Renderer {
         });
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("object"),
-            layout: &self.pipelines.object_layout,
+            layout: &pipelines.object_layout,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
@@ -234,7 +317,12 @@ impl Renderer {
         }
     }
 
-    fn subsurface_targets(&self, s: &Subsurface, mean_texel_area: f64) -> ObjectSubsurface {
+    fn subsurface_targets(
+        &self,
+        pipelines: &Pipelines,
+        s: &Subsurface,
+        mean_texel_area: f64,
+    ) -> ObjectSubsurface {
         let device = &self.device;
         let texture = |label| {
             device
@@ -266,7 +354,7 @@ impl Renderer {
             });
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("subsurface blur"),
-                layout: &self.pipelines.blur_layout,
+                layout: &pipelines.blur_layout,
                 entries: &[
                     wgpu::BindGroupEntry {
                         binding: 0,
@@ -356,7 +444,7 @@ impl Renderer {
         texture.create_view(&Default::default())
     }
 
-    fn upload_liquid(&self, image: &super::scene::LiquidImage) -> wgpu::TextureView {
+    fn upload_liquid(&self, image: &LiquidImage) -> wgpu::TextureView {
         let (w, h) = image.dimensions();
         let data: Vec<u16> = image
             .as_raw()
