@@ -13,6 +13,8 @@ fi
 # A one-off build gains nothing from incremental artefacts (gigabytes on disk).
 export CARGO_INCREMENTAL="${CARGO_INCREMENTAL:-0}"
 cargo fmt --all -- --check
+# No file of a crate imports another that imports it back.
+python3 scripts/module_cycles.py crates/*/src
 cargo clippy --workspace --all-targets --all-features --locked -- -D warnings
 # The fuzz targets are their own workspace (fuzz/); they must build, on
 # stable, without cargo-fuzz or nightly (docs/fuzzing.md runs them).
