@@ -7,7 +7,7 @@ use soak_bake::Atlas;
 
 use super::error::{GpuAtlasId, GpuHydroError};
 use super::kernels::Kernels;
-use super::layout::{ITEM_TEXELS, TEXEL_BYTES, TRIBARY_BYTES};
+use super::layout::{ITEM_TEXELS, TEXEL_BYTES, TRIBARY_BYTES, texel_vec4s};
 use soak_gpu::{GpuError, scoped};
 
 /// Construction options of a [`GpuHydro`].
@@ -351,16 +351,7 @@ impl GpuHydro {
             }
             .into());
         }
-        let mut texels = Vec::with_capacity(2 * n);
-        for ((x, a), &area) in atlas
-            .local_positions()
-            .iter()
-            .zip(atlas.area_vectors().iter())
-            .zip(atlas.areas())
-        {
-            texels.push([x[0], x[1], x[2], area]);
-            texels.push([a[0], a[1], a[2], 0.0]);
-        }
+        let texels = texel_vec4s(atlas);
         let tribary: Vec<[f32; 4]> = atlas
             .triangle_ids()
             .iter()

@@ -65,6 +65,23 @@ pub struct Body {
     pub slot: [u32; 4],
 }
 
+/// An atlas's texels as the kernels read them: two vec4s per texel, the
+/// position relative to the atlas origin with the texel's area `(x − o, |A|)`
+/// (m, m²), then its area vector `(A, 0)` (m²).
+pub fn texel_vec4s(atlas: &soak_bake::Atlas) -> Vec<[f32; 4]> {
+    let mut texels = Vec::with_capacity(2 * atlas.len());
+    for ((x, a), &area) in atlas
+        .local_positions()
+        .iter()
+        .zip(atlas.area_vectors().iter())
+        .zip(atlas.areas())
+    {
+        texels.push([x[0], x[1], x[2], area]);
+        texels.push([a[0], a[1], a[2], 0.0]);
+    }
+    texels
+}
+
 /// One Gerstner wave (WGSL `Wave`), its phase at the body's origin and time
 /// folded in.
 #[repr(C)]

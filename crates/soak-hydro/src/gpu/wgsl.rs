@@ -1,5 +1,6 @@
 //! The WGSL of soak-hydro's kernels that other crates' kernels build on, and
-//! its Rust side: the buffer layouts (`Body`, `Wave`, `SURFACE_*`) and the
+//! its Rust side: the buffer layouts (`Body`, `Wave`, `SURFACE_*`, the texels
+//! as [`texel_vec4s`] packs them) and the
 //! water surfaces (`surface_at`: depth under a plane, a Gerstner sea, a
 //! height field or an unbounded medium), with the encoder that fills a
 //! [`Body`]'s surface fields from a [`crate::Water`].
@@ -16,5 +17,5 @@ pub const BINDINGS: &str = include_str!("bindings.wgsl");
 /// `heights` and `radii`.
 pub const WATER_SURFACE: &str = include_str!("water_surface.wgsl");
 
-pub use super::layout::{Body, Wave};
+pub use super::layout::{Body, Wave, texel_vec4s};
 pub use super::surface::{HeightFields, encode_surface};

@@ -3,7 +3,7 @@
 
 use soak_bake::Atlas;
 use soak_gpu::{GpuError, read_back, scoped};
-use soak_hydro::gpu::wgsl::Body;
+use soak_hydro::gpu::wgsl::{Body, texel_vec4s};
 
 use super::{GpuField, GpuWetBody, GpuWetting};
 use crate::body_field::BodyField;
@@ -43,16 +43,7 @@ impl GpuWetting {
             Some(d) => Some(BodyField::build(atlas, &d, wetting.material().saturation)?),
             None => None,
         };
-        let mut texels = Vec::with_capacity(2 * n);
-        for ((x, a), &area) in atlas
-            .local_positions()
-            .iter()
-            .zip(atlas.area_vectors().iter())
-            .zip(atlas.areas())
-        {
-            texels.push([x[0], x[1], x[2], area]);
-            texels.push([a[0], a[1], a[2], 0.0]);
-        }
+        let texels = texel_vec4s(atlas);
         let h: Vec<f32> = wetting.liquid().iter().map(|&h| h as f32).collect();
         let perm: Vec<f32> = match wetting.permeability_map() {
             Some(m) => m.to_vec(),
