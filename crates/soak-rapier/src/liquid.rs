@@ -53,39 +53,12 @@
 use nalgebra::{Isometry3, Vector3};
 use rapier3d::prelude::PhysicsWorld;
 use soak_bake::Atlas;
-use soak_graph::{Flooding, FlowError, StepReport};
+use soak_graph::{Flooding, StepReport};
 use soak_hydro::{MassProperties, Water};
 
 use crate::convert;
 use crate::error::SoakError;
 use crate::generator::{ForceGenerator, SoakId};
-
-/// Advancing a body's liquid failed.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum LiquidError {
-    /// The force generator or Rapier refused (unknown id, missing body,
-    /// invalid mass).
-    #[error(transparent)]
-    Soak(#[from] SoakError),
-    /// The liquid graph could not advance (bad pose, depth, or a channel
-    /// that does not fit the body's atlas).
-    #[error("body `{name}`: liquid: {source}")]
-    Flow {
-        /// The soak body's name.
-        name: String,
-        /// The underlying error.
-        source: FlowError,
-    },
-    /// A liquid density that is not a finite number ≥ 0.
-    #[error("body `{name}`: liquid density {density} kg/m³ is not a finite number ≥ 0")]
-    Density {
-        /// The soak body's name.
-        name: String,
-        /// The density given.
-        density: f64,
-    },
-}
 
 /// A registered soak body with water inside.
 #[derive(Clone, Debug)]
@@ -109,7 +82,7 @@ impl LiquidBody {
         world: &mut PhysicsWorld,
         id: SoakId,
         flooding: Flooding,
-    ) -> Result<Self, LiquidError> {
+    ) -> Result<Self, SoakError> {
         let mut body = Self {
             id,
             flooding,
@@ -131,7 +104,7 @@ impl LiquidBody {
         ballast: Option<MassProperties>,
         soak: &mut ForceGenerator,
         world: &mut PhysicsWorld,
-    ) -> Result<(), LiquidError> {
+    ) -> Result<(), SoakError> {
         self.ballast = ballast;
         self.sync_mass(soak, world)
     }
@@ -146,9 +119,9 @@ impl LiquidBody {
         density: f64,
         soak: &mut ForceGenerator,
         world: &mut PhysicsWorld,
-    ) -> Result<(), LiquidError> {
+    ) -> Result<(), SoakError> {
         if !(density.is_finite() && density >= 0.0) {
-            return Err(LiquidError::Density {
+            return Err(SoakError::LiquidDensity {
                 name: name_of(soak, self.id),
                 density,
             });
@@ -197,7 +170,7 @@ impl LiquidBody {
         &mut self,
         soak: &mut ForceGenerator,
         world: &mut PhysicsWorld,
-    ) -> Result<(), LiquidError> {
+    ) -> Result<(), SoakError> {
         let liquid = self.liquid_mass(soak.water());
         let extra = match (self.ballast, liquid.mass > 0.0) {
             (Some(b), true) => Some(b.combine(&liquid)),
@@ -225,7 +198,7 @@ impl LiquidBody {
         &mut self,
         soak: &mut ForceGenerator,
         world: &mut PhysicsWorld,
-    ) -> Result<StepReport, LiquidError> {
+    ) -> Result<StepReport, SoakError> {
         let body = soak.body(self.id).ok_or(SoakError::UnknownId(self.id.0))?;
         let rb = world
             .bodies
@@ -238,7 +211,7 @@ impl LiquidBody {
         let report = self
             .flooding
             .step(body.atlas(), &pose, soak.water(), soak.time(), dt)
-            .map_err(|source| LiquidError::Flow {
+            .map_err(|source| SoakError::Flow {
                 name: body.name().to_string(),
                 source,
             })?;
@@ -264,7 +237,7 @@ pub fn step(
     soak: &mut ForceGenerator,
     liquids: &mut [LiquidBody],
     world: &mut PhysicsWorld,
-) -> Result<(), LiquidError> {
+) -> Result<(), SoakError> {
     soak.sync_gravity(world);
     for l in liquids.iter_mut() {
         l.update(soak, world)?;

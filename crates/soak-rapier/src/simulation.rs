@@ -112,13 +112,13 @@ impl SavedSimulation {
     /// internally tagged enums, which a non-self-describing format cannot
     /// read back), with floats written so that they read back bit for bit.
     pub fn to_bytes(&self) -> Result<Vec<u8>, SoakError> {
-        serde_json::to_vec(self).map_err(|e| SoakError::State(e.to_string()))
+        Ok(serde_json::to_vec(self)?)
     }
 
     /// Reads what [`SavedSimulation::to_bytes`] wrote; damaged or truncated
-    /// input is a [`SoakError::State`], never a panic.
+    /// input is a [`SoakError::Json`], never a panic.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, SoakError> {
-        serde_json::from_slice(bytes).map_err(|e| SoakError::State(e.to_string()))
+        Ok(serde_json::from_slice(bytes)?)
     }
 }
 
@@ -425,7 +425,8 @@ impl Simulation {
         for (k, hole, punched) in self.holes.iter_mut() {
             if !*punched && t >= hole.at {
                 let liquid = &mut self.liquids[*k];
-                let atlas = self.soak.body(liquid.id()).expect("registered").atlas().clone();
+                let body = self.soak.body(liquid.id()).expect("registered");
+                let (atlas, name) = (body.atlas().clone(), body.name().to_string());
                 if let Some(p) = liquid.flooding_mut().permeability_mut() {
                     p.paint(
                         &atlas,
@@ -433,7 +434,7 @@ impl Simulation {
                         hole.radius,
                         hole.kappa,
                     )
-                    .map_err(|e| SoakError::Liquid(e.to_string()))?;
+                    .map_err(|source| SoakError::Permeability { name, source })?;
                 }
                 *punched = true;
             }
@@ -450,8 +451,7 @@ impl Simulation {
         if self.liquids.is_empty() {
             self.soak.step(&mut self.world)?;
         } else {
-            crate::liquid::step(&mut self.soak, &mut self.liquids, &mut self.world)
-                .map_err(|e| SoakError::Liquid(e.to_string()))?;
+            crate::liquid::step(&mut self.soak, &mut self.liquids, &mut self.world)?;
         }
         self.steps += 1;
         for (i, b) in self.bodies.iter().enumerate() {
@@ -522,8 +522,10 @@ impl Simulation {
                 continue;
             };
             if written.is_empty() {
-                std::fs::create_dir_all(dir)
-                    .map_err(|e| SoakError::State(format!("cannot create {}: {e}", dir.display())))?;
+                std::fs::create_dir_all(dir).map_err(|source| SoakError::Io {
+                    path: dir.to_path_buf(),
+                    source,
+                })?;
             }
             let safe: String = b
                 .name
@@ -561,7 +563,7 @@ impl Simulation {
         Ok(SavedSimulation {
             scene_path: scene.path.clone(),
             scene_text: scene.text.clone(),
-            world: postcard::to_stdvec(&self.world).map_err(|e| SoakError::State(e.to_string()))?,
+            world: postcard::to_stdvec(&self.world)?,
             generator: self.soak.state(),
             liquids: self.liquids.iter().map(|l| l.flooding().state()).collect(),
             punched: self.holes.iter().map(|h| h.2).collect(),

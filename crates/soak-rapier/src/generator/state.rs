@@ -107,22 +107,20 @@ impl ForceGenerator {
     /// saved mass properties).
     pub fn restore_state(&mut self, state: &GeneratorState) -> Result<(), SoakError> {
         if state.bodies.len() != self.bodies.len() {
-            return Err(SoakError::State(format!(
-                "state has {} bodies, the generator {}",
-                state.bodies.len(),
-                self.bodies.len()
-            )));
+            return Err(SoakError::StateBodies {
+                saved: state.bodies.len(),
+                registered: self.bodies.len(),
+            });
         }
         for (b, s) in self.bodies.iter().zip(&state.bodies) {
             if let Some(w) = &s.wetting
                 && w.texels() != b.atlas.len()
             {
-                return Err(SoakError::State(format!(
-                    "body `{}`: the saved liquid texture has {} texels, the atlas {}",
-                    b.name,
-                    w.texels(),
-                    b.atlas.len()
-                )));
+                return Err(SoakError::StateTexels {
+                    name: b.name.clone(),
+                    saved: w.texels(),
+                    atlas: b.atlas.len(),
+                });
             }
         }
         self.environment = state.environment;
