@@ -22,7 +22,7 @@ use soak::bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak::graph::segment::{SegmentOptions, segment};
 use soak::graph::{Flooding, FlowOptions, LiquidGraph, Permeability, SegmentGraphOptions, TexelNodes};
 use soak::hydro::{Drag, MassModel, Water};
-use soak::rapier::liquid::{self, LiquidBody, freeboard};
+use soak::rapier::hull::freeboard;
 use soak::rapier::{BodyDesc, Effects, ForceGenerator, convert};
 
 /// A teddy-like toy, star-shaped about its body centre: the smooth union
@@ -148,14 +148,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             name: "plush".into(),
             atlas: atlas.clone(),
             mass_model: MassModel::Solid { density: 50.0 },
-            effects: Effects::buoyancy().with_drag(Drag {
-                coefficient: 1.0,
-                linear: 20.0,
-            }),
+            effects: Effects::buoyancy()
+                .with_drag(Drag {
+                    coefficient: 1.0,
+                    linear: 20.0,
+                })
+                .with_flooding(flooding),
         },
     )?;
     let dry = soak.body(id).map_or(0.0, |b| b.mass_properties().mass);
-    let mut toy = vec![LiquidBody::attach(&mut soak, &mut world, id, flooding)?];
     println!("dropped from 0.5 m, dry mass {dry:.2} kg");
     println!(
         "{:>6}  {:>9}  {:>8}  {:>9}  {:>6}  segments (% full)",
@@ -166,7 +167,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         if step % 300 == 0 {
             let t = soak.time();
             let pose = convert::pose(world.bodies[handle].position());
-            let f = toy[0].flooding();
+            let f = soak.flooding(id).ok_or("no flooding")?;
             println!(
                 "{t:>6.0}  {:>9.3}  {:>8.2}  {:>9.3}  {:>6.1}  {}",
                 1e3 * f.inside(),
@@ -184,9 +185,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     .join(" ")
             );
         }
-        liquid::step(&mut soak, &mut toy, &mut world)?;
+        soak.step(&mut world)?;
     }
-    let f = toy[0].flooding();
+    let f = soak.flooding(id).ok_or("no flooding")?;
     println!(
         "soaked up {:.2} l, conservation error {:.1e}",
         1e3 * f.inside(),

@@ -23,7 +23,7 @@ use rapier3d::prelude::*;
 use soak::bake::{Atlas, BakeOptions, builtin};
 use soak::graph::{Flooding, FlowOptions, Permeability, load_graph};
 use soak::hydro::{Drag, MassModel, Water};
-use soak::rapier::liquid::{self, LiquidBody, freeboard, heel_degrees, pitch_degrees};
+use soak::rapier::hull::{freeboard, heel_degrees, pitch_degrees};
 use soak::rapier::{BodyDesc, Effects, ForceGenerator, convert};
 
 /// Where the hull is holed: sphere centres (object space, m) and radius (m).
@@ -113,14 +113,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             name: "boat".into(),
             atlas: atlas.clone(),
             mass_model: MassModel::Shell { areal_density: 40.0 },
-            effects: Effects::buoyancy().with_drag(Drag {
-                coefficient: 1.0,
-                linear: 50.0,
-            }),
+            effects: Effects::buoyancy()
+                .with_drag(Drag {
+                    coefficient: 1.0,
+                    linear: 50.0,
+                })
+                .with_flooding(flooding),
         },
     )?;
     let hull_mass = soak.body(id).map_or(0.0, |b| b.mass_properties().mass);
-    let mut boat = vec![LiquidBody::attach(&mut soak, &mut world, id, flooding)?];
     let (centres, radius) = holes(args.stern);
     println!(
         "{} damage: {} hole(s) of radius {radius} m, κ = {:e} m, punched at t = {} s; hull {hull_mass:.0} kg, \
@@ -158,24 +159,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for step in 0..=steps {
         let t = soak.time();
         if !punched && t >= args.punch {
-            let p = boat[0].flooding_mut().permeability_mut().ok_or("sealed")?;
             let covered: usize = centres
                 .iter()
-                .map(|c| p.paint(&atlas, *c, radius, args.kappa))
+                .map(|c| soak.punch(id, *c, radius, args.kappa))
                 .sum::<Result<usize, _>>()?;
             println!("t = {t:.1} s: hole punched ({covered} texels)");
             punched = true;
         }
         let pose = convert::pose(world.bodies[handle].position());
         let board = freeboard(&atlas, &pose, soak.water(), t);
-        let inside = boat[0].flooding().inside();
+        let flooding = soak.flooding(id).ok_or("no flooding")?;
+        let inside = flooding.inside();
         let mass = soak.body(id).map_or(0.0, |b| b.mass_properties().mass);
-        let fills: Vec<f64> = boat[0]
-            .flooding()
-            .graph()
-            .nodes()
-            .map(|n| 100.0 * n.fill())
-            .collect();
+        let fills: Vec<f64> = flooding.graph().nodes().map(|n| 100.0 * n.fill()).collect();
         if let Some(f) = &mut csv {
             writeln!(
                 f,
@@ -205,9 +201,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             sunk_at = Some(t);
             break;
         }
-        liquid::step(&mut soak, &mut boat, &mut world)?;
+        soak.step(&mut world)?;
     }
-    let f = boat[0].flooding();
+    let f = soak.flooding(id).ok_or("no flooding")?;
     println!(
         "water in {:.4} m³, out {:.4} m³, inside {:.4} m³: conservation error {:.1e} (relative)",
         f.ledger().entered(),

@@ -478,7 +478,7 @@ fn balloon(seconds: f64, out: &Path) -> anyhow::Result<String> {
 /// bow first and stern first.
 fn sinking_boats(seconds: f64, out: &Path) -> anyhow::Result<String> {
     use soak_graph::{Flooding, FlowOptions, Format, Permeability, parse_graph};
-    use soak_rapier::liquid::{self, LiquidBody, pitch_degrees};
+    use soak_rapier::hull::pitch_degrees;
     let graph_text = include_str!("../graphs/boat.toml");
     let mesh = builtin::boat(4.0, 1.2, 0.6);
     let atlas = Atlas::bake(&mesh, BakeOptions::square(128))?;
@@ -500,7 +500,6 @@ fn sinking_boats(seconds: f64, out: &Path) -> anyhow::Result<String> {
     let mut handles = Vec::new();
     for (name, _, _, z) in &damage {
         let pose = Pose::from_translation(Vector::new(0.0, -0.15, *z));
-        let (h, id) = w_add(&mut world, name, atlas.clone(), drag, pose)?;
         let graph = parse_graph(graph_text, Format::Toml, Path::new("boat.toml"))?;
         let flooding = Flooding::for_atlas(
             &atlas,
@@ -508,12 +507,14 @@ fn sinking_boats(seconds: f64, out: &Path) -> anyhow::Result<String> {
             Permeability::watertight(&atlas),
             FlowOptions::default(),
         )?;
-        boats.push(LiquidBody::attach(
-            &mut world.soak,
-            &mut world.world,
-            id,
-            flooding,
-        )?);
+        let (h, id) = world.add(
+            name,
+            atlas.clone(),
+            MassModel::Shell { areal_density: 40.0 },
+            Effects::buoyancy().with_drag(drag).with_flooding(flooding),
+            pose,
+        )?;
+        boats.push(id);
         handles.push(h);
     }
     let punch = 5.0;
@@ -532,25 +533,21 @@ fn sinking_boats(seconds: f64, out: &Path) -> anyhow::Result<String> {
     for _ in 0..steps {
         let time = world.soak.time();
         if !punched && time >= punch {
-            for (b, (_, centres, radius, _)) in boats.iter_mut().zip(&damage) {
-                let p = b
-                    .flooding_mut()
-                    .permeability_mut()
-                    .ok_or_else(|| anyhow::anyhow!("sealed hull"))?;
+            for (&id, (_, centres, radius, _)) in boats.iter().zip(&damage) {
                 for c in centres {
-                    p.paint(&atlas, *c, *radius, 1e-6)?;
+                    world.soak.punch(id, *c, *radius, 1e-6)?;
                 }
             }
             punched = true;
         }
-        liquid::step(&mut world.soak, &mut boats, &mut world.world)?;
+        world.step()?;
         let mut row = vec![world.soak.time()];
         let pitch: Vec<f64> = handles
             .iter()
             .map(|h| pitch_degrees(&convert::pose(world.world.bodies[*h].position())))
             .collect();
-        for b in &boats {
-            row.push(b.flooding().inside());
+        for &id in &boats {
+            row.push(world.soak.flooding(id).map_or(0.0, |f| f.inside()));
         }
         for h in &handles {
             row.push(world.world.bodies[*h].mass() as f64);
@@ -600,22 +597,6 @@ fn sinking_boats(seconds: f64, out: &Path) -> anyhow::Result<String> {
         when(sunk[0]),
         when(sunk[1])
     ))
-}
-
-fn w_add(
-    w: &mut World,
-    name: &str,
-    atlas: Atlas,
-    drag: Drag,
-    pose: Pose,
-) -> anyhow::Result<(RigidBodyHandle, SoakId)> {
-    w.add(
-        name,
-        atlas,
-        MassModel::Shell { areal_density: 40.0 },
-        Effects::buoyancy().with_drag(drag),
-        pose,
-    )
 }
 
 /// A demo case: runs for the given seconds, writes into the folder, returns a summary line.

@@ -240,7 +240,7 @@ impl SceneRenderer {
             // graph's pipes between the nodes.
             if self.options.view == View::Segments
                 && let Some(id) = b.id
-                && let Some(flooding) = sim.liquids().iter().find(|l| l.id() == id).map(|l| l.flooding())
+                && let Some(flooding) = sim.soak.flooding(id)
             {
                 let graph = flooding.graph();
                 let nodes: Vec<Point3<f64>> = graph.nodes().map(|n| n.position).collect();

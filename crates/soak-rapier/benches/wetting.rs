@@ -47,20 +47,21 @@ fn setup(variant: Variant) -> (PhysicsWorld, ForceGenerator) {
                 .with_diffusion(Diffusion::new(1e-4).with_resolution(FieldResolution::VoxelSize(0.05))),
         ),
     };
-    let id = soak
-        .register(
-            &mut world.bodies,
-            &world.colliders,
-            handle,
-            BodyDesc {
-                name: "crate".into(),
-                atlas,
-                mass_model: MassModel::Solid { density: 400.0 },
-                effects: Effects::buoyancy().with_drag(Drag::default()),
+    soak.register(
+        &mut world.bodies,
+        &world.colliders,
+        handle,
+        BodyDesc {
+            name: "crate".into(),
+            atlas,
+            mass_model: MassModel::Solid { density: 400.0 },
+            effects: Effects {
+                wetting,
+                ..Effects::buoyancy().with_drag(Drag::default())
             },
-        )
-        .unwrap();
-    soak.set_wetting(id, wetting).unwrap();
+        },
+    )
+    .unwrap();
     // Settle and build the diffusion field before measuring.
     for _ in 0..60 {
         soak.step(&mut world).unwrap();

@@ -44,15 +44,85 @@ pub enum SoakError {
         /// The underlying error.
         source: soak_hydro::HydroError,
     },
-    /// A saved state does not fit.
+    /// A saved state could not be written or read as JSON (damaged or
+    /// truncated input, a value JSON cannot hold).
     #[error("saved state: {0}")]
-    State(String),
-    /// The liquid inside a body failed to advance.
-    #[error("liquid: {0}")]
-    Liquid(String),
+    Json(#[from] serde_json::Error),
+    /// The Rapier world could not be encoded for a saved state.
+    #[error("saved state: the Rapier world: {0}")]
+    Postcard(#[from] postcard::Error),
+    /// A file or directory could not be created or written.
+    #[error("cannot write `{path}`: {source}")]
+    Io {
+        /// The file or directory.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// A saved state holds another number of bodies than the generator.
+    #[error("saved state: it has {saved} bodies, the generator {registered}")]
+    StateBodies {
+        /// Bodies in the saved state.
+        saved: usize,
+        /// Bodies registered with the generator.
+        registered: usize,
+    },
+    /// A saved liquid texture does not cover the body's atlas.
+    #[error("saved state: body `{name}`: the saved liquid texture has {saved} texels, the atlas {atlas}")]
+    StateTexels {
+        /// The soak body's name.
+        name: String,
+        /// Texels of the saved liquid texture.
+        saved: usize,
+        /// Texels of the body's atlas.
+        atlas: usize,
+    },
+    /// A saved state has flooding for a body without it, or none for a
+    /// body with it.
+    #[error("saved state: body `{name}`: {}", flooding_mismatch(*.saved))]
+    StateFlooding {
+        /// The soak body's name.
+        name: String,
+        /// Whether the saved state has flooding (the body then has none).
+        saved: bool,
+    },
+    /// The liquid inside a body could not advance or be restored (bad
+    /// pose, depth, a channel that does not fit the body's atlas, a saved
+    /// state of another graph).
+    #[error("body `{name}`: liquid: {source}")]
+    Flow {
+        /// The soak body's name.
+        name: String,
+        /// The underlying error.
+        source: soak_graph::FlowError,
+    },
+    /// A hull's permeability could not be changed (a hole punched with
+    /// invalid values).
+    #[error("body `{name}`: permeability: {source}")]
+    Permeability {
+        /// The soak body's name.
+        name: String,
+        /// The underlying error.
+        source: soak_graph::PermeabilityError,
+    },
+    /// A liquid density that is not a finite number ≥ 0.
+    #[error("body `{name}`: liquid density {density} kg/m³ is not a finite number ≥ 0")]
+    LiquidDensity {
+        /// The soak body's name.
+        name: String,
+        /// The density given, kg/m³.
+        density: f64,
+    },
+    /// A flooding setting was given for a body without flooding.
+    #[error("body `{name}` has no flooding")]
+    NoFlooding {
+        /// The soak body's name.
+        name: String,
+    },
     /// The GPU backend failed (device, upload or evaluation).
+    #[cfg(feature = "gpu")]
     #[error("gpu: {0}")]
-    Gpu(String),
+    Gpu(#[from] soak_hydro::gpu::GpuHydroError),
     /// A body's wetting (or the environment) was refused or failed to advance.
     #[error("body `{name}`: wetting: {source}")]
     Wet {
@@ -69,6 +139,14 @@ pub enum SoakError {
         /// The underlying error.
         source: soak_bake::BakeError,
     },
+}
+
+fn flooding_mismatch(saved: bool) -> &'static str {
+    if saved {
+        "the state has flooding, the body none"
+    } else {
+        "the body has flooding, the state none"
+    }
 }
 
 /// A scene file could not be read, parsed or built.

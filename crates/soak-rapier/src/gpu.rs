@@ -23,24 +23,17 @@ impl std::fmt::Debug for GpuBackend {
     }
 }
 
-fn gpu_err(e: soak_hydro::gpu::GpuHydroError) -> SoakError {
-    SoakError::Gpu(e.to_string())
-}
-
 impl GpuBackend {
     pub(crate) fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Self, SoakError> {
         Ok(Self {
-            hydro: GpuHydro::new(device, queue).map_err(gpu_err)?,
+            hydro: GpuHydro::new(device, queue)?,
             atlases: Vec::new(),
         })
     }
 
     /// Uploads the next registered body's atlas (deformable).
     pub(crate) fn upload(&mut self, atlas: &Atlas) -> Result<(), SoakError> {
-        let id = self
-            .hydro
-            .upload_deformable(atlas, atlas.triangles())
-            .map_err(gpu_err)?;
+        let id = self.hydro.upload_deformable(atlas, atlas.triangles())?;
         self.atlases.push(id);
         Ok(())
     }
@@ -48,7 +41,7 @@ impl GpuBackend {
     /// Moves body `k`'s texels on the device.
     pub(crate) fn deform(&mut self, k: usize, positions: &[Point3<f64>]) -> Result<(), SoakError> {
         let id = self.atlases[k];
-        self.hydro.deform(id, positions).map_err(gpu_err)
+        Ok(self.hydro.deform(id, positions)?)
     }
 
     /// One batch for the bodies in `work` (index, state, options).

@@ -6,7 +6,7 @@ pub mod firewall;
 pub mod generator;
 #[cfg(feature = "gpu")]
 mod gpu;
-pub mod liquid;
+pub mod hull;
 pub mod scene;
 pub mod simulation;
 
@@ -17,7 +17,9 @@ pub use generator::{
 };
 pub use scene::{LoadedScene, Scene};
 pub use simulation::{BodyReport, Sample, SavedSimulation, Simulation};
-/// Surface wetting (the liquid texture of [`ForceGenerator::set_wetting`]).
+/// Water entering hulls (the liquid graph of [`Effects::flooding`]).
+pub use soak_graph;
+/// Surface wetting (the liquid texture of [`Effects::wetting`]).
 pub use soak_wet;
 
 /// The types most users need.

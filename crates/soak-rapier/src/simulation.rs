@@ -80,8 +80,9 @@ pub struct BodyReport {
 }
 
 /// Everything a running scene owns, for saving and resuming: the scene
-/// itself, the Rapier world, the generator's (with each wet body's liquid
-/// texture and the environment) and the liquids' evolving state.
+/// itself, the Rapier world and the generator's state (with each wet
+/// body's liquid texture, each flooding body's liquid inside, and the
+/// environment).
 /// A run resumed from it continues bit for bit as the uninterrupted run.
 #[derive(Clone, Serialize, serde::Deserialize)]
 pub struct SavedSimulation {
@@ -92,10 +93,8 @@ pub struct SavedSimulation {
     /// The Rapier world in rapier's own serde form, postcard-encoded
     /// (`PhysicsWorld` is serialisable but not `Clone`).
     pub world: Vec<u8>,
-    /// The force generator's state.
+    /// The force generator's state, with the liquid inside flooding bodies.
     pub generator: crate::generator::GeneratorState,
-    /// Each liquid body's state, in order.
-    pub liquids: Vec<soak_graph::FloodingState>,
     /// Which permeable regions have opened.
     pub punched: Vec<bool>,
     /// Which splashes have landed.
@@ -112,13 +111,13 @@ impl SavedSimulation {
     /// internally tagged enums, which a non-self-describing format cannot
     /// read back), with floats written so that they read back bit for bit.
     pub fn to_bytes(&self) -> Result<Vec<u8>, SoakError> {
-        serde_json::to_vec(self).map_err(|e| SoakError::State(e.to_string()))
+        Ok(serde_json::to_vec(self)?)
     }
 
     /// Reads what [`SavedSimulation::to_bytes`] wrote; damaged or truncated
-    /// input is a [`SoakError::State`], never a panic.
+    /// input is a [`SoakError::Json`], never a panic.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, SoakError> {
-        serde_json::from_slice(bytes).map_err(|e| SoakError::State(e.to_string()))
+        Ok(serde_json::from_slice(bytes)?)
     }
 }
 
@@ -132,9 +131,8 @@ pub struct Simulation {
     pub bodies: Vec<SimBody>,
     /// Duration from the scene, s.
     pub duration: f64,
-    liquids: Vec<crate::liquid::LiquidBody>,
-    /// (liquid index, hole, punched)
-    holes: Vec<(usize, crate::scene::HoleSpec, bool)>,
+    /// (flooding body, hole, punched)
+    holes: Vec<(SoakId, crate::scene::HoleSpec, bool)>,
     /// (splash, landed)
     splashes: Vec<(crate::scene::SplashSpec, bool)>,
     /// The weather over time, when the scene changes it.
@@ -269,7 +267,6 @@ impl Simulation {
             })?;
         }
         let mut bodies = Vec::new();
-        let mut liquids = Vec::new();
         let mut holes = Vec::new();
         for (i, b) in scene.bodies.iter().enumerate() {
             let body_err = |message: String| SceneError::Body {
@@ -331,9 +328,21 @@ impl Simulation {
                     MassSpec::Solid { density } => MassModel::Solid { density },
                     MassSpec::Shell { areal_density } => MassModel::Shell { areal_density },
                 };
+                let wetting = b
+                    .wetting
+                    .as_ref()
+                    .map(|spec| wetting_of(loaded, i, spec, &atlas))
+                    .transpose()?;
+                let flooding = b
+                    .graph
+                    .as_ref()
+                    .map(|spec| flooding(loaded, i, &mesh, &atlas, spec).map_err(body_err))
+                    .transpose()?;
                 let effects = Effects {
                     buoyancy: Some(b.buoyancy),
                     drag: b.drag,
+                    flooding,
+                    wetting,
                 };
                 let desc = BodyDesc {
                     name: b.name.clone(),
@@ -346,21 +355,10 @@ impl Simulation {
                         .map_err(|e| body_err(e.to_string()))?,
                 )
             };
-            if let (Some(spec), Some(id)) = (&b.wetting, id) {
-                let atlas = soak.body(id).expect("just registered").atlas();
-                let wetting = wetting_of(loaded, i, spec, atlas)?;
-                soak.set_wetting(id, Some(wetting))
-                    .map_err(|e| loaded.invalid(&format!("bodies[{i}].wetting"), e.to_string()))?;
-            }
-            if let (Some(spec), Some(id)) = (&b.graph, id) {
-                let atlas = soak.body(id).expect("just registered").atlas().clone();
-                let flooding = flooding(loaded, i, &mesh, &atlas, spec).map_err(body_err)?;
-                let liquid = crate::liquid::LiquidBody::attach(&mut soak, &mut world, id, flooding)
-                    .map_err(|e| body_err(e.to_string()))?;
+            if let Some(id) = id.filter(|&id| soak.flooding(id).is_some()) {
                 for h in &b.permeability {
-                    holes.push((liquids.len(), h.clone(), false));
+                    holes.push((id, h.clone(), false));
                 }
-                liquids.push(liquid);
             }
             bodies.push(SimBody {
                 name: b.name.clone(),
@@ -374,7 +372,6 @@ impl Simulation {
             soak,
             bodies,
             duration: scene.duration,
-            liquids,
             holes,
             splashes: scene.splash.iter().map(|s| (*s, false)).collect(),
             weather,
@@ -422,19 +419,10 @@ impl Simulation {
     /// One step.
     pub fn step(&mut self) -> Result<(), SoakError> {
         let t = self.soak.time();
-        for (k, hole, punched) in self.holes.iter_mut() {
+        for (id, hole, punched) in self.holes.iter_mut() {
             if !*punched && t >= hole.at {
-                let liquid = &mut self.liquids[*k];
-                let atlas = self.soak.body(liquid.id()).expect("registered").atlas().clone();
-                if let Some(p) = liquid.flooding_mut().permeability_mut() {
-                    p.paint(
-                        &atlas,
-                        nalgebra::Point3::from(hole.centre),
-                        hole.radius,
-                        hole.kappa,
-                    )
-                    .map_err(|e| SoakError::Liquid(e.to_string()))?;
-                }
+                self.soak
+                    .punch(*id, nalgebra::Point3::from(hole.centre), hole.radius, hole.kappa)?;
                 *punched = true;
             }
         }
@@ -447,12 +435,7 @@ impl Simulation {
                 *landed = true;
             }
         }
-        if self.liquids.is_empty() {
-            self.soak.step(&mut self.world)?;
-        } else {
-            crate::liquid::step(&mut self.soak, &mut self.liquids, &mut self.world)
-                .map_err(|e| SoakError::Liquid(e.to_string()))?;
-        }
+        self.soak.step(&mut self.world)?;
         self.steps += 1;
         for (i, b) in self.bodies.iter().enumerate() {
             let rb = &self.world.bodies[b.handle];
@@ -522,8 +505,10 @@ impl Simulation {
                 continue;
             };
             if written.is_empty() {
-                std::fs::create_dir_all(dir)
-                    .map_err(|e| SoakError::State(format!("cannot create {}: {e}", dir.display())))?;
+                std::fs::create_dir_all(dir).map_err(|source| SoakError::Io {
+                    path: dir.to_path_buf(),
+                    source,
+                })?;
             }
             let safe: String = b
                 .name
@@ -548,12 +533,9 @@ impl Simulation {
         Ok(written)
     }
 
+    /// Liquid inside the body (its flooding), m³.
     fn liquid_of(&self, id: Option<SoakId>) -> Option<f64> {
-        let id = id?;
-        self.liquids
-            .iter()
-            .find(|l| l.id() == id)
-            .map(|l| l.flooding().inside())
+        self.soak.flooding(id?).map(soak_graph::Flooding::inside)
     }
 
     /// Saves everything needed to resume this run exactly (see [`Simulation::resume`]).
@@ -561,9 +543,8 @@ impl Simulation {
         Ok(SavedSimulation {
             scene_path: scene.path.clone(),
             scene_text: scene.text.clone(),
-            world: postcard::to_stdvec(&self.world).map_err(|e| SoakError::State(e.to_string()))?,
+            world: postcard::to_stdvec(&self.world)?,
             generator: self.soak.state(),
-            liquids: self.liquids.iter().map(|l| l.flooding().state()).collect(),
             punched: self.holes.iter().map(|h| h.2).collect(),
             splashed: self.splashes.iter().map(|s| s.1).collect(),
             steps: self.steps,
@@ -572,8 +553,8 @@ impl Simulation {
     }
 
     /// Rebuilds a run from a save: the scene is built again (meshes baked
-    /// as before), then the world, the generator and the liquids take their
-    /// saved states.
+    /// as before), then the world and the generator (with the liquid inside
+    /// flooding bodies) take their saved states.
     pub fn resume(saved: &SavedSimulation) -> Result<Self, SceneError> {
         let loaded = LoadedScene::from_str(&saved.scene_text, &saved.scene_path)?;
         let mut sim = Self::from_scene(&loaded)?;
@@ -583,19 +564,18 @@ impl Simulation {
             key: "(saved state)".into(),
             message,
         };
-        if saved.liquids.len() != sim.liquids.len()
+        if saved.generator.bodies.len() != sim.soak.bodies().len()
             || saved.punched.len() != sim.holes.len()
             || saved.splashed.len() != sim.splashes.len()
         {
-            return Err(bad("the save does not match the scene's liquid bodies".into()));
+            return Err(bad(
+                "the save does not match the scene's bodies, holes or splashes".into(),
+            ));
         }
         sim.world = postcard::from_bytes(&saved.world).map_err(|e| bad(format!("the Rapier world: {e}")))?;
         sim.soak
             .restore_state(&saved.generator)
             .map_err(|e| bad(e.to_string()))?;
-        for (l, s) in sim.liquids.iter_mut().zip(&saved.liquids) {
-            l.flooding_mut().restore(s).map_err(|e| bad(e.to_string()))?;
-        }
         for (h, &p) in sim.holes.iter_mut().zip(&saved.punched) {
             h.2 = p;
         }
@@ -605,11 +585,6 @@ impl Simulation {
         sim.steps = saved.steps;
         sim.non_finite = saved.non_finite.clone();
         Ok(sim)
-    }
-
-    /// The liquid bodies (bodies with a liquid graph).
-    pub fn liquids(&self) -> &[crate::liquid::LiquidBody] {
-        &self.liquids
     }
 
     /// The final state of every body.

@@ -1,4 +1,4 @@
-//! Water inside Rapier bodies (`soak_rapier::liquid`): the undamaged boat
+//! Water inside Rapier bodies (flooding, `Effects::with_flooding`): the undamaged boat
 //! stays dry, the bow-damaged boat trims bow-down and the stern-damaged one
 //! stern-down before they sink, sinking takes less time as the hole grows
 //! more permeable, the liquid is conserved and its mass reaches Rapier, and
@@ -18,7 +18,7 @@ use soak_graph::{
     Flooding, FlowOptions, LiquidGraph, Permeability, SegmentGraphOptions, TexelNodes, load_graph,
 };
 use soak_hydro::{Drag, MassModel, Water};
-use soak_rapier::liquid::{self, LiquidBody, freeboard, pitch_degrees};
+use soak_rapier::hull::{freeboard, pitch_degrees};
 use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakId, convert};
 
 const DT: f32 = 1.0 / 30.0;
@@ -39,7 +39,6 @@ struct Boat {
     soak: ForceGenerator,
     handle: RigidBodyHandle,
     id: SoakId,
-    liquids: Vec<LiquidBody>,
     atlas: Atlas,
 }
 
@@ -69,20 +68,20 @@ fn boat() -> Boat {
                 mass_model: MassModel::Shell {
                     areal_density: HULL_AREAL_DENSITY,
                 },
-                effects: Effects::buoyancy().with_drag(Drag {
-                    coefficient: 1.0,
-                    linear: 50.0,
-                }),
+                effects: Effects::buoyancy()
+                    .with_drag(Drag {
+                        coefficient: 1.0,
+                        linear: 50.0,
+                    })
+                    .with_flooding(flooding),
             },
         )
         .unwrap();
-    let liquids = vec![LiquidBody::attach(&mut soak, &mut world, id, flooding).unwrap()];
     Boat {
         world,
         soak,
         handle,
         id,
-        liquids,
         atlas,
     }
 }
@@ -116,7 +115,7 @@ struct Run {
 fn run(hole: (&[[f64; 3]], f64), kappa: f64, seconds: f64) -> Run {
     let start = Instant::now();
     let mut b = boat();
-    let capacity = b.liquids[0].flooding().graph().total_capacity();
+    let capacity = b.soak.flooding(b.id).unwrap().graph().total_capacity();
     let hull = b.soak.body(b.id).unwrap().mass_properties().mass;
     let mut out = Run {
         lowest_freeboard: f64::INFINITY,
@@ -127,7 +126,7 @@ fn run(hole: (&[[f64; 3]], f64), kappa: f64, seconds: f64) -> Run {
         let t = b.soak.time();
         let pose = convert::pose(b.world.bodies[b.handle].position());
         if (t - PUNCH).abs() < 0.5 * DT as f64 && kappa > 0.0 {
-            let p = b.liquids[0].flooding_mut().permeability_mut().unwrap();
+            let p = b.soak.flooding_mut(b.id).unwrap().permeability_mut().unwrap();
             for c in hole.0 {
                 let covered = p.paint(&b.atlas, Point3::from(*c), hole.1, kappa).unwrap();
                 assert!(covered > 10, "the hole covers only {covered} texels");
@@ -136,7 +135,7 @@ fn run(hole: (&[[f64; 3]], f64), kappa: f64, seconds: f64) -> Run {
         }
         let board = freeboard(&b.atlas, &pose, b.soak.water(), t);
         out.lowest_freeboard = out.lowest_freeboard.min(board);
-        let f = b.liquids[0].flooding();
+        let f = b.soak.flooding(b.id).unwrap();
         let inside = f.inside();
         let pitch = pitch_degrees(&pose);
         out.trace.push((t, inside, pitch));
@@ -153,7 +152,7 @@ fn run(hole: (&[[f64; 3]], f64), kappa: f64, seconds: f64) -> Run {
             out.sunk_at = Some(t - PUNCH);
             break;
         }
-        liquid::step(&mut b.soak, &mut b.liquids, &mut b.world).unwrap();
+        b.soak.step(&mut b.world).unwrap();
     }
     out.wall_time = start.elapsed().as_secs_f64();
     out
@@ -236,13 +235,13 @@ fn sinking_time_shortens_as_the_hole_grows_more_permeable() {
 fn flooding_moves_the_centre_of_mass_towards_the_hole() {
     let mut b = boat();
     let hull = *b.soak.body(b.id).unwrap().mass_properties();
-    let p = b.liquids[0].flooding_mut().permeability_mut().unwrap();
-    p.paint(&b.atlas, Point3::from(BOW.0[0]), BOW.1, 2e-7).unwrap();
+    let covered = b.soak.punch(b.id, Point3::from(BOW.0[0]), BOW.1, 2e-7).unwrap();
+    assert!(covered > 10, "the hole covers only {covered} texels");
     for _ in 0..300 {
-        liquid::step(&mut b.soak, &mut b.liquids, &mut b.world).unwrap();
+        b.soak.step(&mut b.world).unwrap();
     }
     let now = *b.soak.body(b.id).unwrap().mass_properties();
-    let liquid = b.liquids[0].liquid_mass(b.soak.water());
+    let liquid = b.soak.liquid_mass(b.id).unwrap();
     assert!(liquid.mass > 10.0, "{liquid:?}");
     assert!(now.center_of_mass.x > hull.center_of_mass.x + 0.05, "{now:?}");
     // Rapier has it too.
@@ -335,27 +334,28 @@ fn the_plush_toy_soaks_up_water_through_its_segmented_graph() {
                 name: "plush".into(),
                 atlas: atlas.clone(),
                 mass_model: MassModel::Solid { density: 50.0 },
-                effects: Effects::buoyancy().with_drag(Drag {
-                    coefficient: 1.0,
-                    linear: 20.0,
-                }),
+                effects: Effects::buoyancy()
+                    .with_drag(Drag {
+                        coefficient: 1.0,
+                        linear: 20.0,
+                    })
+                    .with_flooding(flooding),
             },
         )
         .unwrap();
     let dry = soak.body(id).unwrap().mass_properties().mass;
-    let mut toy = vec![LiquidBody::attach(&mut soak, &mut world, id, flooding).unwrap()];
     // Height of the toy's centre above the water, m.
     let mut height_dry = 0.0;
     for step in 0..(120 * 30) {
         if step == 150 {
             height_dry = world.bodies[handle].translation().y as f64;
         }
-        liquid::step(&mut soak, &mut toy, &mut world).unwrap();
-        assert!(toy[0].flooding().conservation_error() < 1e-9);
+        soak.step(&mut world).unwrap();
+        assert!(soak.flooding(id).unwrap().conservation_error() < 1e-9);
     }
     let wet = soak.body(id).unwrap().mass_properties().mass;
     let height_wet = world.bodies[handle].translation().y as f64;
-    let f = toy[0].flooding();
+    let f = soak.flooding(id).unwrap();
     println!(
         "plush: {} nodes; {:.2} kg dry, {:.2} kg after 120 s ({:.2} l inside); centre {:.3} m → {:.3} m above the water; {:.2} s wall",
         f.graph().node_count(),

@@ -82,7 +82,10 @@ fn floating_box(
                 name: "box".into(),
                 atlas,
                 mass_model: MassModel::Solid { density: 500.0 },
-                effects: Effects::buoyancy().with_drag(Drag::default()),
+                effects: Effects {
+                    wetting,
+                    ..Effects::buoyancy().with_drag(Drag::default())
+                },
             },
         )
         .unwrap();
@@ -93,7 +96,6 @@ fn floating_box(
         ..Environment::default()
     })
     .unwrap();
-    soak.set_wetting(id, wetting).unwrap();
     (world, soak, id)
 }
 
@@ -267,6 +269,9 @@ fn without_wetting_there_is_no_wetting_state_at_all() {
     assert!(soak.liquid_texture(id).is_none());
     assert!(soak.state().bodies[0].wetting.is_none());
     assert!(soak.state().bodies[0].wet_report.is_none());
+    // Nor any flooding state.
+    assert!(b.flooding().is_none() && b.flood_report().is_none() && b.ballast().is_none());
+    assert!(soak.state().bodies[0].flooding.is_none());
 
     // Turned on, then off again: the state goes away.
     let atlas = b.atlas().clone();

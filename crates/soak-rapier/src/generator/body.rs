@@ -1,11 +1,12 @@
 //! A body driven by the generator ([`SoakBody`]): its atlas and what the
 //! per-step work needs of it ([`Shape`]), its mass, its last forces and its
-//! wetting.
+//! effects (with the liquid inside it and in its surface).
 
 use rapier3d::prelude::RigidBodyHandle;
 use soak_bake::Atlas;
-use soak_hydro::{HydroForces, MassModel, MassProperties, TiledAtlas, Wrench};
-use soak_wet::{StepReport, Wetting};
+use soak_graph::Flooding;
+use soak_hydro::{HydroForces, MassModel, MassProperties, TiledAtlas, Water, Wrench};
+use soak_wet::Wetting;
 
 use super::config::Effects;
 
@@ -26,20 +27,28 @@ pub struct SoakBody {
     pub(super) extra_mass: Option<MassProperties>,
     /// `model_mass` combined with `extra_mass`: what Rapier has.
     pub(super) mass: MassProperties,
+    /// Its effects, with the flooding and wetting states: a body without
+    /// them holds no liquid graph, no liquid texture and no field.
     pub(super) effects: Effects,
     pub(super) forces: HydroForces,
     pub(super) applied: Wrench,
     pub(super) dry_skips: u64,
-    /// `None` unless wetting was asked for: a dry body holds no liquid
-    /// texture, no field and no report.
-    pub(super) wet: Option<Wet>,
+    /// What the last wetting step did (meaningful with wetting only).
+    pub(super) wet_report: soak_wet::StepReport,
+    /// The flooding's settings and last report (meaningful with flooding only).
+    pub(super) flood: FloodSettings,
 }
 
-/// A body's wetting and what its last step did.
-#[derive(Clone, Debug)]
-pub(super) struct Wet {
-    pub(super) wetting: Wetting,
-    pub(super) last: StepReport,
+/// What a flooding body carries besides its liquid graph; plain values, no
+/// allocation.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct FloodSettings {
+    /// Fixed mass carried with the liquid (ballast, cargo), local frame.
+    pub(super) ballast: Option<MassProperties>,
+    /// Density of the liquid inside, kg/m³; the fluid's when `None`.
+    pub(super) density: Option<f64>,
+    /// What the last flooding step did.
+    pub(super) last: soak_graph::StepReport,
 }
 
 impl SoakBody {
@@ -67,7 +76,7 @@ impl SoakBody {
     pub fn mass_properties(&self) -> &MassProperties {
         &self.mass
     }
-    /// Its effects.
+    /// Its effects: buoyancy and drag, and the flooding and wetting states.
     pub fn effects(&self) -> &Effects {
         &self.effects
     }
@@ -83,20 +92,60 @@ impl SoakBody {
     pub fn dry_skips(&self) -> u64 {
         self.dry_skips
     }
-    /// Its wetting state, if wetting is on (see
+    /// Its wetting state, if wetting is on ([`Effects::wetting`]; see also
     /// [`ForceGenerator::set_wetting`](super::ForceGenerator::set_wetting)).
     pub fn wetting(&self) -> Option<&Wetting> {
-        self.wet.as_ref().map(|w| &w.wetting)
+        self.effects.wetting.as_ref()
     }
     /// Its liquid texture, if wetting is on: `h_i` per texel in atlas
     /// order, volume per area, m³/m² = m, in `[0, saturation]`.
     pub fn liquid(&self) -> Option<&[f64]> {
-        self.wet.as_ref().map(|w| w.wetting.liquid())
+        self.effects.wetting.as_ref().map(Wetting::liquid)
     }
     /// What the last wetting step did (absorbed, evaporated, m³;
     /// submerged texels; diffusion substeps), if wetting is on.
-    pub fn wet_report(&self) -> Option<&StepReport> {
-        self.wet.as_ref().map(|w| &w.last)
+    pub fn wet_report(&self) -> Option<&soak_wet::StepReport> {
+        self.effects.wetting.as_ref().map(|_| &self.wet_report)
+    }
+    /// The liquid graph inside it, if flooding is on ([`Effects::flooding`]).
+    pub fn flooding(&self) -> Option<&Flooding> {
+        self.effects.flooding.as_ref()
+    }
+    /// What the last flooding step did (volumes entered and left, m³), if
+    /// flooding is on.
+    pub fn flood_report(&self) -> Option<&soak_graph::StepReport> {
+        self.effects.flooding.as_ref().map(|_| &self.flood.last)
+    }
+    /// The fixed mass carried with the liquid inside (ballast, cargo; local
+    /// frame), if flooding is on and it has any.
+    pub fn ballast(&self) -> Option<&MassProperties> {
+        self.effects.flooding.as_ref().and(self.flood.ballast.as_ref())
+    }
+    /// Density of the liquid inside in `water`, kg/m³: the one set
+    /// ([`ForceGenerator::set_liquid_density`](super::ForceGenerator::set_liquid_density)),
+    /// else `water`'s. `None` without flooding.
+    pub fn liquid_density(&self, water: &Water) -> Option<f64> {
+        self.effects
+            .flooding
+            .as_ref()
+            .map(|_| self.flood.density.unwrap_or(water.density))
+    }
+    /// The liquid inside's mass properties (local frame; kg, m, kg·m²) in
+    /// `water` ([`SoakBody::liquid_density`]), if flooding is on.
+    pub fn liquid_mass(&self, water: &Water) -> Option<MassProperties> {
+        let density = self.liquid_density(water)?;
+        self.effects.flooding.as_ref().map(|f| f.mass_properties(density))
+    }
+    /// What the body carries besides its mass model when flooding is on:
+    /// ballast combined with the liquid inside (if it has any), or `None`.
+    pub(super) fn flooding_extra(&self, water: &Water) -> Option<Option<MassProperties>> {
+        let liquid = self.liquid_mass(water)?;
+        Some(match (self.flood.ballast, liquid.mass > 0.0) {
+            (Some(b), true) => Some(b.combine(&liquid)),
+            (Some(b), false) => Some(b),
+            (None, true) => Some(liquid),
+            (None, false) => None,
+        })
     }
 }
 

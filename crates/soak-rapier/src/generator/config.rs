@@ -1,18 +1,44 @@
 //! What the generator is configured with: the effects a body takes part in
-//! ([`Effects`]), the CPU backend ([`Backend`]), what to register
+//! ([`Effects`]: buoyancy, drag, flooding, wetting), the CPU backend ([`Backend`]), what to register
 //! ([`BodyDesc`]) and the id a registered body gets ([`SoakId`]).
 
 use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
+use soak_graph::Flooding;
 use soak_hydro::{BuoyancyMode, Drag, MassModel};
+use soak_wet::Wetting;
 
-/// Which effects a body takes part in. Effects left off allocate and cost nothing.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+/// The effects a body takes part in, each `None` when off: buoyancy and
+/// drag (evaluated over the atlas' texels every step), flooding (water
+/// entering the hull, whose mass the body carries) and wetting (liquid
+/// soaking into its surface). The last two hold their evolving state.
+/// Effects left off allocate and cost nothing.
+///
+/// Register a body with its effects through [`BodyDesc`]; the generator
+/// keeps them ([`SoakBody::effects`](super::SoakBody::effects)) and lets
+/// them change between steps
+/// ([`ForceGenerator::set_wetting`](super::ForceGenerator::set_wetting),
+/// [`ForceGenerator::flooding_mut`](super::ForceGenerator::flooding_mut)).
+#[derive(Clone, Debug, Default)]
 pub struct Effects {
     /// Buoyancy, and in which mode; `None` for none.
     pub buoyancy: Option<BuoyancyMode>,
     /// Drag, if any.
     pub drag: Option<Drag>,
+    /// Flooding: a liquid graph behind the hull's permeability, made for
+    /// the body's atlas ([`Flooding::for_atlas`]). Each step the liquid
+    /// advances by the world's `dt` with the body's pose, and its mass
+    /// (`ρ l_i` at the nodes, kg, plus any ballast) is carried by the body
+    /// about the common centre of mass. The buoyancy stays the hull's
+    /// enclosed volume's: a holed hull sinks once the water inside
+    /// outweighs its reserve of buoyancy.
+    pub flooding: Option<Flooding>,
+    /// Wetting: the body's liquid texture, made for its atlas (e.g.
+    /// `Wetting::new(&atlas, Material::wood(), Liquid::water())`). Each
+    /// step it absorbs water through the submerged texels, dries in the
+    /// generator's environment and diffuses. It changes neither the body's
+    /// mass nor its forces.
+    pub wetting: Option<Wetting>,
 }
 
 impl Effects {
@@ -20,7 +46,7 @@ impl Effects {
     pub fn buoyancy() -> Self {
         Self {
             buoyancy: Some(BuoyancyMode::Archimedes),
-            drag: None,
+            ..Self::default()
         }
     }
 
@@ -36,8 +62,58 @@ impl Effects {
         self
     }
 
-    /// Whether the body needs hydrostatics at all.
-    pub fn any(&self) -> bool {
+    /// The same effects with water entering the hull through `flooding`
+    /// (made for the body's atlas).
+    ///
+    /// # Example
+    /// ```
+    /// use nalgebra::Point3;
+    /// use rapier3d::prelude::*;
+    /// use soak_bake::{Atlas, BakeOptions, builtin};
+    /// use soak_graph::{Flooding, FlowOptions, LiquidGraph, Node, Permeability};
+    /// use soak_hydro::{MassModel, Water};
+    /// use soak_rapier::{BodyDesc, Effects, ForceGenerator};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// world.integration_parameters.dt = 1.0 / 30.0;
+    /// let handle = world.bodies.insert(RigidBodyBuilder::dynamic());
+    /// let atlas = Atlas::bake(&builtin::cuboid(1.0, 1.0, 1.0), BakeOptions::square(32))?;
+    /// let mut permeability = Permeability::watertight(&atlas);
+    /// permeability.paint(&atlas, Point3::new(0.0, -0.5, 0.0), 0.2, 1e-6)?; // a hole in the bottom
+    /// let graph = LiquidGraph::new(vec![Node::new("hold", Point3::origin(), 1.0).with_height(1.0)], vec![])?;
+    /// let flooding = Flooding::for_atlas(&atlas, graph, permeability, FlowOptions::default())?;
+    /// let mut soak = ForceGenerator::new(Water::calm(0.0));
+    /// let id = soak.register(&mut world.bodies, &world.colliders, handle, BodyDesc {
+    ///     name: "box".into(),
+    ///     atlas,
+    ///     mass_model: MassModel::Shell { areal_density: 20.0 },
+    ///     effects: Effects::buoyancy().with_flooding(flooding),
+    /// })?;
+    /// for _ in 0..300 {
+    ///     soak.step(&mut world)?;
+    /// }
+    /// // Water came in and the body is heavier by its mass.
+    /// let inside = soak.flooding(id).unwrap().inside();
+    /// assert!(inside > 0.1);
+    /// let mass = soak.body(id).unwrap().mass_properties().mass;
+    /// assert!((mass - (120.0 + 1000.0 * inside)).abs() < 1e-6 * mass);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_flooding(mut self, flooding: Flooding) -> Self {
+        self.flooding = Some(flooding);
+        self
+    }
+
+    /// The same effects with the surface wetting `wetting` (made for the
+    /// body's atlas).
+    pub fn with_wetting(mut self, wetting: Wetting) -> Self {
+        self.wetting = Some(wetting);
+        self
+    }
+
+    /// Whether the body needs hydrostatics (texel sums) at all: buoyancy
+    /// in a mode other than [`BuoyancyMode::Off`], or drag.
+    pub fn needs_hydrostatics(&self) -> bool {
         self.buoyancy.is_some_and(|m| m != BuoyancyMode::Off) || self.drag.is_some()
     }
 }

@@ -1,12 +1,15 @@
-//! The per-step driver: [`ForceGenerator::apply`] (predict each body's
-//! pose, evaluate its effects, pass them through the firewall and hand them
-//! to Rapier), [`ForceGenerator::wet`], [`ForceGenerator::splash`], and
+//! The per-step driver: [`ForceGenerator::flood`] (advance the liquid
+//! inside flooding bodies and hand its mass to Rapier),
+//! [`ForceGenerator::apply`] (predict each body's pose, evaluate its
+//! buoyancy and drag, pass them through the firewall and hand them to
+//! Rapier), [`ForceGenerator::wet`], [`ForceGenerator::splash`], and
 //! [`ForceGenerator::step`], which does a whole step.
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
-use rapier3d::prelude::{IntegrationParameters, PhysicsWorld, RigidBodySet};
+use rapier3d::prelude::{ColliderSet, IntegrationParameters, PhysicsWorld, RigidBodySet};
 use soak_hydro::{BodyState, BuoyancyMode, HydroForces, HydroOptions, Wrench};
 
+use super::config::SoakId;
 use super::force_generator::ForceGenerator;
 use super::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
 use super::rapier_body::apply_wrench;
@@ -14,10 +17,57 @@ use crate::convert;
 use crate::error::SoakError;
 
 impl ForceGenerator {
-    /// Evaluates every body's effects and applies them as forces and torques
+    /// Advances the liquid inside every flooding body by `dt` (s) at the
+    /// generator's time, with the body's pose as Rapier has it now and the
+    /// generator's water (wall exchange, then redistribution; see
+    /// [`Flooding::step`](soak_graph::Flooding::step)), and, when the liquid
+    /// changed, hands its mass plus any ballast to Rapier
+    /// ([`ForceGenerator::sync_liquid_mass`]). Bodies without flooding are
+    /// not visited beyond a check. [`ForceGenerator::step`] calls it first;
+    /// call it yourself (once per step, after
+    /// [`ForceGenerator::sync_gravity`] and before [`ForceGenerator::apply`])
+    /// when driving Rapier yourself.
+    ///
+    /// The liquid's pressure uses the generator's fluid gravity, which
+    /// [`ForceGenerator::sync_gravity`] makes the world's.
+    ///
+    /// # Errors
+    /// A flooding body Rapier no longer has, a liquid step that failed (the
+    /// body's liquid is then unchanged), invalid mass properties.
+    pub fn flood(
+        &mut self,
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+        dt: f64,
+    ) -> Result<(), SoakError> {
+        for k in 0..self.bodies.len() {
+            let b = &mut self.bodies[k];
+            let Some(flooding) = &mut b.effects.flooding else {
+                continue;
+            };
+            let rb = bodies
+                .get(b.handle)
+                .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
+            let pose = convert::pose(rb.position());
+            let report = flooding
+                .step(&b.atlas, &pose, &self.water, self.time, dt)
+                .map_err(|source| SoakError::Flow {
+                    name: b.name.clone(),
+                    source,
+                })?;
+            b.flood.last = report;
+            if report.changed() {
+                self.sync_liquid_mass(SoakId(k), bodies, colliders)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Evaluates every body's buoyancy and drag and applies them as forces and torques
     /// (resetting the previous step's), for the Rapier step that `params`
-    /// describe. Does not advance time nor wet bodies ([`ForceGenerator::wet`]);
-    /// [`ForceGenerator::step`] does all three.
+    /// describe. Does not advance time, flood ([`ForceGenerator::flood`])
+    /// nor wet bodies ([`ForceGenerator::wet`]); [`ForceGenerator::step`]
+    /// does all four.
     ///
     /// Rapier holds an external force constant over its `s` solver substeps,
     /// which makes any position-dependent force (a spring, buoyancy) gain
@@ -36,7 +86,7 @@ impl ForceGenerator {
         // 1. Which bodies need texel work, at which predicted state.
         let mut work: Vec<(usize, BodyState, HydroOptions)> = Vec::new();
         for (k, b) in self.bodies.iter_mut().enumerate() {
-            if !b.effects.any() {
+            if !b.effects.needs_hydrostatics() {
                 continue;
             }
             let Some(rb) = bodies.get_mut(b.handle) else {
@@ -178,7 +228,7 @@ impl ForceGenerator {
     pub fn wet(&mut self, bodies: &RigidBodySet, dt: f64) -> Result<(), SoakError> {
         let (t, step) = (self.time, self.steps);
         for b in &mut self.bodies {
-            let Some(wet) = &mut b.wet else {
+            let Some(wetting) = &mut b.effects.wetting else {
                 continue;
             };
             let Some(rb) = bodies.get(b.handle) else {
@@ -192,8 +242,7 @@ impl ForceGenerator {
                     .reject(step, &b.name, "wetting pose", format!("non-finite {pose:?}"));
                 continue;
             }
-            wet.last = wet
-                .wetting
+            b.wet_report = wetting
                 .step(&b.atlas, &pose, &self.water, &self.environment, t, dt)
                 .map_err(|source| SoakError::Wet {
                     name: b.name.clone(),
@@ -213,12 +262,11 @@ impl ForceGenerator {
     pub fn splash(&mut self, bodies: &RigidBodySet, splash: &soak_wet::Splash) -> Result<f64, SoakError> {
         let mut stuck = 0.0;
         for b in &mut self.bodies {
-            let (Some(wet), Some(rb)) = (&mut b.wet, bodies.get(b.handle)) else {
+            let (Some(wetting), Some(rb)) = (&mut b.effects.wetting, bodies.get(b.handle)) else {
                 continue;
             };
             let pose = convert::pose(rb.position());
-            stuck += wet
-                .wetting
+            stuck += wetting
                 .splash(&b.atlas, &pose, splash)
                 .map_err(|source| SoakError::Wet {
                     name: b.name.clone(),
@@ -240,13 +288,20 @@ impl ForceGenerator {
         self.water.gravity = convert::vector(world.gravity).norm();
     }
 
-    /// Applies the fluid forces, wets the wet bodies over the step
-    /// ([`ForceGenerator::wet`]), steps the world once and advances time.
-    /// The fluid's gravity follows the world's.
+    /// One step of every body's effects and of the world: advances the
+    /// liquid inside flooding bodies ([`ForceGenerator::flood`]), applies
+    /// the fluid forces ([`ForceGenerator::apply`]), wets the wet bodies
+    /// over the step ([`ForceGenerator::wet`]), steps the world once and
+    /// advances time. The fluid's gravity follows the world's.
+    ///
+    /// # Errors
+    /// A flooding or wetting step that failed (see [`ForceGenerator::flood`]
+    /// and [`ForceGenerator::wet`]); the world is then not stepped.
     pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<(), SoakError> {
         self.sync_gravity(world);
         let dt = world.integration_parameters.dt as f64;
         let params = world.integration_parameters;
+        self.flood(&mut world.bodies, &world.colliders, dt)?;
         self.apply(&mut world.bodies, &params);
         self.wet(&world.bodies, dt)?;
         world.step();

@@ -1,31 +1,36 @@
 //! The force generator itself ([`ForceGenerator`]): its water, weather,
 //! backend and bodies, and registering bodies and changing their mass,
-//! shape and wetting between steps. Each step's work is in `driver.rs`, the
+//! shape, wetting and flooding between steps. Each step's work is in `driver.rs`, the
 //! saved state in `state.rs`.
 
 use nalgebra::Point3;
 use rapier3d::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
+use soak_graph::Flooding;
 use soak_hydro::{HydroForces, MassModel, MassProperties, TiledAtlas, Water, Wrench};
-use soak_wet::{Environment, StepReport, Wetting};
+use soak_wet::{Environment, Wetting};
 
-use super::body::{Shape, SoakBody, Wet, with_extra};
+use super::body::{FloodSettings, Shape, SoakBody, with_extra};
 use super::config::{Backend, BodyDesc, SoakId};
 use super::rapier_body::push_mass;
 use crate::error::SoakError;
 use crate::firewall::Firewall;
 
-/// Applies buoyancy and drag to registered rapier3d bodies before each step.
+/// Drives the effects of registered rapier3d bodies ([`Effects`](super::Effects))
+/// every step: buoyancy and drag, water entering their hulls (flooding) and
+/// liquid soaking into their surfaces (wetting).
 ///
 /// Gravity stays Rapier's: the generator only adds fluid forces and keeps
-/// each body's mass properties in line with its mass model. User forces in
-/// Rapier persist across steps, so every step resets the body's forces and
-/// torques before adding the new ones.
+/// each body's mass properties in line with its mass model (plus the
+/// liquid inside it). User forces in Rapier persist across steps, so every
+/// step resets the body's forces and torques before adding the new ones.
 ///
-/// Bodies may also get wet ([`ForceGenerator::set_wetting`]): each step
-/// their liquid texture absorbs water through the submerged texels, dries
-/// in the generator's [`Environment`] and diffuses, all over the step's
-/// `dt`. Wetting does not change the body's mass or forces. A body without
-/// wetting holds no wetting state at all and costs nothing for it.
+/// A flooding body's liquid advances each step by the world's `dt` with
+/// the body's pose, and the body carries its mass ([`ForceGenerator::flood`]).
+/// A wet body's liquid texture absorbs water through the submerged texels,
+/// dries in the generator's [`Environment`] and diffuses over the step
+/// ([`ForceGenerator::wet`]); wetting does not change the body's mass or
+/// forces. A body without flooding or wetting holds no state for them and
+/// costs nothing for them.
 ///
 /// # Example
 /// ```
@@ -106,7 +111,8 @@ impl ForceGenerator {
     pub fn with_backend(mut self, backend: Backend) -> Self {
         self.backend = backend;
         for b in &mut self.bodies {
-            b.tiled = (backend != Backend::PerTexel && b.effects.any()).then(|| TiledAtlas::new(&b.atlas));
+            b.tiled = (backend != Backend::PerTexel && b.effects.needs_hydrostatics())
+                .then(|| TiledAtlas::new(&b.atlas));
         }
         self
     }
@@ -141,24 +147,18 @@ impl ForceGenerator {
     /// Turns wetting on for a body with `Some(state)` (made for the body's
     /// atlas, e.g. `Wetting::new(body.atlas(), Material::wood(),
     /// Liquid::water())`, and keeping the liquid it already holds), or off
-    /// with `None`, which drops the state and everything it allocated.
+    /// with `None`, which drops the state and everything it allocated. A
+    /// body registers with wetting through [`Effects::with_wetting`](super::Effects::with_wetting).
+    ///
+    /// # Errors
+    /// An unknown id; a state made for an atlas of another size.
     pub fn set_wetting(&mut self, id: SoakId, wetting: Option<Wetting>) -> Result<(), SoakError> {
         let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
-        if let Some(w) = &wetting
-            && w.texels() != b.atlas.len()
-        {
-            return Err(SoakError::Wet {
-                name: b.name.clone(),
-                source: soak_wet::WetError::AtlasMismatch {
-                    state: w.texels(),
-                    atlas: b.atlas.len(),
-                },
-            });
+        if let Some(w) = &wetting {
+            check_wetting(&b.name, &b.atlas, w)?;
         }
-        b.wet = wetting.map(|wetting| Wet {
-            wetting,
-            last: StepReport::default(),
-        });
+        b.effects.wetting = wetting;
+        b.wet_report = soak_wet::StepReport::default();
         Ok(())
     }
 
@@ -170,9 +170,7 @@ impl ForceGenerator {
     /// A body's wetting state, to splash, paint or change its settings
     /// (with the body's atlas: [`SoakBody::atlas`]).
     pub fn wetting_mut(&mut self, id: SoakId) -> Option<&mut Wetting> {
-        self.bodies
-            .get_mut(id.0)
-            .and_then(|b| b.wet.as_mut().map(|w| &mut w.wetting))
+        self.bodies.get_mut(id.0).and_then(|b| b.effects.wetting.as_mut())
     }
 
     /// A body's liquid texture, if it has wetting: `h_i` per texel in atlas
@@ -180,6 +178,139 @@ impl ForceGenerator {
     /// image, [`soak_wet::write_liquid_png`] writes it in pseudo-colour.
     pub fn liquid_texture(&self, id: SoakId) -> Option<&[f64]> {
         self.bodies.get(id.0).and_then(SoakBody::liquid)
+    }
+
+    /// The liquid graph inside a body, if it has flooding.
+    pub fn flooding(&self, id: SoakId) -> Option<&Flooding> {
+        self.bodies.get(id.0).and_then(SoakBody::flooding)
+    }
+
+    /// The liquid graph inside a body, to punch a hole
+    /// ([`Flooding::permeability_mut`], or [`ForceGenerator::punch`]) or
+    /// pour water ([`Flooding::pour`]); call
+    /// [`ForceGenerator::sync_liquid_mass`] after pouring if the body must
+    /// feel it before the next step.
+    pub fn flooding_mut(&mut self, id: SoakId) -> Option<&mut Flooding> {
+        self.bodies
+            .get_mut(id.0)
+            .and_then(|b| b.effects.flooding.as_mut())
+    }
+
+    /// Punches a hole in a flooding body's hull: the wall's permeability
+    /// becomes `kappa` (m) within `radius` (m) of `centre` (local frame,
+    /// m). Returns the texels it covers; 0 for a sealed liquid graph, which
+    /// has no wall ([`Flooding::sealed`]).
+    ///
+    /// # Errors
+    /// An unknown id, a body without flooding, an invalid region or
+    /// permeability.
+    pub fn punch(
+        &mut self,
+        id: SoakId,
+        centre: Point3<f64>,
+        radius: f64,
+        kappa: f64,
+    ) -> Result<usize, SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        let flooding = b
+            .effects
+            .flooding
+            .as_mut()
+            .ok_or_else(|| SoakError::NoFlooding { name: b.name.clone() })?;
+        let Some(p) = flooding.permeability_mut() else {
+            return Ok(0);
+        };
+        p.paint(&b.atlas, centre, radius, kappa)
+            .map_err(|source| SoakError::Permeability {
+                name: b.name.clone(),
+                source,
+            })
+    }
+
+    /// Sets the fixed mass a flooding body carries with its liquid (ballast,
+    /// cargo; local frame), or none, and hands the total to Rapier at once.
+    ///
+    /// # Errors
+    /// An unknown id, a body without flooding, a missing Rapier body,
+    /// non-finite ballast.
+    pub fn set_ballast(
+        &mut self,
+        id: SoakId,
+        ballast: Option<MassProperties>,
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Result<(), SoakError> {
+        let b = self.flooding_body(id)?;
+        if let Some(m) = &ballast
+            && !m.is_finite()
+        {
+            return Err(SoakError::MassProperties {
+                name: b.name.clone(),
+                reason: format!("ballast {m:?} is not finite"),
+            });
+        }
+        b.flood.ballast = ballast;
+        self.sync_liquid_mass(id, bodies, colliders)
+    }
+
+    /// Sets the density of the liquid inside a flooding body, kg/m³
+    /// (default: the surrounding fluid's, [`Water::density`]), and hands
+    /// its mass to Rapier at once.
+    ///
+    /// # Errors
+    /// An unknown id, a body without flooding, a missing Rapier body, a
+    /// density that is not a finite number ≥ 0.
+    pub fn set_liquid_density(
+        &mut self,
+        id: SoakId,
+        density: f64,
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Result<(), SoakError> {
+        let b = self.flooding_body(id)?;
+        if !(density.is_finite() && density >= 0.0) {
+            return Err(SoakError::LiquidDensity {
+                name: b.name.clone(),
+                density,
+            });
+        }
+        b.flood.density = Some(density);
+        self.sync_liquid_mass(id, bodies, colliders)
+    }
+
+    /// The liquid inside a flooding body: its mass properties (local frame;
+    /// kg, m, kg·m²) at its density ([`SoakBody::liquid_density`]).
+    pub fn liquid_mass(&self, id: SoakId) -> Option<MassProperties> {
+        self.bodies.get(id.0)?.liquid_mass(&self.water)
+    }
+
+    /// Hands a flooding body's liquid plus ballast to Rapier now, as the
+    /// mass it carries besides its model ([`ForceGenerator::set_extra_mass`]).
+    /// [`ForceGenerator::flood`] does it whenever the liquid changed.
+    ///
+    /// # Errors
+    /// An unknown id, a body without flooding, a missing Rapier body,
+    /// invalid mass properties.
+    pub fn sync_liquid_mass(
+        &mut self,
+        id: SoakId,
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Result<(), SoakError> {
+        let b = self.bodies.get(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        let extra = b
+            .flooding_extra(&self.water)
+            .ok_or_else(|| SoakError::NoFlooding { name: b.name.clone() })?;
+        self.set_extra_mass(id, extra, bodies, colliders)
+    }
+
+    /// A registered body with flooding.
+    fn flooding_body(&mut self, id: SoakId) -> Result<&mut SoakBody, SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        if b.effects.flooding.is_none() {
+            return Err(SoakError::NoFlooding { name: b.name.clone() });
+        }
+        Ok(b)
     }
 
     /// Simulated time, s (advanced by [`ForceGenerator::step`] and [`ForceGenerator::advance`]).
@@ -207,9 +338,15 @@ impl ForceGenerator {
         &self.firewall
     }
 
-    /// Registers a rigid body: computes its mass properties from the mass
-    /// model and hands them to Rapier (readable at once through `mass()`).
-    /// Its colliders must have density 0: soak owns the body's mass.
+    /// Registers a rigid body with its effects: computes its mass
+    /// properties from the mass model (plus the liquid already inside a
+    /// flooding body) and hands them to Rapier (readable at once through
+    /// `mass()`). Its colliders must have density 0: soak owns the body's
+    /// mass.
+    ///
+    /// # Errors
+    /// A missing Rapier body, a collider with mass, invalid mass
+    /// properties, a wetting state made for an atlas of another size.
     pub fn register(
         &mut self,
         bodies: &mut RigidBodySet,
@@ -238,9 +375,12 @@ impl ForceGenerator {
                 name: desc.name.clone(),
                 source,
             })?;
+        if let Some(w) = &desc.effects.wetting {
+            check_wetting(&desc.name, &desc.atlas, w)?;
+        }
         push_mass(&desc.name, body, colliders, &mass)?;
-        let tiled =
-            (self.backend != Backend::PerTexel && desc.effects.any()).then(|| TiledAtlas::new(&desc.atlas));
+        let tiled = (self.backend != Backend::PerTexel && desc.effects.needs_hydrostatics())
+            .then(|| TiledAtlas::new(&desc.atlas));
         #[cfg(feature = "gpu")]
         if let Some(gpu) = &mut self.gpu {
             gpu.upload(&desc.atlas)?;
@@ -259,9 +399,15 @@ impl ForceGenerator {
             forces: HydroForces::default(),
             applied: Wrench::default(),
             dry_skips: 0,
-            wet: None,
+            wet_report: soak_wet::StepReport::default(),
+            flood: FloodSettings::default(),
         });
-        Ok(SoakId(self.bodies.len() - 1))
+        let id = SoakId(self.bodies.len() - 1);
+        if self.bodies[id.0].effects.flooding.is_some() {
+            // The liquid already inside, at once.
+            self.sync_liquid_mass(id, bodies, colliders)?;
+        }
+        Ok(id)
     }
 
     /// Changes a body's mass model (e.g. a shell density texture that
@@ -292,7 +438,10 @@ impl ForceGenerator {
 
     /// Sets the mass a body carries besides its mass model (local frame):
     /// liquid inside, a gas, a payload. It is combined with the model's
-    /// about the common centre of mass and handed to Rapier at once.
+    /// about the common centre of mass and handed to Rapier at once. A
+    /// flooding body's extra mass is its liquid and ballast, set again
+    /// whenever its liquid changes: give it ballast with
+    /// [`ForceGenerator::set_ballast`] instead.
     pub fn set_extra_mass(
         &mut self,
         id: SoakId,
@@ -350,9 +499,9 @@ impl ForceGenerator {
         if b.tiled.is_some() {
             b.tiled = Some(TiledAtlas::new(&atlas));
         }
-        if let Some(w) = &mut b.wet {
+        if let Some(w) = &mut b.effects.wetting {
             // The texels moved in object space: rebin the diffusion field.
-            w.wetting.refresh_field();
+            w.refresh_field();
         }
         #[cfg(feature = "gpu")]
         if let Some(gpu) = &mut self.gpu {
@@ -364,4 +513,18 @@ impl ForceGenerator {
         b.mass = total;
         Ok(())
     }
+}
+
+/// Refuses a wetting state made for an atlas of another size.
+fn check_wetting(name: &str, atlas: &soak_bake::Atlas, w: &Wetting) -> Result<(), SoakError> {
+    if w.texels() == atlas.len() {
+        return Ok(());
+    }
+    Err(SoakError::Wet {
+        name: name.to_string(),
+        source: soak_wet::WetError::AtlasMismatch {
+            state: w.texels(),
+            atlas: atlas.len(),
+        },
+    })
 }

@@ -3,15 +3,17 @@
 //! [`ForceGenerator::state`] and [`ForceGenerator::restore_state`].
 
 use serde::{Deserialize, Serialize};
+use soak_graph::FloodingState;
 use soak_hydro::{HydroForces, MassModel, MassProperties, Wrench};
 use soak_wet::{Environment, StepReport, Wetting};
 
-use super::body::{Wet, with_extra};
+use super::body::with_extra;
 use super::force_generator::ForceGenerator;
 use crate::error::SoakError;
 
 /// What a body's run changes, for saving: its mass model and extra mass,
-/// the last forces, and its wetting (liquid texture, ledger and settings).
+/// the last forces, its wetting (liquid texture, ledger and settings) and
+/// its flooding (liquid per node, the wall's permeability, the ledger).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct BodyRunState {
     /// The mass model now.
@@ -33,6 +35,18 @@ pub struct BodyRunState {
     /// What its last wetting step did.
     #[serde(default)]
     pub wet_report: Option<StepReport>,
+    /// The liquid inside the body, if it has flooding: liquid per node
+    /// (m³), the wall's permeability (holes punched so far), the ledger and
+    /// the random stream. The graph and texel map come from the body's
+    /// effects.
+    #[serde(default)]
+    pub flooding: Option<FloodingState>,
+    /// Fixed mass carried with the liquid inside (flooding bodies).
+    #[serde(default)]
+    pub ballast: Option<MassProperties>,
+    /// Density of the liquid inside, kg/m³, if set (flooding bodies).
+    #[serde(default)]
+    pub liquid_density: Option<f64>,
 }
 
 impl PartialEq for BodyRunState {
@@ -48,6 +62,9 @@ impl PartialEq for BodyRunState {
             && self.applied == other.applied
             && self.dry_skips == other.dry_skips
             && self.wet_report == other.wet_report
+            && self.flooding == other.flooding
+            && self.ballast == other.ballast
+            && self.liquid_density == other.liquid_density
             && same_wetting
     }
 }
@@ -94,35 +111,51 @@ impl ForceGenerator {
                     forces: b.forces,
                     applied: b.applied,
                     dry_skips: b.dry_skips,
-                    wetting: b.wet.as_ref().map(|w| w.wetting.clone()),
-                    wet_report: b.wet.as_ref().map(|w| w.last),
+                    wetting: b.effects.wetting.clone(),
+                    wet_report: b.wet_report().copied(),
+                    flooding: b.effects.flooding.as_ref().map(|f| f.state()),
+                    ballast: b.ballast().copied(),
+                    liquid_density: b.effects.flooding.as_ref().and(b.flood.density),
                 })
                 .collect(),
             environment: self.environment,
         }
     }
 
-    /// Restores a state saved from a generator with the same bodies. The
-    /// Rapier world is restored separately (its bodies already carry the
-    /// saved mass properties).
+    /// Restores a state saved from a generator with the same bodies (and
+    /// the same liquid graphs in the flooding ones). The Rapier world is
+    /// restored separately (its bodies already carry the saved mass
+    /// properties). Wetting is on afterwards for the bodies the state has
+    /// it for.
+    ///
+    /// # Errors
+    /// Another number of bodies, a liquid texture of another size, flooding
+    /// for a body without it or none for a body with it, invalid mass
+    /// properties, a flooding state of another graph or atlas. The checks
+    /// that need no computation come first; should a later one fail the
+    /// generator may be left partly restored.
     pub fn restore_state(&mut self, state: &GeneratorState) -> Result<(), SoakError> {
         if state.bodies.len() != self.bodies.len() {
-            return Err(SoakError::State(format!(
-                "state has {} bodies, the generator {}",
-                state.bodies.len(),
-                self.bodies.len()
-            )));
+            return Err(SoakError::StateBodies {
+                saved: state.bodies.len(),
+                registered: self.bodies.len(),
+            });
         }
         for (b, s) in self.bodies.iter().zip(&state.bodies) {
             if let Some(w) = &s.wetting
                 && w.texels() != b.atlas.len()
             {
-                return Err(SoakError::State(format!(
-                    "body `{}`: the saved liquid texture has {} texels, the atlas {}",
-                    b.name,
-                    w.texels(),
-                    b.atlas.len()
-                )));
+                return Err(SoakError::StateTexels {
+                    name: b.name.clone(),
+                    saved: w.texels(),
+                    atlas: b.atlas.len(),
+                });
+            }
+            if s.flooding.is_some() != b.effects.flooding.is_some() {
+                return Err(SoakError::StateFlooding {
+                    name: b.name.clone(),
+                    saved: s.flooding.is_some(),
+                });
             }
         }
         self.environment = state.environment;
@@ -134,6 +167,15 @@ impl ForceGenerator {
                     name: b.name.clone(),
                     source,
                 })?;
+            if let (Some(f), Some(saved)) = (&mut b.effects.flooding, &s.flooding) {
+                f.restore(saved).map_err(|source| SoakError::Flow {
+                    name: b.name.clone(),
+                    source,
+                })?;
+            }
+            b.flood.ballast = s.ballast;
+            b.flood.density = s.liquid_density;
+            b.flood.last = soak_graph::StepReport::default();
             b.mass_model = s.mass_model.clone();
             b.model_mass = model_mass;
             b.extra_mass = s.extra_mass;
@@ -141,10 +183,8 @@ impl ForceGenerator {
             b.forces = s.forces;
             b.applied = s.applied;
             b.dry_skips = s.dry_skips;
-            b.wet = s.wetting.clone().map(|wetting| Wet {
-                wetting,
-                last: s.wet_report.unwrap_or_default(),
-            });
+            b.effects.wetting = s.wetting.clone();
+            b.wet_report = s.wet_report.unwrap_or_default();
         }
         self.time = state.time;
         self.steps = state.steps;

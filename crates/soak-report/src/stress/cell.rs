@@ -1,5 +1,6 @@
 //! One cell of the stability matrix: the body dropped into its fluid with
-//! its effects, Rapier stepped with the force generator, and the checks.
+//! its effects (buoyancy, drag, flooding, wetting, by level), Rapier stepped
+//! with the force generator, and the checks.
 
 use std::time::Instant;
 
@@ -7,7 +8,6 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::{PhysicsWorld, RigidBodyBuilder};
 use soak_graph::{Flooding, FlowOptions, LiquidGraph, Node, Permeability, Pipe, WATER_VISCOSITY};
 use soak_hydro::{BuoyancyMode, Drag, MassModel};
-use soak_rapier::liquid::{self, LiquidBody};
 use soak_rapier::{BodyDesc, Effects, ForceGenerator, convert};
 use soak_wet::{Diffusion, Environment, FieldResolution, Liquid, Material, Wetting};
 
@@ -66,25 +66,11 @@ pub(crate) fn run_cell(
         effects = effects.with_drag(Drag::default());
     }
     let mut soak = ForceGenerator::new(water);
-    let id = soak.register(
-        &mut world.bodies,
-        &world.colliders,
-        handle,
-        BodyDesc {
-            name: cell.name(),
-            atlas: f.atlas.clone(),
-            mass_model: MassModel::Solid {
-                density: cell.density * RHO_W,
-            },
-            effects,
-        },
-    )?;
 
     // Ingress: two compartments of 15 % of the volume each, fore and aft,
     // joined by a pipe, behind a hull permeable all over. κ is set so that
     // the hull would take in its whole capacity in about 10 natural times
     // half submerged (Darcy: the inflow is about κ ρ g V_s / μ).
-    let mut liquids = Vec::new();
     let capacity = 0.3 * f.volume;
     if cell.level >= Level::Ingress {
         let o = f.atlas.origin();
@@ -97,14 +83,13 @@ pub(crate) fn run_cell(
         let kappa = capacity * WATER_VISCOSITY / (10.0 * tau * RHO_W * G * 0.5 * f.volume);
         let permeability = Permeability::uniform(&f.atlas, kappa)?;
         let flooding = Flooding::for_atlas(&f.atlas, graph, permeability, FlowOptions::default())?;
-        liquids.push(LiquidBody::attach(&mut soak, &mut world, id, flooding)?);
+        effects = effects.with_flooding(flooding);
     }
 
     // Wetting: cotton, a checkerboard of saturated and dry texels (the
     // hardest input for an explicit kernel), conservative diffusion whose
     // coefficient asks for 10 times the explicit limit in one step.
     let env = Environment::default();
-    let mut wetting = None;
     let mut substeps_expected = 0;
     if cell.level >= Level::Wetting {
         // Four voxels along the longest side: coarse, so that even the
@@ -129,8 +114,21 @@ pub(crate) fn run_cell(
         let coefficient = 10.0 * 3.0 * voxel * voxel / (dt * count as f64);
         wet.set_diffusion(Some(Diffusion::new(coefficient).with_resolution(field)))?;
         substeps_expected = 10;
-        wetting = Some(wet);
+        effects = effects.with_wetting(wet);
     }
+    let id = soak.register(
+        &mut world.bodies,
+        &world.colliders,
+        handle,
+        BodyDesc {
+            name: cell.name(),
+            atlas: f.atlas.clone(),
+            mass_model: MassModel::Solid {
+                density: cell.density * RHO_W,
+            },
+            effects,
+        },
+    )?;
     let wet_capacity: f64 =
         f.atlas.areas().iter().map(|&a| a as f64).sum::<f64>() * Material::cotton().saturation;
 
@@ -153,19 +151,13 @@ pub(crate) fn run_cell(
     let mut taken = 0;
 
     for k in 0..steps {
-        if let Some(wet) = wetting.as_mut() {
-            let pose = convert::pose(world.bodies[handle].position());
-            let report = wet.step(&f.atlas, &pose, soak.water(), &env, soak.time(), dt)?;
-            liquid_check.plan(k, &report, substeps_expected);
-        }
-        if liquids.is_empty() {
-            soak.step(&mut world)?;
-        } else {
-            liquid::step(&mut soak, &mut liquids, &mut world)?;
-        }
+        soak.step(&mut world)?;
         taken = k + 1;
         let rb = &world.bodies[handle];
         let body = soak.body(id).expect("registered");
+        if let Some(report) = body.wet_report() {
+            liquid_check.plan(k, report, substeps_expected);
+        }
         let state_ok = [rb.translation(), rb.linvel(), rb.angvel()]
             .iter()
             .all(|v| v.is_finite())
@@ -185,8 +177,8 @@ pub(crate) fn run_cell(
         }
         if k % sample_every == 0 || k + 1 == steps {
             e_max = e_max.max(energy(&world, &soak));
-            liquid_check.inside(&liquids, capacity);
-            if let Some(wet) = &wetting {
+            liquid_check.inside(body.flooding(), capacity);
+            if let Some(wet) = body.wetting() {
                 liquid_check.surface(wet, f, wet_capacity);
             }
         }

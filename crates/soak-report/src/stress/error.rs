@@ -4,7 +4,6 @@ use soak_bake::{BakeError, LoadError};
 use soak_graph::{FlowError, GraphError, PermeabilityError};
 use soak_hydro::WaterError;
 use soak_rapier::SoakError;
-use soak_rapier::liquid::LiquidError;
 use soak_wet::WetError;
 
 /// A cell of the stability matrix could not be set up or run.
@@ -63,9 +62,6 @@ pub enum StressError {
     /// The ingress cells' flooding.
     #[error(transparent)]
     Flow(#[from] FlowError),
-    /// Attaching or stepping the liquid inside.
-    #[error(transparent)]
-    Liquid(#[from] LiquidError),
     /// The wetting cells' surface liquid.
     #[error(transparent)]
     Wet(#[from] WetError),

@@ -2,7 +2,7 @@
 //! stays within its bounds and balances its ledger, and the wetting
 //! diffusion takes the substeps its stability asks for.
 
-use soak_rapier::liquid::LiquidBody;
+use soak_graph::Flooding;
 use soak_wet::{StepReport, Wetting};
 
 use super::fixture::Fixture;
@@ -30,9 +30,8 @@ impl LiquidCheck {
 
     /// Liquid inside: every node within `[0, capacity]`, the ledger
     /// balanced to 1e-9, the total within the hull's `capacity` (m³).
-    pub(crate) fn inside(&mut self, liquids: &[LiquidBody], capacity: f64) {
-        for l in liquids {
-            let fl = l.flooding();
+    pub(crate) fn inside(&mut self, flooding: Option<&Flooding>, capacity: f64) {
+        if let Some(fl) = flooding {
             let inside = fl.inside();
             let over = fl
                 .graph()
