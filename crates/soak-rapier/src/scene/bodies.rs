@@ -1,0 +1,91 @@
+//! The bodies of a scene: [`BodySpec`], with its [`MassSpec`] and [`ColliderSpec`].
+
+use serde::{Deserialize, Serialize};
+use soak_hydro::{BuoyancyMode, Drag};
+
+use super::liquid_graph::{GraphSpec, HoleSpec};
+use super::wetting::WettingSpec;
+
+fn default_resolution() -> u32 {
+    256
+}
+
+/// How a body's mass is distributed.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
+pub enum MassSpec {
+    /// Uniform solid.
+    Solid {
+        /// kg/m³
+        density: f64,
+    },
+    /// Mass on the surface (a hollow body).
+    Shell {
+        /// kg/m²
+        areal_density: f64,
+    },
+}
+
+/// A collider for contacts with other bodies (massless: soak sets the mass).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ColliderSpec {
+    /// No contacts.
+    #[default]
+    None,
+    /// The convex hull of the mesh.
+    ConvexHull,
+    /// The triangle mesh itself (fixed bodies only in practice).
+    Trimesh,
+}
+
+/// One body.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// Name for reports.
+    pub name: String,
+    /// Mesh path (relative to the scene file) or `builtin:` name.
+    pub mesh: String,
+    /// Atlas side, texels.
+    #[serde(default = "default_resolution")]
+    pub resolution: u32,
+    /// Generate a physics atlas instead of using the mesh's UVs.
+    #[serde(default)]
+    pub unwrap: bool,
+    /// Mass model.
+    pub mass: MassSpec,
+    /// Initial position of the mesh origin, m.
+    #[serde(default)]
+    pub position: [f64; 3],
+    /// Initial rotation, degrees about x, then y, then z.
+    #[serde(default)]
+    pub rotation_deg: [f64; 3],
+    /// Initial velocity, m/s.
+    #[serde(default)]
+    pub linear_velocity: [f64; 3],
+    /// Initial angular velocity, rad/s.
+    #[serde(default)]
+    pub angular_velocity: [f64; 3],
+    /// Buoyancy mode (`archimedes`, `pressure`, `off`).
+    #[serde(default)]
+    pub buoyancy: BuoyancyMode,
+    /// Drag coefficients; no drag when absent.
+    pub drag: Option<Drag>,
+    /// Contacts.
+    #[serde(default)]
+    pub collider: ColliderSpec,
+    /// A fixed (immovable) body, e.g. a terrain.
+    #[serde(default)]
+    pub fixed: bool,
+    /// Liquid graph inside the body (water that enters through permeable
+    /// texels): a graph file relative to the scene, or `{ auto = true }`.
+    pub graph: Option<GraphSpec>,
+    /// Permeable regions (holes) of the wall; needs `graph`.
+    #[serde(default)]
+    pub permeability: Vec<HoleSpec>,
+    /// Surface wetting: the body's liquid texture soaks up the water it is
+    /// dipped in, dries and diffuses. Off when absent (and then nothing is
+    /// allocated for it).
+    pub wetting: Option<WettingSpec>,
+}

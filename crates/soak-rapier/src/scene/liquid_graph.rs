@@ -1,0 +1,50 @@
+//! Water entering a body: where its liquid graph comes from ([`GraphSpec`],
+//! [`AutoGraphSpec`]) and the permeable regions of its wall ([`HoleSpec`]).
+
+use serde::{Deserialize, Serialize};
+
+/// Where a body's liquid graph comes from.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum GraphSpec {
+    /// A graph file (TOML or JSON), relative to the scene.
+    File(String),
+    /// Automatic segmentation of the mesh (Shape Diameter Function).
+    Auto(AutoGraphSpec),
+}
+
+fn default_clusters() -> usize {
+    5
+}
+fn one() -> f64 {
+    1.0
+}
+
+/// Automatic graph parameters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AutoGraphSpec {
+    /// Must be `true`.
+    pub auto: bool,
+    /// Clusters of the segmentation.
+    #[serde(default = "default_clusters")]
+    pub clusters: usize,
+    /// Fraction of each segment open to liquid, in [0, 1] (≈ 0.9 for stuffing).
+    #[serde(default = "one")]
+    pub porosity: f64,
+}
+
+/// A permeable region: every texel within `radius` of `centre`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HoleSpec {
+    /// Centre in the body's local frame, m.
+    pub centre: [f64; 3],
+    /// Radius, m.
+    pub radius: f64,
+    /// Permeability over wall thickness κ = k/L, m.
+    pub kappa: f64,
+    /// Time the region opens (a hole punched during the run), s.
+    #[serde(default)]
+    pub at: f64,
+}
