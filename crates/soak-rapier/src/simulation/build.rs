@@ -1,0 +1,325 @@
+//! Building a [`Simulation`] from a scene: the fluid ([`water_of`]), then
+//! every body with its mesh baked, its collider, its wetting and its liquid
+//! graph.
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use rapier3d::prelude::*;
+use soak_bake::{Atlas, BakeOptions, UnwrapOptions};
+use soak_hydro::{Gerstner, HeightField, MassModel, Plane, Unbounded, Water};
+
+use super::{SimBody, Simulation};
+use crate::convert;
+use crate::error::SceneError;
+use crate::generator::{BodyDesc, Effects, ForceGenerator};
+use crate::scene::{ColliderSpec, InitialLiquid, LoadedScene, MassSpec, WaterKind, WettingSpec};
+
+/// Builds the fluid a scene describes.
+pub fn water_of(loaded: &LoadedScene) -> Result<Water, SceneError> {
+    let w = &loaded.scene.water;
+    let g = Vector3::from(loaded.scene.gravity).norm();
+    let current = Vector3::from(w.current.unwrap_or([0.0; 3]));
+    let water = match w.kind {
+        WaterKind::Plane => Water::new(Plane::horizontal(w.level.unwrap_or(0.0)).with_current(current)),
+        WaterKind::Gerstner => {
+            let sea = Gerstner::new(
+                w.level.unwrap_or(0.0),
+                w.waves.clone().unwrap_or_default(),
+                g.max(1e-9),
+            )
+            .map_err(|e| loaded.invalid("water.waves", e.to_string()))?;
+            Water::new(sea)
+        }
+        WaterKind::HeightField => {
+            let file = w.file.as_deref().unwrap_or_default();
+            let path = loaded.resolve(file);
+            let text = std::fs::read_to_string(&path).map_err(|e| {
+                loaded.invalid("water.file", format!("cannot read `{}`: {e}", path.display()))
+            })?;
+            let mut rows: Vec<Vec<f64>> = Vec::new();
+            for (n, line) in text.lines().enumerate() {
+                if line.trim().is_empty() || line.trim_start().starts_with('#') {
+                    continue;
+                }
+                let row: Result<Vec<f64>, _> = line.split(',').map(|t| t.trim().parse::<f64>()).collect();
+                let row = row.map_err(|_| {
+                    loaded.invalid(
+                        "water.file",
+                        format!("`{}` line {}: not a row of numbers", path.display(), n + 1),
+                    )
+                })?;
+                rows.push(row);
+            }
+            let nx = rows.first().map_or(0, Vec::len);
+            if let Some(bad) = rows.iter().position(|r| r.len() != nx) {
+                return Err(loaded.invalid(
+                    "water.file",
+                    format!(
+                        "`{}`: row {} has {} values, the first has {nx}",
+                        path.display(),
+                        bad + 1,
+                        rows[bad].len()
+                    ),
+                ));
+            }
+            let nz = rows.len();
+            let heights: Vec<f64> = rows.into_iter().flatten().collect();
+            let mut hf = HeightField::new(
+                w.origin.unwrap_or([0.0, 0.0]),
+                w.spacing.unwrap_or([1.0, 1.0]),
+                nx,
+                nz,
+                heights,
+            )
+            .map_err(|e| loaded.invalid("water.file", format!("`{}`: {e}", path.display())))?;
+            hf.current = current.into();
+            Water::new(hf)
+        }
+        WaterKind::Air => {
+            let mut water = Water::new(Unbounded {
+                current: current.into(),
+            });
+            water.density = soak_hydro::AIR_DENSITY;
+            water
+        }
+    };
+    let water = match w.density {
+        Some(d) => water.with_density(d),
+        None => water,
+    };
+    Ok(water.with_gravity(g))
+}
+
+#[cfg(feature = "gpu")]
+fn with_gpu(soak: ForceGenerator) -> Result<ForceGenerator, String> {
+    let (device, queue, _) = soak_hydro::gpu::headless_device().map_err(|e| format!("needs a GPU: {e}"))?;
+    soak.with_gpu(&device, &queue).map_err(|e| e.to_string())
+}
+
+#[cfg(not(feature = "gpu"))]
+fn with_gpu(_: ForceGenerator) -> Result<ForceGenerator, String> {
+    Err("`gpu` needs soak built with its `gpu` feature".into())
+}
+
+impl Simulation {
+    /// Builds the world a scene describes: loads and bakes every mesh,
+    /// registers the bodies with their effects.
+    pub fn from_scene(loaded: &LoadedScene) -> Result<Self, SceneError> {
+        let scene = &loaded.scene;
+        let mut world = PhysicsWorld::new();
+        world.gravity = convert::to_vector(&Vector3::from(scene.gravity));
+        world.integration_parameters.dt = scene.dt as f32;
+        let mut soak = ForceGenerator::new(water_of(loaded)?).with_backend(scene.backend);
+        let mut weather = None;
+        if let Some(env) = &scene.environment {
+            soak.set_environment(env.environment())
+                .map_err(|e| loaded.invalid("environment", e.to_string()))?;
+            weather = env
+                .track()
+                .map_err(|e| loaded.invalid("environment.keys", e.to_string()))?;
+        }
+        if scene.backend == crate::generator::Backend::Gpu {
+            soak = with_gpu(soak).map_err(|message| SceneError::Invalid {
+                path: loaded.path.clone(),
+                line: loaded.line_of("backend"),
+                key: "backend".into(),
+                message,
+            })?;
+        }
+        let mut bodies = Vec::new();
+        let mut holes = Vec::new();
+        for (i, b) in scene.bodies.iter().enumerate() {
+            let body_err = |message: String| SceneError::Body {
+                path: loaded.path.clone(),
+                line: loaded.line_of(&format!("bodies[{i}].mesh")),
+                body: b.name.clone(),
+                message,
+            };
+            let source = if b.mesh.starts_with("builtin:") {
+                b.mesh.clone()
+            } else {
+                loaded.resolve(&b.mesh).to_string_lossy().into_owned()
+            };
+            let mut mesh = soak_bake::load_mesh(&source).map_err(|e| body_err(e.to_string()))?;
+            if b.unwrap {
+                mesh = soak_bake::unwrap(&mesh, UnwrapOptions::default())
+                    .map_err(|e| body_err(e.to_string()))?
+                    .0;
+            }
+            let [rx, ry, rz] = b.rotation_deg.map(f64::to_radians);
+            let pose = Isometry3::from_parts(
+                Translation3::from(Vector3::from(b.position)),
+                UnitQuaternion::from_euler_angles(rx, ry, rz),
+            );
+            let builder = if b.fixed {
+                RigidBodyBuilder::fixed()
+            } else {
+                RigidBodyBuilder::dynamic()
+            };
+            let handle = world.bodies.insert(
+                builder
+                    .pose(convert::to_pose(&pose))
+                    .linvel(convert::to_vector(&Vector3::from(b.linear_velocity)))
+                    .angvel(convert::to_vector(&Vector3::from(b.angular_velocity))),
+            );
+            let points = || -> Vec<Vector> { mesh.positions.iter().map(convert::point_to_vector).collect() };
+            let collider = match b.collider {
+                ColliderSpec::None => None,
+                ColliderSpec::ConvexHull => Some(
+                    ColliderBuilder::convex_hull(&points())
+                        .ok_or_else(|| body_err("no convex hull".into()))?,
+                ),
+                ColliderSpec::Trimesh => Some(
+                    ColliderBuilder::trimesh(points(), mesh.triangles.clone())
+                        .map_err(|e| body_err(format!("trimesh collider: {e}")))?,
+                ),
+            };
+            if let Some(c) = collider {
+                world
+                    .colliders
+                    .insert_with_parent(c.density(0.0), handle, &mut world.bodies);
+            }
+            let id = if b.fixed {
+                None
+            } else {
+                let atlas = Atlas::bake(&mesh, BakeOptions::square(b.resolution))
+                    .map_err(|e| body_err(e.to_string()))?;
+                let mass_model = match b.mass {
+                    MassSpec::Solid { density } => MassModel::Solid { density },
+                    MassSpec::Shell { areal_density } => MassModel::Shell { areal_density },
+                };
+                let wetting = b
+                    .wetting
+                    .as_ref()
+                    .map(|spec| wetting_of(loaded, i, spec, &atlas))
+                    .transpose()?;
+                let flooding = b
+                    .graph
+                    .as_ref()
+                    .map(|spec| flooding(loaded, i, &mesh, &atlas, spec).map_err(body_err))
+                    .transpose()?;
+                let effects = Effects {
+                    buoyancy: Some(b.buoyancy),
+                    drag: b.drag,
+                    flooding,
+                    wetting,
+                };
+                let desc = BodyDesc {
+                    name: b.name.clone(),
+                    atlas,
+                    mass_model,
+                    effects,
+                };
+                Some(
+                    soak.register(&mut world.bodies, &world.colliders, handle, desc)
+                        .map_err(|e| body_err(e.to_string()))?,
+                )
+            };
+            if let Some(id) = id.filter(|&id| soak.flooding(id).is_some()) {
+                for h in &b.permeability {
+                    holes.push((id, h.clone(), false));
+                }
+            }
+            bodies.push(SimBody {
+                name: b.name.clone(),
+                handle,
+                id,
+            });
+        }
+        let n = bodies.len();
+        Ok(Self {
+            world,
+            soak,
+            bodies,
+            duration: scene.duration,
+            holes,
+            splashes: scene.splash.iter().map(|s| (*s, false)).collect(),
+            weather,
+            record_every: scene.output.every,
+            recording: false,
+            samples: Vec::new(),
+            non_finite: vec![false; n],
+            steps: 0,
+        })
+    }
+}
+
+/// The wetting state a body's `wetting` key asks for, over its atlas.
+fn wetting_of(
+    loaded: &LoadedScene,
+    i: usize,
+    spec: &WettingSpec,
+    atlas: &Atlas,
+) -> Result<soak_wet::Wetting, SceneError> {
+    let key = |k: &str| format!("bodies[{i}].wetting{k}");
+    let material = spec
+        .material
+        .material()
+        .ok_or_else(|| loaded.invalid(&key(".material"), "is not a known material"))?;
+    let liquid = spec
+        .liquid
+        .liquid()
+        .ok_or_else(|| loaded.invalid(&key(".liquid"), "is not a known liquid"))?;
+    let mut wetting = soak_wet::Wetting::new(atlas, material, liquid)
+        .map_err(|e| loaded.invalid(&key(""), e.to_string()))?;
+    if let Some(d) = spec.diffusion {
+        let mut diffusion = soak_wet::Diffusion::new(d).with_mode(spec.mode.unwrap_or_default());
+        if let Some(v) = spec.voxel_size {
+            diffusion = diffusion.with_resolution(soak_wet::FieldResolution::VoxelSize(v));
+        }
+        wetting
+            .set_diffusion(Some(diffusion))
+            .map_err(|e| loaded.invalid(&key(".diffusion"), e.to_string()))?;
+    }
+    match &spec.initial {
+        InitialLiquid::Fill(f) => {
+            if *f > 0.0 {
+                wetting
+                    .fill(atlas, *f)
+                    .map_err(|e| loaded.invalid(&key(".initial"), e.to_string()))?;
+            }
+        }
+        InitialLiquid::Image(file) => {
+            let path = loaded.resolve(file);
+            let image = soak_wet::LiquidImage::open(&path)
+                .map_err(|e| loaded.invalid(&key(".initial"), format!("`{}`: {e}", path.display())))?;
+            wetting
+                .set_liquid_from_image(atlas, &image, material.saturation)
+                .map_err(|e| loaded.invalid(&key(".initial"), format!("`{}`: {e}", path.display())))?;
+        }
+    }
+    Ok(wetting)
+}
+
+/// The liquid graph a body's `graph` key asks for, behind its atlas' wall.
+fn flooding(
+    loaded: &LoadedScene,
+    i: usize,
+    mesh: &soak_bake::Mesh,
+    atlas: &Atlas,
+    spec: &crate::scene::GraphSpec,
+) -> Result<soak_graph::Flooding, String> {
+    use soak_graph::{Flooding, FlowOptions, LiquidGraph, Permeability, SegmentGraphOptions, TexelNodes};
+    let wall = Permeability::watertight(atlas);
+    match spec {
+        crate::scene::GraphSpec::File(file) => {
+            let path = loaded.resolve(file);
+            let graph = soak_graph::load_graph(&path).map_err(|e| e.to_string())?;
+            Flooding::for_atlas(atlas, graph, wall, FlowOptions::default()).map_err(|e| e.to_string())
+        }
+        crate::scene::GraphSpec::Auto(a) => {
+            let options = soak_graph::segment::SegmentOptions {
+                clusters: a.clusters,
+                ..Default::default()
+            };
+            let seg = soak_graph::segment::segment(mesh, &options)
+                .map_err(|e| format!("bodies[{i}].graph: {e}"))?;
+            let graph_options = SegmentGraphOptions {
+                porosity: a.porosity,
+                ..Default::default()
+            };
+            let graph = LiquidGraph::from_segmentation(&seg, &graph_options).map_err(|e| e.to_string())?;
+            let map = TexelNodes::from_segmentation(atlas, &seg).map_err(|e| e.to_string())?;
+            Flooding::new(graph, wall, map, FlowOptions::default()).map_err(|e| e.to_string())
+        }
+    }
+}
