@@ -1,22 +1,26 @@
 #![doc = include_str!("../README.md")]
 
-pub mod convert;
-pub mod error;
-pub mod firewall;
-pub mod generator;
+mod error;
+mod firewall;
+mod generator;
 #[cfg(feature = "gpu")]
 mod gpu;
-pub mod hull;
-pub mod scene;
-pub mod simulation;
+mod simulation;
 
-pub use error::{SceneError, SoakError};
-pub use firewall::{Firewall, FirewallEvent};
-pub use generator::{
+// Public: free functions between nalgebra and Rapier's types, named as `convert::pose(..)`.
+pub mod convert;
+// Public: free functions measuring a hull, named as `hull::pitch_degrees(..)`.
+pub mod hull;
+// Public: the many spec types of a scene file, named as `scene::BodySpec`.
+pub mod scene;
+
+pub use self::error::{SceneError, SoakError};
+pub use self::firewall::{FIREWALL_MEMORY, Firewall, FirewallEvent};
+pub use self::generator::{
     Backend, BodyDesc, BodyRunState, Effects, ForceGenerator, GeneratorState, SoakBody, SoakId,
 };
-pub use scene::{LoadedScene, Scene};
-pub use simulation::{BodyReport, Sample, SavedSimulation, Simulation};
+pub use self::scene::{LoadedScene, Scene};
+pub use self::simulation::{BodyReport, Sample, SavedSimulation, SimBody, Simulation, water_of};
 /// Water entering hulls (the liquid graph of [`Effects::flooding`]).
 pub use soak_graph;
 /// Surface wetting (the liquid texture of [`Effects::wetting`]).
