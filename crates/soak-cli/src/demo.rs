@@ -10,8 +10,7 @@ use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions, builtin};
 use soak_hydro::{Drag, Gerstner, GerstnerWave, MassModel, Water, volume_moments};
 use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakId, convert};
-
-use crate::plot::{Axis, Chart, Figure, Line, Series};
+use soak_report::chart::{Axis, Chart, Figure, Line, Series};
 
 /// Arguments of `soak demo`.
 #[derive(clap::Args)]

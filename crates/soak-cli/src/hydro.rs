@@ -4,9 +4,9 @@
 use serde::Serialize;
 use soak_hydro::reference::{self, ClipPlane};
 use soak_hydro::{BodyState, HydroOptions, MassModel, TiledAtlas, Water, evaluate};
+use soak_report::Gpu;
 
 use crate::common::{self, arr, rows, time_ms, vec3};
-use crate::gpu::Gpu;
 
 /// Arguments of `soak hydro`.
 #[derive(clap::Args)]

@@ -19,9 +19,9 @@ use serde::Serialize;
 use soak_bake::Mesh;
 use soak_graph::segment::{SegmentOptions, Segmentation, segment};
 use soak_graph::{LiquidGraph, SegmentGraphOptions};
+use soak_report::chart::palette;
 
 use crate::common;
-use crate::plot::palette;
 
 /// Arguments of `soak segment`.
 #[derive(clap::Args)]

@@ -26,7 +26,7 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let mut sweep = MaterialSweep::thesis_fig_6_3();
     sweep.cell = args.cell;
-    sweep.font = Some(Font::try_from_slice(crate::plot::FONT).context("the embedded font")?);
+    sweep.font = Some(Font::try_from_slice(soak_report::chart::FONT).context("the embedded font")?);
     let (device, queue, info) = headless_device().context("no GPU adapter for rendering")?;
     let start = Instant::now();
     let image = material_sweep(&device, &queue, &sweep)?;

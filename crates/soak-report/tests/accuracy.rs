@@ -1,0 +1,150 @@
+//! `soak_report::accuracy::compute(true, ..)`: the quick accuracy report runs,
+//! its numbers say what the method promises, and its files are written.
+//!
+//! What must hold (quick mode: 32²–256², 11 water levels):
+//! - at 256² with moment matching the 64×32 sphere's submerged volume is
+//!   within 0.2 % of the body's volume of exact clipping at every level, and
+//!   the 256×128 sphere's within 0.2 % of the analytic sphere (the 64×32 mesh
+//!   itself is 0.4 % short of the analytic sphere when fully submerged, so it
+//!   is compared with its own exact clipping);
+//! - the per-triangle game baseline is off by more than 10 % somewhere;
+//! - from 128² up, moment matching is at least as good as plain texel centres
+//!   for volume, centre of buoyancy and inertia on every mesh. (Below 128² it
+//!   is not: on the boat at 32² and 64², with about one sample per triangle,
+//!   moment matching's volume error is several times that of the centres.)
+//! - the tiled and per-texel paths give the same volumes;
+//! - the PNGs and the markdown are made, the tables name every mesh.
+
+use std::path::{Path, PathBuf};
+
+use soak_report::accuracy::{Report, Sweep, compute, markdown, text_table};
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("soak-report-accuracy-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+fn sweep<'a>(report: &'a Report, prefix: &str) -> &'a Sweep {
+    report
+        .sweeps
+        .iter()
+        .find(|s| s.mesh.starts_with(prefix))
+        .unwrap_or_else(|| panic!("no sweep for {prefix}"))
+}
+
+fn volumes(sweep: &Sweep, resolution: u32, moment_matching: bool) -> &[f64] {
+    &sweep
+        .texel
+        .iter()
+        .find(|c| c.resolution == resolution && c.moment_matching == moment_matching)
+        .unwrap_or_else(|| panic!("no {resolution}² curve"))
+        .volume
+}
+
+fn is_png(path: &Path) -> bool {
+    std::fs::read(path).is_ok_and(|b| b.starts_with(b"\x89PNG\r\n\x1a\n"))
+}
+
+#[test]
+fn quick_report_holds_its_promises() {
+    let dir = scratch("quick");
+    let out = dir.join("img");
+    let report = compute(true, &out, None).expect("the quick report runs");
+    assert!(report.quick);
+
+    // 256², moment matching: within 0.2 % at every level.
+    let coarse = sweep(&report, "sphere 64×32");
+    let body = coarse.body_volume;
+    let exact = &coarse.exact;
+    let texel = volumes(coarse, 256, true);
+    assert_eq!(texel.len(), exact.len());
+    for (k, (t, e)) in texel.iter().zip(exact).enumerate() {
+        assert!(
+            (t - e).abs() < 0.002 * body,
+            "64×32 sphere, level {k}: {t} vs exact {e}"
+        );
+    }
+    let fine = sweep(&report, "sphere 256×128");
+    let ball = 4.0 / 3.0 * std::f64::consts::PI * 0.125;
+    let analytic = fine.analytic.as_deref().expect("a sphere has an analytic curve");
+    for (k, (t, a)) in volumes(fine, 256, true).iter().zip(analytic).enumerate() {
+        assert!(
+            (t - a).abs() < 0.002 * ball,
+            "256×128 sphere, level {k}: {t} vs analytic {a}"
+        );
+    }
+
+    // The per-triangle game method is far off somewhere.
+    let worst = coarse
+        .per_triangle
+        .iter()
+        .zip(exact)
+        .map(|(b, e)| (b - e).abs() / body)
+        .fold(0.0, f64::max);
+    assert!(worst > 0.10, "per-triangle baseline's worst error {worst}");
+
+    // Rows: moment matching no worse than texel centres from 128² up; the
+    // tiled path agrees with the per-texel one; a GPU column left empty.
+    assert!(report.rows.len() >= 16, "4 meshes × 4 resolutions");
+    for r in &report.rows {
+        let name = format!("{} at {}²", r.mesh, r.resolution);
+        assert!(r.gpu_ms.is_none(), "{name}: gpu_ms");
+        assert!(r.tiled_vs_per_texel < 1e-9, "{name}: tiled and per-texel differ");
+        for (key, ms) in [
+            ("per_texel_ms", r.per_texel_ms),
+            ("tiled_ms", r.tiled_ms),
+            ("exact_ms", r.exact_ms),
+            ("per_triangle_ms", r.per_triangle_ms),
+        ] {
+            assert!(ms > 0.0, "{name}: {key}");
+        }
+        if r.resolution >= 128 {
+            for (what, mm, centres) in [
+                ("volume_error", r.volume_error, r.volume_error_centres),
+                ("cob_error", r.cob_error, r.cob_error_centres),
+                ("inertia_error", r.inertia_error, r.inertia_error_centres),
+            ] {
+                assert!(
+                    mm <= centres * (1.0 + 1e-9) + 1e-15,
+                    "{name}: {what} {mm} > centres {centres}"
+                );
+            }
+        }
+    }
+    assert!(!report.tiled_speedup.is_empty() && report.tiled_speedup.iter().all(|s| s.speedup > 0.0));
+
+    // Files: the two figures, in `out`.
+    let pngs: Vec<&PathBuf> = report
+        .files
+        .iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "png"))
+        .collect();
+    assert_eq!(pngs.len(), 2, "{:?}", report.files);
+    for p in pngs {
+        assert!(p.starts_with(&out) && is_png(p), "{} is not a PNG", p.display());
+    }
+    assert!(is_png(&out.join("accuracy_sphere.png")) && is_png(&out.join("accuracy_cost.png")));
+
+    // The markdown table, image links relative to the markdown.
+    let table = markdown(&report, &dir.join("accuracy.md"));
+    assert!(table.contains("| mesh |") && table.contains("| sphere 64×32 | 3968 | 256² |"));
+    assert!(
+        table.contains("](img/accuracy_sphere.png)"),
+        "image links relative to the markdown"
+    );
+
+    // The text table names every table mesh and the speed-up.
+    let text = text_table(&report);
+    for needle in [
+        "sphere 64×32",
+        "box 4×1×1",
+        "boat",
+        "sphere 316×158",
+        "tiled speed-up over per-texel at 256²",
+    ] {
+        assert!(text.contains(needle), "`{needle}` missing from:\n{text}");
+    }
+    std::fs::remove_dir_all(dir).ok();
+}
