@@ -1,5 +1,8 @@
 //! `soak demo`: the thesis' Chapter 7 cases side by side, from an embedded
 //! scene, with plots and CSV written to an output folder.
+//!
+//! One file on purpose: the five cases share the `World` and `Table`
+//! helpers here and each is one function that reads top to bottom.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;

@@ -9,6 +9,9 @@
 //! - the wet crate scene loads, runs, saves its liquid, writes PNGs, and
 //!   its liquid totals after fixed step counts are snapshotted;
 //! - bad wetting and environment values name the file and the key.
+//!
+//! One file on purpose: the generator and scene cases share the fixtures
+//! and the liquid checks defined here.
 
 use std::path::{Path, PathBuf};
 
