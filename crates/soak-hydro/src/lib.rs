@@ -25,17 +25,17 @@ pub mod reference;
 
 pub use self::error::{HydroError, WaterError};
 pub use self::hydrostatics::body_state::BodyState;
-pub use self::hydrostatics::evaluation::{evaluate, streaming_read};
+pub use self::hydrostatics::evaluation::{evaluate, sampled_water, streaming_read};
 pub use self::hydrostatics::forces::{HydroForces, Wrench};
-pub use self::hydrostatics::options::{BuoyancyMode, Drag, HydroOptions};
+pub use self::hydrostatics::options::{BuoyancyMode, Drag, HydroOptions, SeaSampling};
 pub use self::mass::{
     MassModel, MassProperties, PrincipalInertia, VolumeMoments, inertia_from_second_moment, parallel_axis,
     shell, volume_moments,
 };
 pub use self::tiled::{TileCounts, TileMoments, TiledAtlas};
 pub use self::water::{
-    AIR_DENSITY, Gerstner, GerstnerWave, HeightField, Plane, STANDARD_GRAVITY, Surface, SurfaceKind,
-    Unbounded, WATER_DENSITY, Water,
+    AIR_DENSITY, Gerstner, GerstnerWave, HeightField, MAX_PATCH_NODES, Plane, STANDARD_GRAVITY, Surface,
+    SurfaceKind, SurfacePatch, Unbounded, WATER_DENSITY, Water,
 };
 
 /// The types most users need.

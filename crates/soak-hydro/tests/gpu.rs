@@ -465,6 +465,7 @@ fn parity(
                     buoyancy,
                     drag,
                     dt: 1.0 / 60.0,
+                    ..HydroOptions::default()
                 };
                 (water, state, options)
             })
@@ -599,6 +600,7 @@ fn a_batch_of_100_equals_100_single_evaluations() {
             buoyancy: BuoyancyMode::Pressure,
             drag: (k % 3 != 0).then_some(DRAG),
             dt: 1.0 / 120.0,
+            ..HydroOptions::default()
         };
         bodies.push((b, GpuBody::from((id, water, state, b.mass, options))));
     }

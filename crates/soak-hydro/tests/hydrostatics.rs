@@ -8,7 +8,7 @@ use soak_bake::{Atlas, BakeOptions, Mesh, builtin, load_mesh};
 use soak_hydro::reference::{self, ClipPlane, analytic};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HydroForces, HydroOptions, MassModel,
-    MassProperties, Plane, TiledAtlas, Water, evaluate,
+    MassProperties, Plane, SeaSampling, TiledAtlas, Water, evaluate,
 };
 
 const RHO: f64 = 1000.0;
@@ -18,6 +18,7 @@ const PRESSURE: HydroOptions = HydroOptions {
     buoyancy: BuoyancyMode::Pressure,
     drag: None,
     dt: 1.0 / 60.0,
+    sea: SeaSampling::PerWavelength(SeaSampling::DEFAULT_PER_WAVELENGTH),
 };
 
 /// A small deterministic generator for poses.
@@ -388,6 +389,7 @@ fn drag_of_a_flat_plate_is_half_rho_cd_a_v_squared() {
                 linear: 0.0,
             }),
             dt: 0.0,
+            ..HydroOptions::default()
         };
         let f = evaluate(&atlas, &Water::calm(0.0), &state, &mass, 0.0, &opts).unwrap();
         let expected = -0.5 * RHO * cd * 1.0 * v * v * v.signum();
@@ -437,6 +439,7 @@ fn drag_never_reverses_the_relative_velocity() {
                         linear: 5.0,
                     }),
                     dt,
+                    ..HydroOptions::default()
                 };
                 let f = evaluate(&atlas, &Water::calm(0.0), &state, &mass, 0.0, &opts).unwrap();
                 let v1 = v + f.drag.force * dt / mass.mass;
@@ -480,6 +483,7 @@ fn drag_never_reverses_a_pure_translation_or_rotation() {
                     linear: 5.0,
                 }),
                 dt,
+                ..HydroOptions::default()
             };
             for dir in [
                 Vector3::x(),
@@ -523,6 +527,7 @@ fn drag_follows_the_water_not_the_world() {
         buoyancy: BuoyancyMode::Off,
         drag: Some(Drag::default()),
         dt: 0.0,
+        ..HydroOptions::default()
     };
     let rest = BodyState::at_rest(Isometry3::identity());
     let f = evaluate(&atlas, &water, &rest, &mass, 0.0, &opts).unwrap();

@@ -1,19 +1,19 @@
 //! The per-texel pass: buoyancy and drag summed over every texel of the
 //! atlas, and the read that is the floor under it.
 
-use nalgebra::Point3;
+use nalgebra::{Point3, Vector3};
 use soak_bake::Atlas;
 
 use super::body_state::BodyState;
 use super::finish::finish;
 use super::forces::HydroForces;
 use super::frame::{Frame, texel};
-use super::options::{BuoyancyMode, Drag, HydroOptions};
+use super::options::{BuoyancyMode, Drag, HydroOptions, SeaSampling};
 use super::planar_kernel::{PlanarTexels, add_planar_ranges};
 use super::sums::{BuoyancySums, DragSums};
-use crate::error::HydroError;
+use crate::error::{HydroError, WaterError};
 use crate::mass::{CHUNK, MassProperties, chunked_sum};
-use crate::water::Water;
+use crate::water::{Surface, SurfaceKind, SurfacePatch, Water};
 
 /// Buoyancy and drag sums of one pass.
 #[derive(Clone, Copy, Default)]
@@ -124,35 +124,17 @@ pub fn evaluate(
         })
         .rotated(&frame.rot),
         None => {
-            // Any surface: one probe per texel gives the depth and, for drag,
-            // the fluid velocity; neighbouring texels warm-start each other.
-            let both = chunked_sum(atlas.len(), Both::default(), |range| {
-                let mut s = Both::default();
-                let mut hint = [0.0; 2];
-                for i in range {
-                    let (x, a) = texel(atlas, i);
-                    let r = frame.rot * x;
-                    let p = frame.ow + r;
-                    let (d, u) = water
-                        .surface
-                        .probe(&Point3::from(p), t, options.drag.is_some(), &mut hint);
-                    if d > 0.0 {
-                        let aw = frame.rot * a;
-                        s.b.add_texel(&r, &aw, atlas.areas()[i] as f64, d);
-                        if options.buoyancy == BuoyancyMode::Archimedes {
-                            let slope = water.surface.slope(p.x, p.z, t, &hint);
-                            s.b.slope
-                                .add(&(p - frame.com), r.y, &aw, d, slope, frame.depth_scale);
-                        }
-                        if let Some(drag) = &options.drag {
-                            let rc = p - frame.com;
-                            let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
-                            s.d.add_texel(drag, water.density, &rc, &aw, &v, &u);
-                        }
-                    }
-                }
-                s
-            });
+            let both = match water
+                .surface
+                .as_any()
+                .and_then(|s| s.downcast_ref::<SurfacePatch>())
+            {
+                Some(patch) => general_sums(atlas, water, state, &frame, t, options, patch),
+                None => match sample_patch(atlas, water, state, t, options)? {
+                    Some(patch) => general_sums(atlas, water, state, &frame, t, options, &patch),
+                    None => general_sums(atlas, water, state, &frame, t, options, &Exact(&*water.surface)),
+                },
+            };
             let drag = options.drag.map(|_| both.d);
             return Ok(finish(
                 &frame,
@@ -169,6 +151,188 @@ pub fn evaluate(
         .drag
         .map(|drag| drag_sums(atlas, water, state, &frame, &drag, t, 0..atlas.len()));
     Ok(finish(&frame, water, state, mass, &sums, drag.as_ref(), options))
+}
+
+/// How the texels of a pass over a surface that is not a plane read it.
+trait TexelSurface: Sync {
+    /// What one read leaves for the next (a warm start) and for
+    /// [`TexelSurface::slope`] at the same point.
+    type Hint: Default;
+    /// Depth of `p` below the surface (m) and, when `with_velocity`, the
+    /// fluid velocity there (m/s).
+    fn depth(
+        &self,
+        p: &Vector3<f64>,
+        t: f64,
+        with_velocity: bool,
+        hint: &mut Self::Hint,
+    ) -> (f64, Vector3<f64>);
+    /// The surface's slope above `p`, after a [`TexelSurface::depth`] at `p`.
+    fn slope(&self, p: &Vector3<f64>, t: f64, hint: &Self::Hint) -> [f64; 2];
+}
+
+/// The surface itself, read at every texel.
+struct Exact<'a>(&'a dyn Surface);
+
+impl TexelSurface for Exact<'_> {
+    type Hint = [f64; 2];
+    #[inline]
+    fn depth(
+        &self,
+        p: &Vector3<f64>,
+        t: f64,
+        with_velocity: bool,
+        hint: &mut [f64; 2],
+    ) -> (f64, Vector3<f64>) {
+        self.0.probe(&Point3::from(*p), t, with_velocity, hint)
+    }
+    #[inline]
+    fn slope(&self, p: &Vector3<f64>, t: f64, hint: &[f64; 2]) -> [f64; 2] {
+        self.0.slope(p.x, p.z, t, hint)
+    }
+}
+
+impl TexelSurface for SurfacePatch {
+    /// The slope the depth's read found.
+    type Hint = [f64; 2];
+    #[inline]
+    fn depth(
+        &self,
+        p: &Vector3<f64>,
+        _t: f64,
+        with_velocity: bool,
+        hint: &mut [f64; 2],
+    ) -> (f64, Vector3<f64>) {
+        let (h, slope) = self.height_slope(p.x, p.z);
+        *hint = slope;
+        let u = if with_velocity && h > p.y {
+            self.velocity_at(p)
+        } else {
+            Vector3::zeros()
+        };
+        (h - p.y, u)
+    }
+    #[inline]
+    fn slope(&self, _p: &Vector3<f64>, _t: f64, hint: &[f64; 2]) -> [f64; 2] {
+        *hint
+    }
+}
+
+/// Buoyancy (and drag) sums over every texel under a surface that is not
+/// a plane, read through `surface`.
+fn general_sums<S: TexelSurface>(
+    atlas: &Atlas,
+    water: &Water,
+    state: &BodyState,
+    frame: &Frame,
+    t: f64,
+    options: &HydroOptions,
+    surface: &S,
+) -> Both {
+    // A texel above the highest the surface reaches is dry without a read.
+    let top = water.surface.height_bounds(t).map_or(f64::INFINITY, |(_, hi)| hi);
+    let archimedes = options.buoyancy == BuoyancyMode::Archimedes;
+    chunked_sum(atlas.len(), Both::default(), |range| {
+        let mut s = Both::default();
+        // Neighbouring texels warm-start each other.
+        let mut hint = S::Hint::default();
+        for i in range {
+            let (x, a) = texel(atlas, i);
+            let r = frame.rot * x;
+            let p = frame.ow + r;
+            if p.y >= top {
+                continue;
+            }
+            let (d, u) = surface.depth(&p, t, options.drag.is_some(), &mut hint);
+            if d > 0.0 {
+                let aw = frame.rot * a;
+                s.b.add_texel(&r, &aw, atlas.areas()[i] as f64, d);
+                if archimedes {
+                    let slope = surface.slope(&p, t, &hint);
+                    s.b.slope
+                        .add(&(p - frame.com), r.y, &aw, d, slope, frame.depth_scale);
+                }
+                if let Some(drag) = &options.drag {
+                    let rc = p - frame.com;
+                    let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
+                    s.d.add_texel(drag, water.density, &rc, &aw, &v, &u);
+                }
+            }
+        }
+        s
+    })
+}
+
+/// The water's surface sampled once over the footprint of a body at
+/// `state` (its bounding sphere's, one node spacing wider), as
+/// [`HydroOptions::sea`] asks: `None` when it asks for the exact read or
+/// the surface has no [`Surface::sampling_length`] (planes, height fields,
+/// surfaces of your own). With drag, the fluid's velocity is sampled too,
+/// over the body's height.
+///
+/// [`evaluate`] samples on its own when handed a sea; sample once and
+/// evaluate on the water [`sampled_water`] returns when one step evaluates
+/// the same body more than once (an implicit solve at shifted heights).
+fn sample_patch(
+    atlas: &Atlas,
+    water: &Water,
+    state: &BodyState,
+    t: f64,
+    options: &HydroOptions,
+) -> Result<Option<SurfacePatch>, HydroError> {
+    let SeaSampling::PerWavelength(per) = options.sea else {
+        return Ok(None);
+    };
+    if !matches!(water.surface.kind(t), SurfaceKind::General) {
+        return Ok(None);
+    }
+    let Some(length) = water.surface.sampling_length(t) else {
+        return Ok(None);
+    };
+    if !(per.is_finite() && per > 0.0) {
+        return Err(WaterError::Parameter {
+            name: "sea samples per wavelength",
+            value: per,
+        }
+        .into());
+    }
+    let spacing = length / per;
+    let centre = state.pose * atlas.origin();
+    let reach = atlas.bounding_radius() + spacing;
+    let min = [centre.x - reach, centre.z - reach];
+    let max = [centre.x + reach, centre.z + reach];
+    let r = atlas.bounding_radius();
+    let velocity = options.drag.map(|_| (centre.y - r, centre.y + r));
+    Ok(Some(SurfacePatch::sample(
+        &*water.surface,
+        t,
+        min,
+        max,
+        spacing,
+        velocity,
+    )?))
+}
+
+/// The water with its surface sampled once around a body at `state`, for
+/// evaluations of that body at time `t` (s) near that pose (an implicit
+/// solve that shifts it vertically): `None` when [`HydroOptions::sea`] or
+/// the surface asks for the exact read (see [`SeaSampling`]); evaluate on
+/// `water` itself then. [`evaluate`] on the returned water reads the patch
+/// and samples nothing.
+pub fn sampled_water(
+    atlas: &Atlas,
+    water: &Water,
+    state: &BodyState,
+    t: f64,
+    options: &HydroOptions,
+) -> Result<Option<Water>, HydroError> {
+    water.validate()?;
+    state.check()?;
+    Ok(sample_patch(atlas, water, state, t, options)?.map(|patch| Water {
+        surface: Box::new(patch),
+        density: water.density,
+        gravity: water.gravity,
+    }))
 }
 
 /// Drag sums over the submerged texels of `range`.

@@ -215,6 +215,14 @@ impl Surface for Gerstner {
     fn as_any(&self) -> Option<&dyn std::any::Any> {
         Some(self)
     }
+    /// The shortest wavelength of a wave with a non-zero amplitude.
+    fn sampling_length(&self, _t: f64) -> Option<f64> {
+        self.waves
+            .iter()
+            .filter(|w| w.amplitude > 0.0)
+            .map(|w| w.wavelength)
+            .min_by(f64::total_cmp)
+    }
     fn height(&self, x: f64, z: f64, t: f64) -> f64 {
         let (x0, z0) = self.rest_position(x, z, t);
         self.particle(x0, z0, t).y

@@ -11,15 +11,19 @@
 //!   Gerstner map.
 //! - `height_field`: [`HeightField`](crate::HeightField).
 //! - `unbounded`: [`Unbounded`](crate::Unbounded).
+//! - `patch`: [`SurfacePatch`](crate::SurfacePatch), any surface sampled
+//!   once over a region and interpolated.
 
 mod gerstner;
 mod height_field;
+mod patch;
 mod plane;
 mod surface;
 mod unbounded;
 
 pub use self::gerstner::{Gerstner, GerstnerWave};
 pub use self::height_field::HeightField;
+pub use self::patch::{MAX_PATCH_NODES, SurfacePatch};
 pub use self::plane::Plane;
 pub use self::surface::{AIR_DENSITY, STANDARD_GRAVITY, Surface, SurfaceKind, WATER_DENSITY, Water};
 pub use self::unbounded::Unbounded;

@@ -59,6 +59,15 @@ pub trait Surface: Send + Sync {
         None
     }
 
+    /// The length over which the surface's height changes shape at time
+    /// `t`, m (the shortest wavelength of a sea), if it has one: evaluations
+    /// sample the surface on a grid this fine or finer
+    /// ([`SeaSampling`](crate::SeaSampling)) instead of reading it at every
+    /// texel. `None` (the default) reads it at every texel.
+    fn sampling_length(&self, _t: f64) -> Option<f64> {
+        None
+    }
+
     /// The concrete surface, for backends that handle known surfaces
     /// natively (the GPU evaluates [`Plane`], [`Gerstner`](super::Gerstner),
     /// [`HeightField`](super::HeightField) and [`Unbounded`] itself). `None`

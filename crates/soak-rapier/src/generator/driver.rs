@@ -7,7 +7,8 @@
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use rapier3d::prelude::{ColliderSet, IntegrationParameters, PhysicsWorld, RigidBodySet};
-use soak_hydro::{BodyState, BuoyancyMode, HydroForces, HydroOptions, Wrench};
+use rayon::prelude::*;
+use soak_hydro::{BodyState, BuoyancyMode, HydroForces, HydroOptions, Water, Wrench};
 
 use super::config::SoakId;
 use super::force_generator::ForceGenerator;
@@ -133,11 +134,30 @@ impl ForceGenerator {
                 buoyancy: b.effects.buoyancy.unwrap_or(BuoyancyMode::Off),
                 drag: b.effects.drag,
                 dt,
+                sea: self.sea,
             };
             work.push((k, state, options));
         }
 
-        // 2. Evaluate: one GPU batch, or body by body on the CPU.
+        // The sea, sampled once per body over its footprint, read by the
+        // evaluation and by the implicit heave's evaluations at shifted
+        // heights (`None`: a plane, or the exact read). A body whose
+        // sampling fails (a state that is not finite) is evaluated on the
+        // water itself, which reports the error.
+        let seas: Vec<Option<Water>> = {
+            let (bodies, water) = (&self.bodies, &self.water);
+            work.par_iter()
+                .map(|(k, state, options)| {
+                    soak_hydro::sampled_water(&bodies[*k].atlas, water, state, t, options)
+                        .ok()
+                        .flatten()
+                })
+                .collect()
+        };
+
+        // 2. Evaluate: one GPU batch, or every body in one parallel pass on
+        // the CPU (each body's sums in a fixed order: the same results for
+        // any number of threads).
         let mut results: Vec<Result<HydroForces, String>> = Vec::with_capacity(work.len());
         #[cfg(feature = "gpu")]
         if let Some(gpu) = &self.gpu {
@@ -155,18 +175,23 @@ impl ForceGenerator {
             }
         }
         if results.is_empty() {
-            for (k, state, options) in &work {
-                let b = &self.bodies[*k];
-                let r = match &b.tiled {
-                    Some(tiled) => tiled.evaluate(&b.atlas, &self.water, state, &b.mass, t, options),
-                    None => soak_hydro::evaluate(&b.atlas, &self.water, state, &b.mass, t, options),
-                };
-                results.push(r.map_err(|e| e.to_string()));
-            }
+            let (bodies, water) = (&self.bodies, &self.water);
+            work.par_iter()
+                .zip(&seas)
+                .map(|((k, state, options), sea)| {
+                    let b = &bodies[*k];
+                    let water = sea.as_ref().unwrap_or(water);
+                    let r = match &b.tiled {
+                        Some(tiled) => tiled.evaluate(&b.atlas, water, state, &b.mass, t, options),
+                        None => soak_hydro::evaluate(&b.atlas, water, state, &b.mass, t, options),
+                    };
+                    r.map_err(|e| e.to_string())
+                })
+                .collect_into_vec(&mut results);
         }
 
         // 3. The firewall, then Rapier.
-        for ((k, state, options), result) in work.iter().zip(results) {
+        for (((k, state, options), result), sea) in work.iter().zip(results).zip(&seas) {
             let b = &mut self.bodies[*k];
             let Some(rb) = bodies.get_mut(b.handle) else {
                 continue;
@@ -199,8 +224,8 @@ impl ForceGenerator {
             } else {
                 // The drag is applied with the buoyancy: the implicit solve counts it.
                 let drag = last_part(&forces.drag);
-                wrench =
-                    wrench + implicit_heave(b, rb, &self.water, state, options, t, substeps, limit, bw, drag);
+                let water = sea.as_ref().unwrap_or(&self.water);
+                wrench = wrench + implicit_heave(b, rb, water, state, options, t, substeps, limit, bw, drag);
             }
             if forces.drag.is_finite() {
                 wrench = wrench + forces.drag;

@@ -6,7 +6,7 @@
 use nalgebra::Point3;
 use rapier3d::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
 use soak_graph::Flooding;
-use soak_hydro::{HydroForces, MassModel, MassProperties, TiledAtlas, Water, Wrench};
+use soak_hydro::{HydroForces, MassModel, MassProperties, SeaSampling, TiledAtlas, Water, Wrench};
 use soak_wet::{Environment, Wetting};
 
 use super::body::{FloodSettings, Shape, SoakBody, with_extra};
@@ -61,6 +61,7 @@ pub struct ForceGenerator {
     pub(super) water: Water,
     pub(super) bodies: Vec<SoakBody>,
     pub(super) backend: Backend,
+    pub(super) sea: SeaSampling,
     pub(super) time: f64,
     pub(super) steps: u64,
     pub(super) firewall: Firewall,
@@ -76,6 +77,7 @@ impl ForceGenerator {
             water,
             bodies: Vec::new(),
             backend: Backend::default(),
+            sea: SeaSampling::default(),
             time: 0.0,
             steps: 0,
             firewall: Firewall::default(),
@@ -115,6 +117,20 @@ impl ForceGenerator {
                 .then(|| TiledAtlas::new(&b.atlas));
         }
         self
+    }
+
+    /// The same generator reading a sea (a surface that is not a plane)
+    /// as `sea` says: sampled once per step over each body's footprint
+    /// (the default, 16 nodes per shortest wavelength), or exactly at
+    /// every texel ([`SeaSampling::Exact`], the reference).
+    pub fn with_sea_sampling(mut self, sea: SeaSampling) -> Self {
+        self.sea = sea;
+        self
+    }
+
+    /// How a sea is read (see [`ForceGenerator::with_sea_sampling`]).
+    pub fn sea_sampling(&self) -> SeaSampling {
+        self.sea
     }
 
     /// The fluid.

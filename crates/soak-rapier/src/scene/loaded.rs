@@ -204,6 +204,10 @@ impl LoadedScene {
             &[WaterKind::Plane, WaterKind::Gerstner],
         )?;
         only("waves", w.waves.is_some(), &[WaterKind::Gerstner])?;
+        only("sampling", w.sampling.is_some(), &[WaterKind::Gerstner])?;
+        if let Some(soak_hydro::SeaSampling::PerWavelength(n)) = w.sampling {
+            positive("water.sampling.per_wavelength", n)?;
+        }
         only("file", w.file.is_some(), &[WaterKind::HeightField])?;
         only("origin", w.origin.is_some(), &[WaterKind::HeightField])?;
         only("spacing", w.spacing.is_some(), &[WaterKind::HeightField])?;

@@ -1,7 +1,7 @@
 //! The fluid a scene floats its bodies in: [`WaterSpec`] and its [`WaterKind`].
 
 use serde::{Deserialize, Serialize};
-use soak_hydro::GerstnerWave;
+use soak_hydro::{GerstnerWave, SeaSampling};
 
 /// Which fluid surface.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -39,4 +39,9 @@ pub struct WaterSpec {
     pub origin: Option<[f64; 2]>,
     /// Height-field sample spacing (dx, dz), m.
     pub spacing: Option<[f64; 2]>,
+    /// How the texels read a Gerstner sea: `{ per_wavelength = 16 }` (the
+    /// default: the sea sampled once per step over each body, 16 nodes per
+    /// shortest wavelength) or `"exact"` (every texel inverts the Gerstner
+    /// map: the reference, far slower).
+    pub sampling: Option<SeaSampling>,
 }

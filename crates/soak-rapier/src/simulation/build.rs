@@ -108,7 +108,9 @@ impl Simulation {
         let mut world = PhysicsWorld::new();
         world.gravity = convert::to_vector(&Vector3::from(scene.gravity));
         world.integration_parameters.dt = scene.dt as f32;
-        let mut soak = ForceGenerator::new(water_of(loaded)?).with_backend(scene.backend);
+        let mut soak = ForceGenerator::new(water_of(loaded)?)
+            .with_backend(scene.backend)
+            .with_sea_sampling(scene.water.sampling.unwrap_or_default());
         let mut weather = None;
         if let Some(env) = &scene.environment {
             soak.set_environment(env.environment())

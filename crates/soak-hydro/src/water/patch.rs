@@ -1,0 +1,367 @@
+//! The water surface sampled once over a region: heights and slopes at the
+//! nodes of a square grid, bicubic Hermite between them, and optionally the
+//! fluid velocity on a three-dimensional grid, trilinear between its nodes.
+//!
+//! A Gerstner sea has no closed form for its height above a point: each
+//! read inverts the Gerstner map (Newton's method over every wave). Read
+//! per texel that is most of an evaluation's time. A patch pays the
+//! inversion once per node instead, a few dozen nodes over a body's
+//! footprint, and every texel then reads a polynomial. Its error is that of
+//! bicubic Hermite interpolation, `O(Δ⁴)` in the node spacing `Δ`: the
+//! spacing is an accuracy knob like the atlas resolution
+//! ([`SeaSampling`](crate::SeaSampling)).
+
+use nalgebra::{Point3, Vector3};
+
+use super::Surface;
+use crate::error::WaterError;
+
+/// Most nodes along one side of a patch's grid; a region that would need
+/// more is sampled more coarsely (see [`SurfacePatch::sample`]).
+pub const MAX_PATCH_NODES: usize = 256;
+
+/// A surface sampled at one time over a rectangle of the horizontal plane.
+///
+/// Inside the rectangle [`Surface::height`] and [`Surface::slope`] are those
+/// of the bicubic Hermite interpolant of the sampled heights, slopes and
+/// twists (`∂²f/∂x∂z`, by central differences of the slopes); outside it the
+/// nearest edge cell's polynomial is read at the nearest point of the
+/// rectangle. The time argument of the [`Surface`] methods is ignored: the
+/// patch is the surface at the time it was sampled.
+///
+/// [`Surface::velocity`] is the trilinear interpolant of velocities sampled
+/// on a grid over `[y_min, y_max]` as well, when the patch was sampled
+/// with velocities; otherwise it is zero.
+#[derive(Clone, Debug)]
+pub struct SurfacePatch {
+    /// World `(x, z)` of node `(0, 0)`, m.
+    origin: [f64; 2],
+    /// Node spacing, m.
+    spacing: f64,
+    /// Cells along x and z.
+    cells: [usize; 2],
+    /// Bicubic coefficients per cell, `a[p][q]` of `u^p v^q` (`u`, `v` the
+    /// position across the cell along x and z, in cells), row-major cells
+    /// with x fastest.
+    coefficients: Vec<[[f64; 4]; 4]>,
+    /// Lowest and highest value the interpolant can take, m.
+    bounds: (f64, f64),
+    /// The time the surface was sampled at, s.
+    time: f64,
+    velocity: Option<VelocityGrid>,
+}
+
+/// Fluid velocities on a grid over the patch's rectangle and a height range.
+#[derive(Clone, Debug)]
+struct VelocityGrid {
+    /// Lowest height of the grid, m.
+    y0: f64,
+    /// Vertical spacing, m.
+    dy: f64,
+    /// Nodes along x, y and z.
+    nodes: [usize; 3],
+    /// Velocities, m/s, x fastest, then z, then y.
+    values: Vec<[f64; 3]>,
+}
+
+/// Where a horizontal position falls in the patch: its cell and its
+/// fractions `(u, v)` across it, clamped to the rectangle.
+#[derive(Clone, Copy)]
+struct Place {
+    cell: usize,
+    u: f64,
+    v: f64,
+}
+
+/// The bicubic Hermite basis in matrix form: `p(u) = [1 u u² u³] M [f0 f1 f0' f1']ᵀ`.
+const HERMITE: [[f64; 4]; 4] = [
+    [1.0, 0.0, 0.0, 0.0],
+    [0.0, 0.0, 1.0, 0.0],
+    [-3.0, 3.0, -2.0, -1.0],
+    [2.0, -2.0, 1.0, 1.0],
+];
+
+impl SurfacePatch {
+    /// Samples `surface` at time `t` (s) over the rectangle from `min` to
+    /// `max` (world `(x, z)`, m), with nodes `spacing` m apart (widened so
+    /// that neither side has more than [`MAX_PATCH_NODES`] nodes); with
+    /// `velocity = Some((y_min, y_max))` also the fluid velocity between
+    /// those heights (m), on a grid as fine vertically.
+    ///
+    /// The rectangle is rounded out to whole cells. Errors when a bound or
+    /// the spacing is not finite, or the spacing not positive.
+    pub fn sample(
+        surface: &dyn Surface,
+        t: f64,
+        min: [f64; 2],
+        max: [f64; 2],
+        spacing: f64,
+        velocity: Option<(f64, f64)>,
+    ) -> Result<Self, WaterError> {
+        if !(spacing.is_finite() && spacing > 0.0) {
+            return Err(WaterError::Parameter {
+                name: "patch spacing",
+                value: spacing,
+            });
+        }
+        for (name, value) in [
+            ("patch min x", min[0]),
+            ("patch min z", min[1]),
+            ("patch max x", max[0]),
+            ("patch max z", max[1]),
+            ("patch time", t),
+        ] {
+            if !value.is_finite() {
+                return Err(WaterError::Parameter { name, value });
+            }
+        }
+        let extent = [(max[0] - min[0]).max(0.0), (max[1] - min[1]).max(0.0)];
+        let widest = extent[0].max(extent[1]);
+        let spacing = spacing.max(widest / (MAX_PATCH_NODES - 1) as f64);
+        let cells = extent.map(|e| ((e / spacing).ceil() as usize).max(1));
+        let nodes = [cells[0] + 1, cells[1] + 1];
+        let origin = min;
+        let at = |i: usize, j: usize| (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
+
+        // Heights and slopes at the nodes, each probe warm-starting the next.
+        let n = nodes[0] * nodes[1];
+        let (mut h, mut sx, mut sz) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut hint = [0.0; 2];
+        for j in 0..nodes[1] {
+            for i in 0..nodes[0] {
+                let (x, z) = at(i, j);
+                let k = j * nodes[0] + i;
+                let (depth, _) = surface.probe(&Point3::new(x, 0.0, z), t, false, &mut hint);
+                let [gx, gz] = surface.slope(x, z, t, &hint);
+                (h[k], sx[k], sz[k]) = (depth, gx, gz);
+            }
+        }
+        // Twists `∂²f/∂x∂z`: central differences of the slopes (one-sided
+        // at the edges), the mean of the two mixed derivatives.
+        let diff = |f: &[f64], k: usize, i: usize, count: usize, stride: usize| -> f64 {
+            match (i > 0, i + 1 < count) {
+                (true, true) => (f[k + stride] - f[k - stride]) / (2.0 * spacing),
+                (false, true) => (f[k + stride] - f[k]) / spacing,
+                (true, false) => (f[k] - f[k - stride]) / spacing,
+                (false, false) => 0.0,
+            }
+        };
+        let mut twist = vec![0.0; n];
+        for j in 0..nodes[1] {
+            for i in 0..nodes[0] {
+                let k = j * nodes[0] + i;
+                twist[k] = 0.5 * (diff(&sx, k, j, nodes[1], nodes[0]) + diff(&sz, k, i, nodes[0], 1));
+            }
+        }
+        for (name, values) in [("patch height", &h), ("patch slope", &sx), ("patch slope", &sz)] {
+            if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+                return Err(WaterError::Parameter { name, value: *v });
+            }
+        }
+
+        let mut coefficients = Vec::with_capacity(cells[0] * cells[1]);
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for j in 0..cells[1] {
+            for i in 0..cells[0] {
+                let k = [j * nodes[0] + i, j * nodes[0] + i + 1];
+                let k1 = [k[0] + nodes[0], k[1] + nodes[0]];
+                // F[a][b]: value (a, b < 2), u-derivative (a ≥ 2), v-derivative
+                // (b ≥ 2) and twist, in cell units, at corner (a mod 2, b mod 2).
+                let d = spacing;
+                let f = [
+                    [h[k[0]], h[k1[0]], d * sz[k[0]], d * sz[k1[0]]],
+                    [h[k[1]], h[k1[1]], d * sz[k[1]], d * sz[k1[1]]],
+                    [
+                        d * sx[k[0]],
+                        d * sx[k1[0]],
+                        d * d * twist[k[0]],
+                        d * d * twist[k1[0]],
+                    ],
+                    [
+                        d * sx[k[1]],
+                        d * sx[k1[1]],
+                        d * d * twist[k[1]],
+                        d * d * twist[k1[1]],
+                    ],
+                ];
+                // A = M F Mᵀ.
+                let mut mf = [[0.0; 4]; 4];
+                for (r, row) in mf.iter_mut().enumerate() {
+                    for (c, out) in row.iter_mut().enumerate() {
+                        *out = (0..4).map(|m| HERMITE[r][m] * f[m][c]).sum();
+                    }
+                }
+                let mut a = [[0.0; 4]; 4];
+                for (r, row) in a.iter_mut().enumerate() {
+                    for (c, out) in row.iter_mut().enumerate() {
+                        *out = (0..4).map(|m| mf[r][m] * HERMITE[c][m]).sum();
+                    }
+                }
+                // |p(u, v) − a00| ≤ Σ |a_pq| over the other terms on [0, 1]².
+                let reach: f64 = a.iter().flatten().skip(1).map(|c| c.abs()).sum();
+                lo = lo.min(a[0][0] - reach);
+                hi = hi.max(a[0][0] + reach);
+                coefficients.push(a);
+            }
+        }
+
+        let velocity = match velocity {
+            None => None,
+            Some((y_min, y_max)) => Some(Self::sample_velocity(
+                surface, t, origin, spacing, nodes, &h, y_min, y_max,
+            )?),
+        };
+        Ok(Self {
+            origin,
+            spacing,
+            cells,
+            coefficients,
+            bounds: (lo, hi),
+            time: t,
+            velocity,
+        })
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn sample_velocity(
+        surface: &dyn Surface,
+        t: f64,
+        origin: [f64; 2],
+        spacing: f64,
+        nodes: [usize; 2],
+        heights: &[f64],
+        y_min: f64,
+        y_max: f64,
+    ) -> Result<VelocityGrid, WaterError> {
+        for (name, value) in [("patch velocity y min", y_min), ("patch velocity y max", y_max)] {
+            if !value.is_finite() {
+                return Err(WaterError::Parameter { name, value });
+            }
+        }
+        let dy = spacing;
+        let ny = (((y_max - y_min).max(0.0) / dy).ceil() as usize + 1).min(MAX_PATCH_NODES);
+        let mut values = Vec::with_capacity(nodes[0] * nodes[1] * ny);
+        let mut hint = [0.0; 2];
+        for l in 0..ny {
+            let y = y_min + l as f64 * dy;
+            for j in 0..nodes[1] {
+                for i in 0..nodes[0] {
+                    let (x, z) = (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
+                    // Above the surface the velocity is the surface's own.
+                    let y = y.min(heights[j * nodes[0] + i]);
+                    let (_, v) = surface.probe(&Point3::new(x, y, z), t, true, &mut hint);
+                    if let Some(c) = v.iter().find(|c| !c.is_finite()) {
+                        return Err(WaterError::Parameter {
+                            name: "patch velocity",
+                            value: *c,
+                        });
+                    }
+                    values.push([v.x, v.y, v.z]);
+                }
+            }
+        }
+        Ok(VelocityGrid {
+            y0: y_min,
+            dy,
+            nodes: [nodes[0], ny, nodes[1]],
+            values,
+        })
+    }
+
+    /// Node spacing, m.
+    pub fn spacing(&self) -> f64 {
+        self.spacing
+    }
+
+    /// Nodes along x and z.
+    pub fn nodes(&self) -> [usize; 2] {
+        [self.cells[0] + 1, self.cells[1] + 1]
+    }
+
+    /// The time the surface was sampled at, s.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Whether velocities were sampled.
+    pub fn has_velocity(&self) -> bool {
+        self.velocity.is_some()
+    }
+
+    #[inline]
+    fn place(&self, x: f64, z: f64) -> Place {
+        let gx = ((x - self.origin[0]) / self.spacing).clamp(0.0, self.cells[0] as f64);
+        let gz = ((z - self.origin[1]) / self.spacing).clamp(0.0, self.cells[1] as f64);
+        let (i, j) = (
+            (gx as usize).min(self.cells[0] - 1),
+            (gz as usize).min(self.cells[1] - 1),
+        );
+        Place {
+            cell: j * self.cells[0] + i,
+            u: gx - i as f64,
+            v: gz - j as f64,
+        }
+    }
+
+    /// Height (m) and slope `(∂f/∂x, ∂f/∂z)` at `(x, z)`, in one read.
+    #[inline]
+    pub fn height_slope(&self, x: f64, z: f64) -> (f64, [f64; 2]) {
+        let Place { cell, u, v } = self.place(x, z);
+        let a = &self.coefficients[cell];
+        // c_p(v) = Σ_q a_pq v^q and its derivative, then Horner in u.
+        let c = |p: usize| ((a[p][3] * v + a[p][2]) * v + a[p][1]) * v + a[p][0];
+        let dc = |p: usize| (3.0 * a[p][3] * v + 2.0 * a[p][2]) * v + a[p][1];
+        let (c0, c1, c2, c3) = (c(0), c(1), c(2), c(3));
+        let h = ((c3 * u + c2) * u + c1) * u + c0;
+        let hu = (3.0 * c3 * u + 2.0 * c2) * u + c1;
+        let hv = ((dc(3) * u + dc(2)) * u + dc(1)) * u + dc(0);
+        let inv = 1.0 / self.spacing;
+        (h, [hu * inv, hv * inv])
+    }
+
+    /// Fluid velocity at `p` (m/s): trilinear in the sampled grid, clamped
+    /// to it; zero when velocities were not sampled.
+    #[inline]
+    pub fn velocity_at(&self, p: &Vector3<f64>) -> Vector3<f64> {
+        let Some(g) = &self.velocity else {
+            return Vector3::zeros();
+        };
+        let [nx, ny, nz] = g.nodes;
+        let axis = |q: f64, n: usize| -> (usize, usize, f64) {
+            let f = q.clamp(0.0, (n - 1) as f64);
+            let i = (f as usize).min(n.saturating_sub(2));
+            (i, (i + 1).min(n - 1), f - i as f64)
+        };
+        let (i0, i1, fx) = axis((p.x - self.origin[0]) / self.spacing, nx);
+        let (k0, k1, fz) = axis((p.z - self.origin[1]) / self.spacing, nz);
+        let (l0, l1, fy) = axis((p.y - g.y0) / g.dy, ny);
+        let at = |i: usize, l: usize, k: usize| Vector3::from(g.values[(l * nz + k) * nx + i]);
+        let lerp = |a: Vector3<f64>, b: Vector3<f64>, f: f64| a + (b - a) * f;
+        let layer = |l: usize| {
+            lerp(
+                lerp(at(i0, l, k0), at(i1, l, k0), fx),
+                lerp(at(i0, l, k1), at(i1, l, k1), fx),
+                fz,
+            )
+        };
+        lerp(layer(l0), layer(l1), fy)
+    }
+}
+
+impl Surface for SurfacePatch {
+    fn height(&self, x: f64, z: f64, _t: f64) -> f64 {
+        self.height_slope(x, z).0
+    }
+    fn velocity(&self, p: &Point3<f64>, _t: f64) -> Vector3<f64> {
+        self.velocity_at(&p.coords)
+    }
+    fn height_bounds(&self, _t: f64) -> Option<(f64, f64)> {
+        Some(self.bounds)
+    }
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+    fn slope(&self, x: f64, z: f64, _t: f64, _hint: &[f64; 2]) -> [f64; 2] {
+        self.height_slope(x, z).1
+    }
+}
