@@ -253,6 +253,7 @@ pub fn compute(quick: bool, out: &Path, mut gpu: Option<&mut Gpu>) -> Result<Rep
         rows,
         tiled_speedup,
         sweeps,
+        sea: super::sea::sea_rows(if quick { 128 } else { 1024 }, plan.runs)?,
         files: Vec::new(),
         seconds: 0.0,
         adapter: None,

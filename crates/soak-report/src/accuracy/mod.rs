@@ -13,7 +13,9 @@
 //! same mesh), for texel sampling with moment matching (the default) and at
 //! plain texel centres (the thesis), beside the median time per evaluation of
 //! each path: per-texel sums, tiled sums, exact clipping, the per-triangle
-//! game baseline; GPU is a column filled with the `gpu` feature.
+//! game baseline; GPU is a column filled with the `gpu` feature. The sea
+//! rows put the sampled read of a Gerstner sea against the exact inversion
+//! at every texel, per sampling setting.
 //!
 //! ```no_run
 //! use soak_report::accuracy::{compute, markdown, text_table};
@@ -29,6 +31,7 @@ mod error;
 mod figures;
 mod measure;
 mod report;
+mod sea;
 mod table;
 mod timing;
 
@@ -36,4 +39,5 @@ pub use error::AccuracyError;
 pub use figures::{cost_figure, sphere_figure, write_figures};
 pub use measure::compute;
 pub use report::{Curve, Report, Row, Speedup, Sweep};
+pub use sea::{SeaRow, swell};
 pub use table::{markdown, text_table};

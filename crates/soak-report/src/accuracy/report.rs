@@ -123,6 +123,8 @@ pub struct Report {
     pub tiled_speedup: Vec<Speedup>,
     /// The curves behind the figures.
     pub sweeps: Vec<Sweep>,
+    /// The sampled sea against the exact inversion, per sampling setting.
+    pub sea: Vec<super::sea::SeaRow>,
     /// Files written.
     pub files: Vec<PathBuf>,
     /// Wall time of the whole run, s.

@@ -1,0 +1,195 @@
+//! The sea rows: what the sampled read of a Gerstner sea
+//! ([`SeaSampling::PerWavelength`]) costs in accuracy and saves in time,
+//! against the exact inversion of the Gerstner map at every texel (the
+//! reference), per knob setting.
+
+use std::hint::black_box;
+
+use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use serde::Serialize;
+use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
+use soak_hydro::{
+    BodyState, Gerstner, GerstnerWave, HydroOptions, MassModel, SeaSampling, SurfacePatch, Water, evaluate,
+    sampled_water,
+};
+
+use super::AccuracyError;
+use super::cases::DENSITY;
+use super::timing::per_call_ms;
+
+/// One mesh at one atlas resolution and one sampling setting.
+#[derive(Clone, Debug, Serialize)]
+pub struct SeaRow {
+    /// Mesh name.
+    pub mesh: String,
+    /// Texture side, texels.
+    pub resolution: u32,
+    /// Nodes per shortest wavelength.
+    pub per_wavelength: f64,
+    /// Node spacing, m.
+    pub spacing: f64,
+    /// Nodes of the body's patch (x × z), at the first pose.
+    pub nodes: [usize; 2],
+    /// Worst |V − V_exact| / V_body over the poses.
+    pub volume_error: f64,
+    /// Worst |C_B − C_B,exact| / bounding diameter over the poses.
+    pub cob_error: f64,
+    /// Worst |τ − τ_exact| / (ρ g V_body × bounding diameter) (Archimedes'
+    /// torque, slope term included) over the poses.
+    pub torque_error: f64,
+    /// Sampled evaluation (sampling included), ms (median).
+    pub sampled_ms: f64,
+    /// Exact inversion at every texel, ms (median).
+    pub exact_ms: f64,
+    /// The same body at the same pose on calm water (planar kernel), ms.
+    pub plane_ms: f64,
+}
+
+/// The two-wave swell of `data/scenes/buoy_on_waves.toml`.
+pub fn swell() -> Result<Water, AccuracyError> {
+    let waves = vec![
+        GerstnerWave {
+            amplitude: 0.25,
+            wavelength: 9.0,
+            direction_deg: 0.0,
+            steepness: 0.6,
+            phase: 0.0,
+        },
+        GerstnerWave {
+            amplitude: 0.10,
+            wavelength: 4.0,
+            direction_deg: 35.0,
+            steepness: 0.4,
+            phase: 1.0,
+        },
+    ];
+    let sea =
+        Gerstner::new(0.0, waves, soak_hydro::STANDARD_GRAVITY).map_err(soak_hydro::HydroError::from)?;
+    Ok(Water::new(sea))
+}
+
+/// Six poses across the swell, at several places, heights, tilts and times.
+fn poses() -> Vec<(BodyState, f64)> {
+    (0..6)
+        .map(|k| {
+            let k = k as f64;
+            let pose = Isometry3::from_parts(
+                Vector3::new(0.9 * k - 2.0, 0.03 * k - 0.2, 0.6 - 0.7 * k).into(),
+                UnitQuaternion::from_euler_angles(0.3, 0.5 * k, 0.1),
+            );
+            (BodyState::at_rest(pose), 1.3 * k)
+        })
+        .collect()
+}
+
+/// The sea rows for the sphere, the box and the boat at `resolution`, at
+/// 4, 8, 16 (the default) and 32 nodes per shortest wavelength; `runs`
+/// timed samples per path.
+pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, AccuracyError> {
+    let water = swell()?;
+    let calm = Water::calm(0.0);
+    let meshes: [(&str, Mesh); 3] = [
+        ("sphere 64×32", builtin::sphere(0.5, 64, 32)),
+        ("box 1×0.6×0.8", builtin::cuboid(1.0, 0.6, 0.8)),
+        ("boat 4×1.2×0.6", builtin::boat(4.0, 1.2, 0.6)),
+    ];
+    let mut rows = Vec::new();
+    for (name, mesh) in meshes {
+        let atlas = Atlas::bake(&mesh, BakeOptions::square(resolution))?;
+        let mass = MassModel::Solid { density: DENSITY }.mass_properties(&atlas)?;
+        let volume = mesh.volume();
+        let diameter = 2.0 * atlas.bounding_radius();
+        let weight = water.density * water.gravity * volume;
+        let exact = HydroOptions {
+            sea: SeaSampling::Exact,
+            ..HydroOptions::default()
+        };
+        let reference = poses()
+            .into_iter()
+            .map(|(s, t)| evaluate(&atlas, &water, &s, &mass, t, &exact))
+            .collect::<Result<Vec<_>, _>>()?;
+        for per in [4.0, 8.0, 16.0, 32.0] {
+            let options = HydroOptions {
+                sea: SeaSampling::PerWavelength(per),
+                ..HydroOptions::default()
+            };
+            let mut errors = [0.0f64; 3];
+            for ((state, t), e) in poses().into_iter().zip(&reference) {
+                let s = evaluate(&atlas, &water, &state, &mass, t, &options)?;
+                errors[0] = errors[0].max((s.submerged_volume - e.submerged_volume).abs() / volume);
+                errors[1] = errors[1].max((s.center_of_buoyancy - e.center_of_buoyancy).norm() / diameter);
+                errors[2] =
+                    errors[2].max((s.buoyancy.torque - e.buoyancy.torque).norm() / (weight * diameter));
+            }
+            let (state, t) = poses()[0];
+            let patch = sampled_water(&atlas, &water, &state, t, &options)?;
+            let patch = patch
+                .as_ref()
+                .and_then(|w| w.surface.as_any())
+                .and_then(|s| s.downcast_ref::<SurfacePatch>());
+            let (spacing, nodes) = patch.map_or((f64::NAN, [0, 0]), |p| (p.spacing(), p.nodes()));
+            let [sampled_ms, exact_ms, plane_ms] = per_call_ms(
+                runs,
+                [
+                    &mut || {
+                        black_box(evaluate(&atlas, &water, &state, &mass, t, &options).ok());
+                    },
+                    &mut || {
+                        black_box(evaluate(&atlas, &water, &state, &mass, t, &exact).ok());
+                    },
+                    &mut || {
+                        black_box(evaluate(&atlas, &calm, &state, &mass, t, &options).ok());
+                    },
+                ],
+            );
+            rows.push(SeaRow {
+                mesh: name.to_string(),
+                resolution,
+                per_wavelength: per,
+                spacing,
+                nodes,
+                volume_error: errors[0],
+                cob_error: errors[1],
+                torque_error: errors[2],
+                sampled_ms,
+                exact_ms,
+                plane_ms,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+/// The sea rows as lines of a table (header first), for text and markdown.
+pub(super) fn sea_cells(rows: &[SeaRow]) -> Vec<[String; 10]> {
+    let mut all = vec![
+        [
+            "mesh",
+            "atlas",
+            "nodes/λ",
+            "spacing",
+            "volume err",
+            "CoB err",
+            "torque err",
+            "sampled",
+            "exact",
+            "plane",
+        ]
+        .map(String::from),
+    ];
+    for r in rows {
+        all.push([
+            r.mesh.clone(),
+            format!("{}²", r.resolution),
+            format!("{}", r.per_wavelength),
+            format!("{:.3} m", r.spacing),
+            format!("{:.1e}", r.volume_error),
+            format!("{:.1e}", r.cob_error),
+            format!("{:.1e}", r.torque_error),
+            format!("{:.3} ms", r.sampled_ms),
+            format!("{:.3} ms", r.exact_ms),
+            format!("{:.3} ms", r.plane_ms),
+        ]);
+    }
+    all
+}
