@@ -526,13 +526,19 @@ impl<'a> DragWalk<'a> {
                 // The kernel takes the smaller side: the texels facing the
                 // flow, or where most of the tile does, the others out of
                 // its closed form.
+                // The tile's skin friction is in its closed form already.
                 let ti = tiles.start;
                 let quadratic = self.mostly_facing(ti);
                 if quadratic {
                     self.quadratic.push(prefix, tiles);
                 }
-                self.texels(
-                    ti,
+                let (start, end) = self.tiled.tiles[ti].range;
+                let p = LocalDrag { lin: 0.0, ..self.p };
+                add_drag_texels(
+                    &mut self.acc,
+                    self.atlas,
+                    start as usize..end as usize,
+                    &p,
                     Added {
                         linear: true,
                         quadratic,
@@ -570,9 +576,8 @@ impl<'a> DragWalk<'a> {
     /// Whether the texels of tile `ti` face the flow more than not.
     fn mostly_facing(&self, ti: usize) -> bool {
         let prefix = &self.tiled.drag_prefix;
-        let mut m = DragMoments::default();
-        m.add_difference(&prefix[ti + 1], &prefix[ti]);
-        m.facing(&self.p) > 0.0
+        let (to, from) = (&prefix[ti + 1].quadratic, &prefix[ti].quadratic);
+        (0..6).map(|j| (to[j][0] - from[j][0]) * self.p.w[j]).sum::<f64>() > 0.0
     }
 
     /// The per-texel kernel over tile `ti`.

@@ -219,7 +219,8 @@ fn whole_bodies_match_the_reference() {
         ("cuboid", body(&builtin::cuboid(1.0, 0.6, 0.4), 96)),
         ("boat", body(&builtin::boat(4.0, 1.2, 0.6), 128)),
     ];
-    let waters: Vec<(&str, fn() -> Water)> = vec![
+    type NamedWater = (&'static str, fn() -> Water);
+    let waters: Vec<NamedWater> = vec![
         ("calm", || Water::calm(0.0)),
         ("current", || {
             Water::new(Plane::horizontal(0.0).with_current(Vector3::new(0.8, 0.0, -0.5)))

@@ -363,10 +363,10 @@ impl DragSums {
                 _ => 0.0,
             }
         };
-        for i in 0..6 {
-            let wg = w * g[i];
-            for j in i..6 {
-                let e = iso(i, j) - wg * g[j];
+        for (i, gi) in g.iter().enumerate() {
+            let wg = w * gi;
+            for (j, gj) in g.iter().enumerate().skip(i) {
+                let e = iso(i, j) - wg * gj;
                 self.k[(i, j)] += e;
                 if i != j {
                     self.k[(j, i)] += e;
