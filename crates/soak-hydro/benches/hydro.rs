@@ -3,7 +3,8 @@
 //! read of the same atlas (the bandwidth floor), exact clipping and the
 //! per-triangle baseline; and on a Gerstner sea, per texel, in Archimedes
 //! mode (which also takes the surface's slope for its torque) and in
-//! pressure mode; the boat at 1024², per texel and tiled; the sphere at
+//! pressure mode; the sphere moving with drag, per texel and tiled, at
+//! 1024² and 128²; the boat at 1024², per texel and tiled; the sphere at
 //! 2048², beyond the cache.
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -11,8 +12,8 @@ use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::reference::{self, ClipPlane};
 use soak_hydro::{
-    BodyState, BuoyancyMode, Gerstner, GerstnerWave, HydroOptions, MassModel, MassProperties, TiledAtlas,
-    Water, evaluate, streaming_read,
+    BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HydroOptions, MassModel, MassProperties,
+    TiledAtlas, Water, evaluate, streaming_read,
 };
 
 /// `mesh` baked at `n`², and the mass properties of a solid of half the
@@ -63,6 +64,7 @@ fn hydro(c: &mut Criterion) {
     g.bench_function("tiled", |b| {
         b.iter(|| tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap())
     });
+    drag_rows(&mut g, &atlas, &tiled, &mass, &state);
     g.bench_function("exact_clipping", |b| {
         b.iter(|| reference::submerged_part(&mesh, &pose, &ClipPlane::horizontal(0.0)))
     });
@@ -95,6 +97,60 @@ fn hydro(c: &mut Criterion) {
             b.iter(|| evaluate(&atlas, &sea, &state, &mass, 0.0, &o).unwrap())
         });
     }
+    g.finish();
+}
+
+/// The same body moving (and spinning) through the water with quadratic
+/// drag and skin friction, per texel and tiled: against the rows without
+/// drag, what drag costs.
+fn drag_rows(
+    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    atlas: &Atlas,
+    tiled: &TiledAtlas,
+    mass: &MassProperties,
+    state: &BodyState,
+) {
+    let water = Water::calm(0.0);
+    let moving = BodyState {
+        linear_velocity: Vector3::new(0.7, -0.3, 0.2),
+        angular_velocity: Vector3::new(0.2, 0.5, -0.1),
+        ..*state
+    };
+    let opts = HydroOptions {
+        drag: Some(Drag {
+            coefficient: 0.8,
+            linear: 20.0,
+        }),
+        ..HydroOptions::default()
+    };
+    g.bench_function("per_texel_drag", |b| {
+        b.iter(|| evaluate(atlas, &water, &moving, mass, 0.0, &opts).unwrap())
+    });
+    g.bench_function("tiled_drag", |b| {
+        b.iter(|| tiled.evaluate(atlas, &water, &moving, mass, 0.0, &opts).unwrap())
+    });
+}
+
+/// The sphere of [`hydro`] at 128² (8,000 texels, the resolution of the
+/// Rapier worlds' bodies), with and without drag.
+fn small(c: &mut Criterion) {
+    let (atlas, mass) = baked(&builtin::sphere(0.5, 64, 32), 128);
+    let tiled = TiledAtlas::new(&atlas);
+    let pose = Isometry3::from_parts(
+        Vector3::new(0.0, 0.1, 0.0).into(),
+        UnitQuaternion::from_euler_angles(0.3, 0.2, 0.1),
+    );
+    let state = BodyState::at_rest(pose);
+    let water = Water::calm(0.0);
+    let opts = HydroOptions::default();
+    let mut g = c.benchmark_group("sphere_128");
+    g.bench_function("per_texel", |b| {
+        b.iter(|| evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap())
+    });
+    g.bench_function("tiled", |b| {
+        b.iter(|| tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap())
+    });
+    drag_rows(&mut g, &atlas, &tiled, &mass, &state);
     g.finish();
 }
 
@@ -148,5 +204,5 @@ fn boat(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, hydro, boat, beyond_the_cache);
+criterion_group!(benches, hydro, small, boat, beyond_the_cache);
 criterion_main!(benches);

@@ -7,13 +7,16 @@ use soak_bake::Atlas;
 
 use crate::error::HydroError;
 use crate::hydrostatics::body_state::BodyState;
-use crate::hydrostatics::evaluation::evaluate;
+use crate::hydrostatics::drag_kernel::{
+    Added, DragMoments, Facing, HBox, LocalDrag, add_drag_texels, uniform_velocity,
+};
+use crate::hydrostatics::evaluation::{drag_sums, evaluate};
 use crate::hydrostatics::finish::finish;
 use crate::hydrostatics::forces::HydroForces;
 use crate::hydrostatics::frame::{Frame, texel};
 use crate::hydrostatics::options::{BuoyancyMode, HydroOptions};
 use crate::hydrostatics::planar_kernel::{PlanarTexels, add_planar_ranges};
-use crate::hydrostatics::sums::{BuoyancySums, DragSums};
+use crate::hydrostatics::sums::{BuoyancySums, DragAcc, DragSums};
 use crate::mass::MassProperties;
 use crate::parallel::par_map;
 use crate::water::Water;
@@ -108,6 +111,8 @@ impl Sums {
 #[derive(Clone, Debug)]
 struct Group {
     bounds: Bounds,
+    /// A box around the drag's `h = (A, x × A)` of the group's texels.
+    facing: HBox,
     tiles: std::ops::Range<usize>,
 }
 
@@ -142,6 +147,11 @@ pub struct TiledAtlas {
     /// `prefix[i]` holds the sums of the moments of `tiles[..i]`: a run of
     /// tiles under water takes its sums from two entries, however long.
     prefix: Vec<Sums>,
+    /// Per tile, a box around the drag's `h = (A, x × A)` of its texels:
+    /// whether all of them face the flow, none does, or some may.
+    facing: Vec<HBox>,
+    /// `drag_prefix[i]` holds the sums of the drag moments of `tiles[..i]`.
+    drag_prefix: Vec<DragMoments>,
 }
 
 /// How many tiles of each kind the last evaluation met.
@@ -164,9 +174,12 @@ impl TiledAtlas {
             .map(|t| {
                 let r = t.range();
                 let mut m = TileMoments::empty((t.start, t.end));
+                let (mut dm, mut hbox) = (DragMoments::default(), HBox::default());
                 let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
                 for i in r.clone() {
                     let (x, a) = texel(atlas, i);
+                    dm.add_texel(&x, &a);
+                    hbox.add_texel(&x, &a);
                     lo = lo.inf(&x);
                     hi = hi.sup(&x);
                     m.s0 += a;
@@ -182,7 +195,7 @@ impl TiledAtlas {
                 m.radius = r
                     .map(|i| (texel(atlas, i).0 - m.centre).norm())
                     .fold(0.0, f64::max);
-                m
+                (m, dm, hbox)
             })
             .collect::<Vec<_>>();
         // Group the tiles by the block of GROUP × GROUP tiles their first
@@ -194,7 +207,16 @@ impl TiledAtlas {
             (u32::from(y) / span, u32::from(x) / span)
         };
         let mut tiles = tiles;
-        tiles.sort_by_key(|m| (group_of(m), m.range.0));
+        tiles.sort_by_key(|(m, _, _)| (group_of(m), m.range.0));
+        let mut drag_prefix = Vec::with_capacity(tiles.len() + 1);
+        let mut running = DragMoments::default();
+        drag_prefix.push(running);
+        for (_, dm, _) in &tiles {
+            running.add(dm);
+            drag_prefix.push(running);
+        }
+        let facing: Vec<HBox> = tiles.iter().map(|t| t.2).collect();
+        let tiles: Vec<TileMoments> = tiles.into_iter().map(|t| t.0).collect();
         let mut groups = Vec::new();
         let mut start = 0;
         while start < tiles.len() {
@@ -205,6 +227,10 @@ impl TiledAtlas {
             for m in members {
                 lo = lo.inf(&(m.centre - m.half_extent));
                 hi = hi.sup(&(m.centre + m.half_extent));
+            }
+            let mut group_facing = HBox::default();
+            for b in &facing[start..end] {
+                group_facing.add(b);
             }
             let centre = (lo + hi) * 0.5;
             let radius = members
@@ -217,6 +243,7 @@ impl TiledAtlas {
                     radius,
                     half_extent: (hi - lo) * 0.5,
                 },
+                facing: group_facing,
                 tiles: start..end,
             });
             start = end;
@@ -238,6 +265,8 @@ impl TiledAtlas {
             tiles,
             groups,
             prefix,
+            facing,
+            drag_prefix,
         }
     }
 
@@ -278,15 +307,55 @@ impl TiledAtlas {
         water.validate()?;
         state.check()?;
         let frame = Frame::new(atlas, water, state, mass, t);
-        let Some((n, offset)) = frame.plane else {
+        if frame.plane.is_none() {
             return evaluate(atlas, water, state, mass, t, options).map(|f| (f, TileCounts::default()));
-        };
+        }
+        let (sums, drag, counts) = self.sums(atlas, water, state, &frame, t, options);
+        Ok((
+            finish(&frame, water, state, mass, &sums, drag.as_ref(), options),
+            counts,
+        ))
+    }
+
+    /// The buoyancy and drag sums of [`TiledAtlas::evaluate_counted`]
+    /// under planar water (`frame.plane` is some).
+    pub(crate) fn sums(
+        &self,
+        atlas: &Atlas,
+        water: &Water,
+        state: &BodyState,
+        frame: &Frame,
+        t: f64,
+        options: &HydroOptions,
+    ) -> (BuoyancySums, Option<DragSums>, TileCounts) {
+        let (n, offset) = frame.plane.expect("planar water");
         let rot = frame.rot;
         // d(x) = α + β·x in object coordinates relative to the atlas origin.
         let alpha = (offset - n.dot(&frame.ow)) / n.y;
         let beta = -(rot.transpose() * n) / n.y;
         let bn = beta.norm();
         let g = rot.transpose() * Vector3::y();
+        // Drag in object axes about the atlas origin, where the fluid moves
+        // at the same velocity everywhere; elsewhere per texel below.
+        let c = rot.transpose() * (frame.com - frame.ow);
+        let uniform = options
+            .drag
+            .and_then(|d| uniform_velocity(water).map(|u| (d, u)))
+            .map(|(d, u)| {
+                let p = LocalDrag::new(
+                    &d,
+                    water.density,
+                    alpha,
+                    &beta,
+                    &rot,
+                    &c,
+                    &state.linear_velocity,
+                    &state.angular_velocity,
+                    &u,
+                );
+                (p, u)
+            });
+        let local_drag = uniform.map(|(p, _)| p).filter(|p| p.quadratic() || p.lin > 0.0);
 
         // A tile (or group) lies wholly under water when its bounding
         // sphere or box does, wholly above when either does: the depth
@@ -307,25 +376,9 @@ impl TiledAtlas {
         let pressure = options.buoyancy == BuoyancyMode::Pressure;
         let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
         let work = |c: usize| {
-            let mut drag = options.drag.map(|_| DragSums::default());
+            let mut drag = local_drag.map(|p| DragWalk::new(self, atlas, p));
             let mut counts = TileCounts::default();
             let mut local = BuoyancySums::default(); // object frame
-            let add_drag = |start: usize, end: usize, ds: &mut DragSums| {
-                let Some(coefficients) = options.drag.as_ref() else {
-                    return;
-                };
-                for i in start..end {
-                    let (x, a) = texel(atlas, i);
-                    let d = alpha + beta.dot(&x);
-                    if d > 0.0 {
-                        let p = frame.ow + rot * x;
-                        let rc = p - frame.com;
-                        let u = water.surface.velocity(&nalgebra::Point3::from(p), t);
-                        let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
-                        ds.add_texel(coefficients, water.density, &rc, &(rot * a), &v, &u);
-                    }
-                }
-            };
             // Runs of consecutive tiles and groups wholly under water take
             // their moments from the running sums, and their sum takes one
             // closed form. A cut tile whose centre is under water joins
@@ -352,6 +405,9 @@ impl TiledAtlas {
                     Side::Submerged => {
                         counts.submerged += members.len();
                         submerge(members.clone(), &mut under);
+                        if let Some(d) = drag.as_mut() {
+                            d.submerged(members.clone(), &group.facing);
+                        }
                     }
                     Side::Cut { .. } => {
                         for ti in members.clone() {
@@ -360,6 +416,9 @@ impl TiledAtlas {
                                 Side::Submerged => {
                                     counts.submerged += 1;
                                     submerge(ti..ti + 1, &mut under);
+                                    if let Some(d) = drag.as_mut() {
+                                        d.submerged(ti..ti + 1, &self.facing[ti]);
+                                    }
                                 }
                                 Side::Cut { centre_wet } => {
                                     counts.cut += 1;
@@ -370,15 +429,12 @@ impl TiledAtlas {
                                     } else {
                                         cut.push(start as usize..end as usize);
                                     }
+                                    if let Some(d) = drag.as_mut() {
+                                        d.cut(ti, centre_wet);
+                                    }
                                 }
                             }
                         }
-                    }
-                }
-                // Drag is per texel wherever the group is wet.
-                if let Some(ds) = drag.as_mut() {
-                    for tile in &self.tiles[members] {
-                        add_drag(tile.range.0 as usize, tile.range.1 as usize, ds);
                     }
                 }
             }
@@ -393,25 +449,184 @@ impl TiledAtlas {
                     add_planar_ranges(&mut local, atlas, &ranges, alpha, &beta, &g, pressure, side);
                 }
             }
-            (local.rotated(&rot), drag, counts)
+            (local.rotated(&rot), drag.map(DragWalk::finish), counts)
         };
-        let parts: Vec<(BuoyancySums, Option<DragSums>, TileCounts)> = par_map(n_chunks, work);
+        let parts: Vec<(BuoyancySums, Option<DragAcc>, TileCounts)> = par_map(n_chunks, work);
         let mut sums = BuoyancySums::default();
-        let mut drag = options.drag.map(|_| DragSums::default());
+        let mut acc = DragAcc::default();
         let mut counts = TileCounts::default();
         for (s, d, c) in parts {
             sums = sums + s;
-            if let (Some(acc), Some(d)) = (drag.as_mut(), d) {
-                *acc = *acc + d;
+            if let Some(d) = d {
+                acc += &d;
             }
             counts.submerged += c.submerged;
             counts.dry += c.dry;
             counts.cut += c.cut;
         }
-        Ok((
-            finish(&frame, water, state, mass, &sums, drag.as_ref(), options),
-            counts,
-        ))
+        let drag = options.drag.map(|d| match uniform {
+            Some((_, u)) => acc.system(&rot, &c, &u),
+            // The fluid's velocity varies: per texel, with it where it is.
+            None => drag_sums(atlas, water, state, frame, &d, t, 0..atlas.len()),
+        });
+        (sums, drag, counts)
+    }
+}
+
+/// The drag of one chunk of the tiled path's groups (object axes about the
+/// atlas origin): runs of tiles whose skin friction, or whose quadratic
+/// drag, takes the closed form of their moments, and the per-texel kernel
+/// for the rest.
+struct DragWalk<'a> {
+    tiled: &'a TiledAtlas,
+    atlas: &'a Atlas,
+    p: LocalDrag,
+    acc: DragAcc,
+    /// Tiles whose every texel adds its skin friction.
+    linear: MomentRun,
+    /// Tiles whose every texel adds `k_q h·w`.
+    quadratic: MomentRun,
+}
+
+impl<'a> DragWalk<'a> {
+    fn new(tiled: &'a TiledAtlas, atlas: &'a Atlas, p: LocalDrag) -> Self {
+        Self {
+            tiled,
+            atlas,
+            p,
+            acc: DragAcc::default(),
+            linear: MomentRun::default(),
+            quadratic: MomentRun::default(),
+        }
+    }
+
+    /// Tiles wholly under water, `facing` a box around their `h`.
+    fn submerged(&mut self, tiles: std::ops::Range<usize>, facing: &HBox) {
+        if self.p.lin > 0.0 {
+            self.linear.push(&self.tiled.drag_prefix, tiles.clone());
+        }
+        if self.p.quadratic() {
+            self.submerged_quadratic(tiles, facing);
+        }
+    }
+
+    /// The quadratic drag of tiles wholly under water.
+    fn submerged_quadratic(&mut self, tiles: std::ops::Range<usize>, facing: &HBox) {
+        let prefix = &self.tiled.drag_prefix;
+        match facing.facing(&self.p.w) {
+            Facing::All => self.quadratic.push(prefix, tiles),
+            Facing::None => {}
+            Facing::Mixed if tiles.len() > 1 => {
+                for ti in tiles {
+                    let facing = self.tiled.facing[ti];
+                    self.submerged_quadratic(ti..ti + 1, &facing);
+                }
+            }
+            Facing::Mixed => {
+                // The kernel takes the smaller side: the texels facing the
+                // flow, or where most of the tile does, the others out of
+                // its closed form.
+                // The tile's skin friction is in its closed form already.
+                let ti = tiles.start;
+                let quadratic = self.mostly_facing(ti);
+                if quadratic {
+                    self.quadratic.push(prefix, tiles);
+                }
+                let (start, end) = self.tiled.tiles[ti].range;
+                let p = LocalDrag { lin: 0.0, ..self.p };
+                add_drag_texels(
+                    &mut self.acc,
+                    self.atlas,
+                    start as usize..end as usize,
+                    &p,
+                    Added {
+                        linear: true,
+                        quadratic,
+                    },
+                );
+            }
+        }
+    }
+
+    /// A tile cut by the waterline, its centre under water or not.
+    fn cut(&mut self, ti: usize, centre_wet: bool) {
+        let prefix = &self.tiled.drag_prefix;
+        if centre_wet && self.p.lin > 0.0 {
+            self.linear.push(prefix, ti..ti + 1);
+        }
+        let quadratic = centre_wet
+            && self.p.quadratic()
+            && match self.tiled.facing[ti].facing(&self.p.w) {
+                Facing::All => true,
+                Facing::None => false,
+                Facing::Mixed => self.mostly_facing(ti),
+            };
+        if quadratic {
+            self.quadratic.push(prefix, ti..ti + 1);
+        }
+        self.texels(
+            ti,
+            Added {
+                linear: centre_wet,
+                quadratic,
+            },
+        );
+    }
+
+    /// Whether the texels of tile `ti` face the flow more than not.
+    fn mostly_facing(&self, ti: usize) -> bool {
+        let prefix = &self.tiled.drag_prefix;
+        let (to, from) = (&prefix[ti + 1].quadratic, &prefix[ti].quadratic);
+        (0..6).map(|j| (to[j][0] - from[j][0]) * self.p.w[j]).sum::<f64>() > 0.0
+    }
+
+    /// The per-texel kernel over tile `ti`.
+    fn texels(&mut self, ti: usize, added: Added) {
+        let (start, end) = self.tiled.tiles[ti].range;
+        add_drag_texels(
+            &mut self.acc,
+            self.atlas,
+            start as usize..end as usize,
+            &self.p,
+            added,
+        );
+    }
+
+    /// The chunk's sums.
+    fn finish(mut self) -> DragAcc {
+        let prefix = &self.tiled.drag_prefix;
+        self.linear.close(prefix).add_linear(&mut self.acc, &self.p);
+        self.quadratic.close(prefix).add_quadratic(&mut self.acc, &self.p);
+        self.acc
+    }
+}
+
+/// Drag moments of runs of consecutive tiles, from the running sums.
+#[derive(Default)]
+struct MomentRun {
+    open: Option<std::ops::Range<usize>>,
+    sum: DragMoments,
+}
+
+impl MomentRun {
+    /// Adds `tiles`, extending the open run where they follow it.
+    fn push(&mut self, prefix: &[DragMoments], tiles: std::ops::Range<usize>) {
+        match self.open.as_mut() {
+            Some(open) if open.end == tiles.start => open.end = tiles.end,
+            _ => {
+                if let Some(done) = self.open.replace(tiles) {
+                    self.sum.add_difference(&prefix[done.end], &prefix[done.start]);
+                }
+            }
+        }
+    }
+
+    /// The sums of every tile pushed.
+    fn close(mut self, prefix: &[DragMoments]) -> DragMoments {
+        if let Some(done) = self.open.take() {
+            self.sum.add_difference(&prefix[done.end], &prefix[done.start]);
+        }
+        self.sum
     }
 }
 

@@ -5,12 +5,13 @@ use nalgebra::{Point3, Vector3};
 use soak_bake::Atlas;
 
 use super::body_state::BodyState;
+use super::drag_kernel::{Added, LocalDrag, add_drag_texels, uniform_velocity};
 use super::finish::finish;
 use super::forces::HydroForces;
 use super::frame::{Frame, texel};
 use super::options::{BuoyancyMode, Drag, HydroOptions, SeaSampling};
 use super::planar_kernel::{PlanarTexels, add_planar_ranges};
-use super::sums::{BuoyancySums, DragSums};
+use super::sums::{BuoyancySums, DragAcc, DragSums};
 use crate::error::{HydroError, WaterError};
 use crate::mass::{CHUNK, MassProperties, chunked_sum};
 use crate::water::{Surface, SurfaceKind, SurfacePatch, Water};
@@ -336,6 +337,11 @@ pub fn sampled_water(
 }
 
 /// Drag sums over the submerged texels of `range`.
+///
+/// Under planar water with a uniform current the texels add to the
+/// symmetric sums of [`DragAcc`] in object axes, turned into the system
+/// once; elsewhere each texel adds its own (with the fluid's velocity
+/// where it is).
 pub(crate) fn drag_sums(
     atlas: &Atlas,
     water: &Water,
@@ -346,6 +352,32 @@ pub(crate) fn drag_sums(
     range: std::ops::Range<usize>,
 ) -> DragSums {
     let start = range.start;
+    if let (Some((alpha, beta, _)), Some(u)) = (frame.local_plane, uniform_velocity(water)) {
+        let c = frame.rot.transpose() * (frame.com - frame.ow);
+        let p = LocalDrag::new(
+            drag,
+            water.density,
+            alpha,
+            &beta,
+            &frame.rot,
+            &c,
+            &state.linear_velocity,
+            &state.angular_velocity,
+            &u,
+        );
+        let acc = chunked_sum(range.len(), DragAcc::default(), |r| {
+            let mut acc = DragAcc::default();
+            add_drag_texels(
+                &mut acc,
+                atlas,
+                r.start + start..r.end + start,
+                &p,
+                Added::default(),
+            );
+            acc
+        });
+        return acc.system(&frame.rot, &c, &u);
+    }
     chunked_sum(range.len(), DragSums::default(), |r| {
         let mut s = DragSums::default();
         for i in r.start + start..r.end + start {

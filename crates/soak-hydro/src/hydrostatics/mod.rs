@@ -10,6 +10,8 @@
 //! - `sums`: the per-texel sums (buoyancy, Archimedes' slope terms, drag).
 //! - `frame`: the frame of one evaluation, depths and texel reads.
 //! - `planar_kernel`: the buoyancy sums under planar water, portable and AVX2.
+//! - `drag_kernel`: the drag sums under planar water with a uniform
+//!   current, per texel and as per-tile moments.
 //! - `slope_torque`: Archimedes' torque as the derivative of the potential.
 //! - `deep_volume`: the volume of a body wholly under a surface that is not
 //!   a plane.
@@ -20,6 +22,9 @@
 
 pub(crate) mod body_state;
 pub(crate) mod deep_volume;
+pub(crate) mod drag_kernel;
+#[cfg(test)]
+mod drag_tests;
 pub(crate) mod evaluation;
 pub(crate) mod finish;
 pub(crate) mod forces;

@@ -169,14 +169,148 @@ impl std::ops::Add for DragSums {
     }
 }
 
-#[inline]
-fn skew(r: &Vector3<f64>) -> Matrix3<f64> {
-    r.cross_matrix()
+/// Index of entry `(i, j)`, `i ≤ j`, of a symmetric 6×6 matrix stored as
+/// its upper triangle row by row (21 entries).
+pub(crate) const fn upper6(i: usize, j: usize) -> usize {
+    i * 6 - i * (i + 1) / 2 + j
+}
+
+/// The symmetric 6×6 matrix stored as its upper triangle by [`upper6`].
+pub(crate) fn from_upper6(u: &[f64; 21]) -> Matrix6<f64> {
+    Matrix6::from_fn(|i, j| u[upper6(i.min(j), i.max(j))])
+}
+
+/// The drag system of a set of texels in symmetric running sums, in any
+/// frame and about any origin (the frame the texels' `r` and `a` are
+/// taken in).
+///
+/// Per texel, `K_i = s I − w a aᵀ` with `s = k_q + λ a`, `w = λ / a` (`k_q`
+/// the quadratic drag's `½ ρ C_d max(a·v, 0)`, `λ` the skin friction, `a`
+/// the area `|A|`), and the texel's velocity is `J q` with
+/// `J = [I, −[r]×]`, so `Jᵀ K_i J = s [[I, −[r]×], [[r]×, |r|² I − r rᵀ]]
+/// − w g gᵀ` with `g = Jᵀ A = (A, r × A)`: the whole system takes the ten
+/// sums `Σ s`, `Σ s r`, `Σ s r rᵀ` and the 21 of the symmetric `Σ w g gᵀ`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct DragAcc {
+    /// `Σ s`, `Σ s r` (3), `Σ s r rᵀ` (xx, yy, zz, xy, yz, zx).
+    pub iso: [f64; 10],
+    /// `Σ w g gᵀ`, its upper triangle by [`upper6`].
+    pub gg: [f64; 21],
+}
+
+impl Default for DragAcc {
+    fn default() -> Self {
+        Self {
+            iso: [0.0; 10],
+            gg: [0.0; 21],
+        }
+    }
+}
+
+impl std::ops::Add for DragAcc {
+    type Output = Self;
+    fn add(mut self, o: Self) -> Self {
+        self += &o;
+        self
+    }
+}
+
+impl std::ops::AddAssign<&DragAcc> for DragAcc {
+    fn add_assign(&mut self, o: &DragAcc) {
+        for (x, y) in self.iso.iter_mut().zip(&o.iso) {
+            *x += y;
+        }
+        for (x, y) in self.gg.iter_mut().zip(&o.gg) {
+            *x += y;
+        }
+    }
+}
+
+impl DragAcc {
+    /// Adds `s (1, r, r rᵀ)`.
+    #[inline(always)]
+    pub(crate) fn add_iso(&mut self, s: f64, r: &[f64; 3]) {
+        let sr = [s * r[0], s * r[1], s * r[2]];
+        let t = &mut self.iso;
+        t[0] += s;
+        t[1] += sr[0];
+        t[2] += sr[1];
+        t[3] += sr[2];
+        t[4] += sr[0] * r[0];
+        t[5] += sr[1] * r[1];
+        t[6] += sr[2] * r[2];
+        t[7] += sr[0] * r[1];
+        t[8] += sr[1] * r[2];
+        t[9] += sr[2] * r[0];
+    }
+
+    /// Adds `w g gᵀ`.
+    #[inline(always)]
+    pub(crate) fn add_rank1(&mut self, w: f64, g: &[f64; 6]) {
+        let mut k = 0;
+        for i in 0..6 {
+            let wg = w * g[i];
+            for gj in &g[i..] {
+                self.gg[k] += wg * gj;
+                k += 1;
+            }
+        }
+    }
+
+    /// `K = Σ Jᵀ K_i J` about the origin of the texels' frame.
+    pub(crate) fn k(&self) -> Matrix6<f64> {
+        let [s, sx, sy, sz, xx, yy, zz, xy, yz, zx] = self.iso;
+        let sr = Vector3::new(sx, sy, sz).cross_matrix();
+        let rr = Matrix3::new(xx, xy, zx, xy, yy, yz, zx, yz, zz);
+        let mut k = -from_upper6(&self.gg);
+        {
+            let mut v = k.fixed_view_mut::<3, 3>(0, 0);
+            v += Matrix3::identity() * s;
+        }
+        {
+            let mut v = k.fixed_view_mut::<3, 3>(0, 3);
+            v -= sr;
+        }
+        {
+            let mut v = k.fixed_view_mut::<3, 3>(3, 0);
+            v += sr;
+        }
+        {
+            let mut v = k.fixed_view_mut::<3, 3>(3, 3);
+            v += Matrix3::identity() * (xx + yy + zz) - rr;
+        }
+        k
+    }
+
+    /// The drag system about the centre of mass in world axes, of sums
+    /// taken in object axes about the atlas origin: `rot` turns object
+    /// axes into the world's, `c` is the centre of mass from the atlas
+    /// origin (object axes), and the fluid moves at `u` (world, m/s)
+    /// everywhere, so that `b = Σ Jᵀ K_i u = K (u, 0)`.
+    ///
+    /// With `J` about the centre of mass `J_o [[I, [c]×], [0, I]]`, the
+    /// system about it is `T K_o Tᵀ` with `T = [[I, 0], [−[c]×, I]]`, and
+    /// in world axes `Q T K_o Tᵀ Qᵀ` with `Q = diag(rot, rot)`.
+    pub(crate) fn system(&self, rot: &Matrix3<f64>, c: &Vector3<f64>, u: &Vector3<f64>) -> DragSums {
+        let mut qt = Matrix6::zeros();
+        qt.fixed_view_mut::<3, 3>(0, 0).copy_from(rot);
+        qt.fixed_view_mut::<3, 3>(3, 3).copy_from(rot);
+        qt.fixed_view_mut::<3, 3>(3, 0)
+            .copy_from(&(-rot * c.cross_matrix()));
+        let k = qt * self.k() * qt.transpose();
+        // The same matrix to the last bit on either side of the diagonal.
+        let k = Matrix6::from_fn(|i, j| if i <= j { k[(i, j)] } else { k[(j, i)] });
+        let b = k.fixed_view::<6, 3>(0, 0) * u;
+        DragSums { k, b }
+    }
 }
 
 impl DragSums {
     /// Adds a submerged texel at `rc` from the centre of mass with world area
     /// vector `a`, relative velocity `vrel` and fluid velocity `u`.
+    ///
+    /// `K += Jᵀ K_i J` and `b += Jᵀ K_i u` with `J = [I, −[r]×]` and
+    /// `K_i = s I − w a aᵀ` (see [`DragAcc`]), in their symmetric forms.
     #[inline]
     pub(crate) fn add_texel(
         &mut self,
@@ -193,45 +327,55 @@ impl DragSums {
         } else {
             0.0
         };
-        let area = a.norm();
-        let mut ki = Matrix3::identity() * kq;
-        if drag.linear > 0.0 && area > 0.0 {
-            let n = a / area;
-            ki += (Matrix3::identity() - n * n.transpose()) * (drag.linear * area);
-        }
         if kq == 0.0 && drag.linear <= 0.0 {
             return;
         }
-        // Texel velocity = J q with J = [I, −[r]×]; K += Jᵀ K_i J, b += Jᵀ K_i u.
-        let s = skew(rc);
-        let kvv = ki;
-        let kvw = -ki * s;
-        let kwv = s * ki;
-        let kww = -s * ki * s;
-        {
-            let mut v = self.k.fixed_view_mut::<3, 3>(0, 0);
-            v += kvv;
+        let area = a.norm();
+        let (s, w) = if drag.linear > 0.0 && area > 0.0 {
+            (kq + drag.linear * area, drag.linear / area)
+        } else {
+            (kq, 0.0)
+        };
+        let r = rc;
+        let rr = r.norm_squared();
+        let g = [
+            a.x,
+            a.y,
+            a.z,
+            r.y * a.z - r.z * a.y,
+            r.z * a.x - r.x * a.z,
+            r.x * a.y - r.y * a.x,
+        ];
+        // s [[I, −[r]×], [[r]×, |r|² I − r rᵀ]] − w g gᵀ, upper triangle.
+        let iso = |i: usize, j: usize| -> f64 {
+            match (i, j) {
+                (0, 0) | (1, 1) | (2, 2) => s,
+                (0, 4) => s * r.z,
+                (0, 5) => -s * r.y,
+                (1, 3) => -s * r.z,
+                (1, 5) => s * r.x,
+                (2, 3) => s * r.y,
+                (2, 4) => -s * r.x,
+                (3..=5, 3..=5) => {
+                    let (p, q) = (i - 3, j - 3);
+                    s * (if p == q { rr } else { 0.0 } - r[p] * r[q])
+                }
+                _ => 0.0,
+            }
+        };
+        for (i, gi) in g.iter().enumerate() {
+            let wg = w * gi;
+            for (j, gj) in g.iter().enumerate().skip(i) {
+                let e = iso(i, j) - wg * gj;
+                self.k[(i, j)] += e;
+                if i != j {
+                    self.k[(j, i)] += e;
+                }
+            }
         }
-        {
-            let mut v = self.k.fixed_view_mut::<3, 3>(0, 3);
-            v += kvw;
-        }
-        {
-            let mut v = self.k.fixed_view_mut::<3, 3>(3, 0);
-            v += kwv;
-        }
-        {
-            let mut v = self.k.fixed_view_mut::<3, 3>(3, 3);
-            v += kww;
-        }
-        let f = ki * u;
-        {
-            let mut v = self.b.fixed_rows_mut::<3>(0);
-            v += f;
-        }
-        {
-            let mut v = self.b.fixed_rows_mut::<3>(3);
-            v += rc.cross(&f);
-        }
+        // K_i u = s u − w (a·u) a.
+        let f = s * u - (w * a.dot(u)) * a;
+        let rf = r.cross(&f);
+        self.b += Vector6::new(f.x, f.y, f.z, rf.x, rf.y, rf.z);
     }
 }

@@ -1,0 +1,434 @@
+//! The drag sums of every CPU path against the plain per-texel formula
+//! `K += Jᵀ K_i J`, `b += Jᵀ K_i u` with generic 3×3 products: texel by
+//! texel for random texels and velocities, and over whole bodies at many
+//! poses, velocities and currents for the per-texel and tiled paths.
+
+use nalgebra::{Isometry3, Matrix3, Matrix6, Point3, UnitQuaternion, Vector3, Vector6};
+use proptest::prelude::*;
+use soak_bake::{Atlas, BakeOptions, builtin};
+
+use super::body_state::BodyState;
+use super::drag_kernel::{Added, DragMoments, HBox, LocalDrag, add_drag_texels};
+use super::evaluation::{drag_sums, evaluate};
+use super::frame::{Frame, texel};
+use super::implicit_drag::implicit_drag;
+use super::options::{Drag, HydroOptions};
+use super::sums::{DragAcc, DragSums};
+use crate::mass::{MassModel, MassProperties};
+use crate::tiled::TiledAtlas;
+use crate::water::{Plane, Unbounded, Water};
+
+/// The reference: a submerged texel's drag as `Jᵀ K_i J` and `Jᵀ K_i u`
+/// with `K_i = k_q I + λ a (I − n nᵀ)` and `J = [I, −[r]×]`, in generic
+/// 3×3 products.
+fn reference_texel(
+    s: &mut DragSums,
+    drag: &Drag,
+    rho: f64,
+    rc: &Vector3<f64>,
+    a: &Vector3<f64>,
+    vrel: &Vector3<f64>,
+    u: &Vector3<f64>,
+) {
+    let facing = a.dot(vrel);
+    let kq = if facing > 0.0 {
+        0.5 * rho * drag.coefficient * facing
+    } else {
+        0.0
+    };
+    let area = a.norm();
+    let mut ki = Matrix3::identity() * kq;
+    if drag.linear > 0.0 && area > 0.0 {
+        let n = a / area;
+        ki += (Matrix3::identity() - n * n.transpose()) * (drag.linear * area);
+    }
+    let sk = rc.cross_matrix();
+    let mut j = Matrix3x6::zeros();
+    j.fixed_view_mut::<3, 3>(0, 0).copy_from(&Matrix3::identity());
+    j.fixed_view_mut::<3, 3>(0, 3).copy_from(&(-sk));
+    s.k += j.transpose() * ki * j;
+    s.b += j.transpose() * (ki * u);
+}
+
+type Matrix3x6 = nalgebra::SMatrix<f64, 3, 6>;
+
+/// The reference over every submerged texel of a body (world axes about
+/// the centre of mass).
+fn reference_sums(
+    atlas: &Atlas,
+    water: &Water,
+    state: &BodyState,
+    mass: &MassProperties,
+    drag: &Drag,
+) -> DragSums {
+    let frame = Frame::new(atlas, water, state, mass, 0.0);
+    let mut s = DragSums::default();
+    for i in 0..atlas.len() {
+        let (x, a) = texel(atlas, i);
+        let p = frame.ow + frame.rot * x;
+        if frame.depth(water, &p, 0.0) > 0.0 {
+            let rc = p - frame.com;
+            let u = water.surface.velocity(&Point3::from(p), 0.0);
+            let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
+            reference_texel(&mut s, drag, water.density, &rc, &(frame.rot * a), &v, &u);
+        }
+    }
+    s
+}
+
+/// Largest absolute entry.
+fn max_abs<const R: usize, const C: usize>(m: &nalgebra::SMatrix<f64, R, C>) -> f64 {
+    m.iter().fold(0.0, |x: f64, y| x.max(y.abs()))
+}
+
+/// Relative differences of `K` and `b` against the reference's: on `K`
+/// against its largest entry, on `b` against its largest entry or, where
+/// the fluid is still, zero (and then exactly).
+fn differences(got: &DragSums, want: &DragSums) -> (f64, f64) {
+    let rel = |d: f64, size: f64| if size > 0.0 { d / size } else { d };
+    (
+        rel(max_abs(&(got.k - want.k)), max_abs(&want.k)),
+        rel(max_abs(&(got.b - want.b)), max_abs(&want.b)),
+    )
+}
+
+/// Texels from proptest's numbers: position, area vector, velocity,
+/// fluid velocity.
+fn vec3() -> impl Strategy<Value = Vector3<f64>> {
+    prop::array::uniform3(-2.0..2.0f64).prop_map(Vector3::from)
+}
+
+fn drag_coefficients() -> impl Strategy<Value = Drag> {
+    (
+        prop_oneof![Just(0.0), 0.0..2.0f64],
+        prop_oneof![Just(0.0), Just(-1.0), 0.0..50.0f64],
+    )
+        .prop_map(|(coefficient, linear)| Drag { coefficient, linear })
+}
+
+proptest! {
+    /// `add_texel`'s symmetric sums add what the plain products add.
+    #[test]
+    fn add_texel_adds_what_the_reference_adds(
+        texels in prop::collection::vec((vec3(), vec3(), vec3(), vec3()), 1..20),
+        drag in drag_coefficients(),
+    ) {
+        let (mut got, mut want) = (DragSums::default(), DragSums::default());
+        for (r, a, v, u) in &texels {
+            got.add_texel(&drag, 1000.0, r, a, v, u);
+            reference_texel(&mut want, &drag, 1000.0, r, a, v, u);
+        }
+        let (dk, db) = differences(&got, &want);
+        prop_assert!(dk <= 1e-12 && db <= 1e-12, "K {dk:e}, b {db:e}");
+        prop_assert_eq!(got.k, got.k.transpose());
+    }
+
+    /// The object-axes sums of the kernel, about the atlas origin and
+    /// turned into the world system about the centre of mass, give what
+    /// the plain products give texel by texel in world axes, for a uniform
+    /// current; and the per-tile moments give what the kernel gives.
+    #[test]
+    fn object_axes_sums_give_the_world_system(
+        texels in prop::collection::vec((vec3(), vec3()), 1..20),
+        angles in prop::array::uniform3(-3.0..3.0f64),
+        c in vec3(),
+        v in vec3(),
+        omega in vec3(),
+        u in vec3(),
+        drag in drag_coefficients(),
+    ) {
+        let rot = UnitQuaternion::from_euler_angles(angles[0], angles[1], angles[2])
+            .to_rotation_matrix()
+            .into_inner();
+        // Every texel submerged: α large.
+        let p = LocalDrag::new(&drag, 1000.0, 100.0, &Vector3::y(), &rot, &c, &v, &omega, &u);
+        let mut acc = DragAcc::default();
+        let mut want = DragSums::default();
+        let (mut moments, mut hbox) = (DragMoments::default(), HBox::default());
+        for (x, a) in &texels {
+            // Through f32, as the atlas stores them.
+            let x = x.map(|e| f64::from(e as f32));
+            let a = a.map(|e| f64::from(e as f32));
+            let rc = rot * (x - c);
+            let vrel = v + omega.cross(&rc) - u;
+            reference_texel(&mut want, &drag, 1000.0, &rc, &(rot * a), &vrel, &u);
+            let mut one = DragAcc::default();
+            kernel_one(&mut one, &x, &a, &p);
+            acc += &one;
+            moments.add_texel(&x, &a);
+            hbox.add_texel(&x, &a);
+        }
+        let got = acc.system(&rot, &c, &u);
+        let (dk, db) = differences(&got, &want);
+        prop_assert!(dk <= 1e-11 && db <= 1e-11, "K {dk:e}, b {db:e}");
+        // The closed forms: all the texels' skin friction and `k_q h·w`;
+        // where every texel faces the flow that is the kernel's sum.
+        if hbox.facing(&p.w) == super::drag_kernel::Facing::All {
+            let mut closed = DragAcc::default();
+            if p.lin > 0.0 {
+                moments.add_linear(&mut closed, &p);
+            }
+            moments.add_quadratic(&mut closed, &p);
+            let (dk, db) = differences(&closed.system(&rot, &c, &u), &want);
+            prop_assert!(dk <= 1e-11 && db <= 1e-11, "closed form: K {dk:e}, b {db:e}");
+        }
+    }
+}
+
+/// The per-texel kernel on one texel (through a one-texel atlas is
+/// awkward, so the same arithmetic on the values).
+fn kernel_one(acc: &mut DragAcc, x: &Vector3<f64>, a: &Vector3<f64>, p: &LocalDrag) {
+    let h = [
+        a.x,
+        a.y,
+        a.z,
+        x.y * a.z - x.z * a.y,
+        x.z * a.x - x.x * a.z,
+        x.x * a.y - x.y * a.x,
+    ];
+    let f: f64 = h.iter().zip(&p.w).map(|(h, w)| h * w).sum();
+    let mut s = if f > 0.0 { p.kq * f } else { 0.0 };
+    let area = a.norm();
+    if p.lin > 0.0 && area > 0.0 {
+        s += p.lin * area;
+        acc.add_rank1(p.lin / area, &h);
+    }
+    acc.add_iso(s, &[x.x, x.y, x.z]);
+}
+
+/// A body of the builtins at `n`², with a solid's mass properties.
+fn body(mesh: &soak_bake::Mesh, n: u32) -> (Atlas, MassProperties, TiledAtlas) {
+    let atlas = Atlas::bake(mesh, BakeOptions::square(n)).unwrap();
+    let mass = MassModel::Solid { density: 500.0 }
+        .mass_properties(&atlas)
+        .unwrap();
+    let tiled = TiledAtlas::new(&atlas);
+    (atlas, mass, tiled)
+}
+
+/// Sphere, cuboid and boat at poses cut by the waterline, wholly under and
+/// wholly above it, tilted, moving every way and spinning, in still water,
+/// with a current, under a tilted plane and in an unbounded fluid, with
+/// drag coefficients including none of either kind: the per-texel and the
+/// tiled sums against the reference, and the drag both evaluations report
+/// against the reference's.
+#[test]
+fn whole_bodies_match_the_reference() {
+    let bodies = [
+        ("sphere", body(&builtin::sphere(0.5, 32, 16), 128)),
+        ("cuboid", body(&builtin::cuboid(1.0, 0.6, 0.4), 96)),
+        ("boat", body(&builtin::boat(4.0, 1.2, 0.6), 128)),
+    ];
+    type NamedWater = (&'static str, fn() -> Water);
+    let waters: Vec<NamedWater> = vec![
+        ("calm", || Water::calm(0.0)),
+        ("current", || {
+            Water::new(Plane::horizontal(0.0).with_current(Vector3::new(0.8, 0.0, -0.5)))
+        }),
+        ("tilted", || {
+            Water::new(
+                Plane::tilted(Point3::new(0.0, 0.05, 0.0), Vector3::new(0.1, 1.0, -0.05))
+                    .unwrap()
+                    .with_current(Vector3::new(-0.3, 0.1, 0.4)),
+            )
+        }),
+        ("unbounded", || {
+            Water::new(Unbounded {
+                current: [0.2, -0.1, 0.3],
+            })
+        }),
+    ];
+    let drags = [
+        Drag {
+            coefficient: 0.8,
+            linear: 20.0,
+        },
+        Drag {
+            coefficient: 1.0,
+            linear: 0.0,
+        },
+        Drag {
+            coefficient: 0.0,
+            linear: 5.0,
+        },
+    ];
+    let motions = [
+        (Vector3::zeros(), Vector3::zeros()),
+        (Vector3::new(0.7, -0.3, 0.2), Vector3::new(0.2, 0.5, -0.1)),
+        (Vector3::new(-1.5, 0.4, 0.9), Vector3::zeros()),
+        (Vector3::zeros(), Vector3::new(-1.0, 0.3, 2.0)),
+        (Vector3::new(0.0, 2.0, 0.0), Vector3::new(0.0, 0.0, 0.1)),
+    ];
+    let poses = [
+        (0.1, (0.3, 0.2, 0.1)),
+        (0.0, (0.0, 0.0, 0.0)),
+        (-3.0, (1.0, -0.4, 0.7)),
+        (3.0, (0.0, 0.5, 0.0)),
+        (-0.2, (0.9, 1.4, -2.0)),
+    ];
+    let (mut worst_k, mut worst_b, mut worst_wrench) = (0.0f64, 0.0f64, 0.0f64);
+    for (name, (atlas, mass, tiled)) in &bodies {
+        for (wname, water) in &waters {
+            let water = water();
+            for (pi, (y, (ax, ay, az))) in poses.iter().enumerate() {
+                let pose = Isometry3::from_parts(
+                    Vector3::new(0.1, *y, -0.2).into(),
+                    UnitQuaternion::from_euler_angles(*ax, *ay, *az),
+                );
+                for (mi, (v, omega)) in motions.iter().enumerate() {
+                    let state = BodyState {
+                        linear_velocity: *v,
+                        angular_velocity: *omega,
+                        ..BodyState::at_rest(pose)
+                    };
+                    for drag in &drags {
+                        let what = format!("{name} {wname} pose {pi} motion {mi} {drag:?}");
+                        let want = reference_sums(atlas, &water, &state, mass, drag);
+                        let frame = Frame::new(atlas, &water, &state, mass, 0.0);
+                        let options = HydroOptions {
+                            drag: Some(*drag),
+                            ..HydroOptions::default()
+                        };
+                        let per_texel = drag_sums(atlas, &water, &state, &frame, drag, 0.0, 0..atlas.len());
+                        let tiled_sums = tiled
+                            .sums(atlas, &water, &state, &frame, 0.0, &options)
+                            .1
+                            .unwrap();
+                        for (path, got) in [("per texel", &per_texel), ("tiled", &tiled_sums)] {
+                            let (dk, db) = differences(got, &want);
+                            assert!(dk <= 1e-10 && db <= 1e-10, "{what} {path}: K {dk:e}, b {db:e}");
+                            worst_k = worst_k.max(dk);
+                            worst_b = worst_b.max(db);
+                        }
+                        // What the evaluations report: the implicit and the
+                        // explicit drag of the reference's system.
+                        let (applied, explicit) = implicit_drag(&want, &state, mass, options.dt);
+                        let f = evaluate(atlas, &water, &state, mass, 0.0, &options).unwrap();
+                        let ft = tiled
+                            .evaluate(atlas, &water, &state, mass, 0.0, &options)
+                            .unwrap();
+                        for (path, f) in [("per texel", &f), ("tiled", &ft)] {
+                            for (got, expected) in [(&f.drag, &applied), (&f.drag_explicit, &explicit)] {
+                                let g = Vector6::new(
+                                    got.force.x,
+                                    got.force.y,
+                                    got.force.z,
+                                    got.torque.x,
+                                    got.torque.y,
+                                    got.torque.z,
+                                );
+                                let w = Vector6::new(
+                                    expected.force.x,
+                                    expected.force.y,
+                                    expected.force.z,
+                                    expected.torque.x,
+                                    expected.torque.y,
+                                    expected.torque.z,
+                                );
+                                // Against the wrench's size, or where it is
+                                // zero (no motion relative to the fluid)
+                                // against what one m/s would make.
+                                let scale = max_abs(&w).max(1e-6 * max_abs(&want.k));
+                                let d = if scale > 0.0 {
+                                    max_abs(&(g - w)) / scale
+                                } else {
+                                    max_abs(&g)
+                                };
+                                assert!(d <= 1e-10, "{what} {path} wrench: {d:e}");
+                                worst_wrench = worst_wrench.max(d);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    println!("worst relative differences: K {worst_k:e}, b {worst_b:e}, wrench {worst_wrench:e}");
+}
+
+/// A body wholly above the water has no drag on any path; none at all
+/// where both coefficients are zero.
+#[test]
+fn no_drag_where_nothing_is_wet_or_nothing_drags() {
+    let (atlas, mass, tiled) = body(&builtin::sphere(0.5, 32, 16), 64);
+    let water = Water::new(Plane::horizontal(0.0).with_current(Vector3::new(0.5, 0.0, 0.0)));
+    let moving = |y: f64| BodyState {
+        linear_velocity: Vector3::new(0.7, -0.3, 0.2),
+        angular_velocity: Vector3::new(0.2, 0.5, -0.1),
+        ..BodyState::at_rest(Isometry3::translation(0.0, y, 0.0))
+    };
+    for (state, drag) in [
+        (moving(3.0), Drag::default()),
+        (
+            moving(0.0),
+            Drag {
+                coefficient: 0.0,
+                linear: 0.0,
+            },
+        ),
+    ] {
+        let frame = Frame::new(&atlas, &water, &state, &mass, 0.0);
+        let options = HydroOptions {
+            drag: Some(drag),
+            ..HydroOptions::default()
+        };
+        let per_texel = drag_sums(&atlas, &water, &state, &frame, &drag, 0.0, 0..atlas.len());
+        let tiled_sums = tiled
+            .sums(&atlas, &water, &state, &frame, 0.0, &options)
+            .1
+            .unwrap();
+        for got in [per_texel, tiled_sums] {
+            assert_eq!(got.k, Matrix6::zeros());
+            assert_eq!(got.b, Vector6::zeros());
+        }
+    }
+}
+
+/// The kernel over a tile whose closed forms were added takes back what
+/// they added for texels that do not drag: over a whole body, the closed
+/// forms of every texel less the kernel's corrections is the kernel's sum
+/// of the submerged, facing texels.
+#[test]
+fn the_kernel_completes_the_closed_forms() {
+    let (atlas, _, _) = body(&builtin::boat(4.0, 1.2, 0.6), 64);
+    let rot = UnitQuaternion::from_euler_angles(0.3, -0.2, 0.4)
+        .to_rotation_matrix()
+        .into_inner();
+    let drag = Drag {
+        coefficient: 0.9,
+        linear: 7.0,
+    };
+    let p = LocalDrag::new(
+        &drag,
+        1000.0,
+        0.05,
+        &Vector3::new(0.1, -1.0, 0.2),
+        &rot,
+        &Vector3::new(0.01, -0.02, 0.03),
+        &Vector3::new(0.4, -0.2, 0.3),
+        &Vector3::new(0.3, 0.1, -0.5),
+        &Vector3::zeros(),
+    );
+    let mut want = DragAcc::default();
+    add_drag_texels(&mut want, &atlas, 0..atlas.len(), &p, Added::default());
+    let mut moments = DragMoments::default();
+    for i in 0..atlas.len() {
+        let (x, a) = texel(&atlas, i);
+        moments.add_texel(&x, &a);
+    }
+    let mut got = DragAcc::default();
+    moments.add_linear(&mut got, &p);
+    moments.add_quadratic(&mut got, &p);
+    add_drag_texels(
+        &mut got,
+        &atlas,
+        0..atlas.len(),
+        &p,
+        Added {
+            linear: true,
+            quadratic: true,
+        },
+    );
+    let size = max_abs(&want.k());
+    assert!(max_abs(&(got.k() - want.k())) <= 1e-10 * size);
+}
