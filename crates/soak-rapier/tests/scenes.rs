@@ -54,6 +54,22 @@ fn keys_that_do_not_apply_are_refused() {
 }
 
 #[test]
+fn sea_sampling_is_checked_and_read() {
+    let (e, msg) = error("bad/scene_sea_sampling_negative.toml");
+    assert!(matches!(e, SceneError::Invalid { line: 4, .. }), "{msg}");
+    assert!(msg.contains("water.sampling.per_wavelength"), "{msg}");
+    let exact = "[water]\nkind = \"gerstner\"\nwaves = [{ amplitude = 0.3, wavelength = 8.0, direction_deg = 0.0, steepness = 0.5 }]\nsampling = \"exact\"\n";
+    let scene = LoadedScene::from_str(exact, std::path::Path::new(".")).unwrap();
+    assert_eq!(scene.scene.water.sampling, Some(soak_hydro::SeaSampling::Exact));
+    let sim = Simulation::from_scene(&scene).unwrap();
+    assert_eq!(sim.soak.sea_sampling(), soak_hydro::SeaSampling::Exact);
+    // Sampling a plane means nothing: refused like waves on a plane.
+    let plane = "[water]\nkind = \"plane\"\nsampling = \"exact\"\n";
+    let e = LoadedScene::from_str(plane, std::path::Path::new(".")).unwrap_err();
+    assert!(e.to_string().contains("water.sampling"), "{e}");
+}
+
+#[test]
 fn a_missing_mesh_names_the_body_and_line() {
     let (e, msg) = error("bad/scene_missing_mesh.toml");
     assert!(matches!(e, SceneError::Body { line: 6, .. }), "{msg}");

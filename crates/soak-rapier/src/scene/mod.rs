@@ -10,6 +10,7 @@
 //! level = 0.0             # m
 //! density = 1000.0        # kg/m³
 //! waves = [{ amplitude = 0.3, wavelength = 8.0, direction_deg = 0.0, steepness = 0.5 }]
+//! sampling = { per_wavelength = 16 }  # the default; or "exact" (every texel inverts the sea)
 //!
 //! [[bodies]]
 //! name = "buoy"
