@@ -11,6 +11,7 @@ use super::forces::HydroForces;
 use super::frame::{Frame, texel};
 use super::options::{BuoyancyMode, Drag, HydroOptions, SeaSampling};
 use super::planar_kernel::{PlanarTexels, add_planar_ranges};
+use super::sea_kernel::{self, SeaFrame, add_sea_range};
 use super::sums::{BuoyancySums, DragAcc, DragSums};
 use crate::error::{HydroError, WaterError};
 use crate::mass::{CHUNK, MassProperties, chunked_sum};
@@ -130,9 +131,9 @@ pub fn evaluate(
                 .as_any()
                 .and_then(|s| s.downcast_ref::<SurfacePatch>())
             {
-                Some(patch) => general_sums(atlas, water, state, &frame, t, options, patch),
+                Some(patch) => patch_sums(atlas, water, state, &frame, t, options, patch),
                 None => match sample_patch(atlas, water, state, t, options)? {
-                    Some(patch) => general_sums(atlas, water, state, &frame, t, options, &patch),
+                    Some(patch) => patch_sums(atlas, water, state, &frame, t, options, &patch),
                     None => general_sums(atlas, water, state, &frame, t, options, &Exact(&*water.surface)),
                 },
             };
@@ -258,6 +259,52 @@ fn general_sums<S: TexelSurface>(
                     let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
                     s.d.add_texel(drag, water.density, &rc, &aw, &v, &u);
                 }
+            }
+        }
+        s
+    })
+}
+
+/// [`general_sums`] over a sampled surface: the sea kernel (AVX2) where
+/// the processor has it, the per-texel loop elsewhere. With drag the
+/// kernel hands each chunk's depths to a loop over the submerged texels.
+fn patch_sums(
+    atlas: &Atlas,
+    water: &Water,
+    state: &BodyState,
+    frame: &Frame,
+    t: f64,
+    options: &HydroOptions,
+    patch: &SurfacePatch,
+) -> Both {
+    if !sea_kernel::available() {
+        return general_sums(atlas, water, state, frame, t, options, patch);
+    }
+    let sea = SeaFrame {
+        rot: frame.rot,
+        ow: frame.ow,
+        com: frame.com - frame.ow,
+        top: patch.height_bounds(t).map_or(f64::INFINITY, |(_, hi)| hi),
+        delta: frame.depth_scale,
+        patch,
+        archimedes: options.buoyancy == BuoyancyMode::Archimedes,
+    };
+    chunked_sum(atlas.len(), Both::default(), |range| {
+        let mut s = Both::default();
+        let Some(drag) = &options.drag else {
+            add_sea_range(&mut s.b, atlas, range, &sea, None);
+            return s;
+        };
+        let mut depths = vec![0.0; range.len()];
+        add_sea_range(&mut s.b, atlas, range.clone(), &sea, Some(&mut depths));
+        for (i, d) in range.zip(depths) {
+            if d > 0.0 {
+                let (x, a) = texel(atlas, i);
+                let p = frame.ow + frame.rot * x;
+                let rc = p - frame.com;
+                let u = patch.velocity_at(&p);
+                let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
+                s.d.add_texel(drag, water.density, &rc, &(frame.rot * a), &v, &u);
             }
         }
         s

@@ -12,6 +12,7 @@
 //! - `planar_kernel`: the buoyancy sums under planar water, portable and AVX2.
 //! - `drag_kernel`: the drag sums under planar water with a uniform
 //!   current, per texel and as per-tile moments.
+//! - `sea_kernel`: the buoyancy sums under a sampled sea, AVX2.
 //! - `slope_torque`: Archimedes' torque as the derivative of the potential.
 //! - `deep_volume`: the volume of a body wholly under a surface that is not
 //!   a plane.
@@ -32,5 +33,6 @@ pub(crate) mod frame;
 pub(crate) mod implicit_drag;
 pub(crate) mod options;
 pub(crate) mod planar_kernel;
+pub(crate) mod sea_kernel;
 pub(crate) mod slope_torque;
 pub(crate) mod sums;

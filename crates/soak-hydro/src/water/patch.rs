@@ -51,6 +51,18 @@ pub struct SurfacePatch {
     velocity: Option<VelocityGrid>,
 }
 
+/// A patch's grid as a kernel reads it (see [`SurfacePatch::grid`]).
+pub(crate) struct PatchGrid<'a> {
+    /// World `(x, z)` of node `(0, 0)`, m.
+    pub origin: [f64; 2],
+    /// Node spacing, m.
+    pub spacing: f64,
+    /// Cells along x and z.
+    pub cells: [usize; 2],
+    /// Bicubic coefficients per cell, x fastest.
+    pub coefficients: &'a [[[f64; 4]; 4]],
+}
+
 /// Fluid velocities on a grid over the patch's rectangle and a height range.
 #[derive(Clone, Debug)]
 struct VelocityGrid {
@@ -286,6 +298,18 @@ impl SurfacePatch {
     /// Whether velocities were sampled.
     pub fn has_velocity(&self) -> bool {
         self.velocity.is_some()
+    }
+
+    /// What a kernel needs to read the heights itself: the origin, the
+    /// cells along x and z, and the bicubic coefficients per cell (see
+    /// [`SurfacePatch::height_slope`] for their use).
+    pub(crate) fn grid(&self) -> PatchGrid<'_> {
+        PatchGrid {
+            origin: self.origin,
+            spacing: self.spacing,
+            cells: self.cells,
+            coefficients: &self.coefficients,
+        }
     }
 
     #[inline]
