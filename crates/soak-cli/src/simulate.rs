@@ -4,6 +4,7 @@ use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 
 use anyhow::Context;
+use soak_rapier::scene::{DEFAULT_TOLERANCE, ResolutionSpec};
 use soak_rapier::{Backend, LoadedScene, Sample, Simulation};
 
 /// Arguments of `soak simulate`.
@@ -66,6 +67,17 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     let png_every = args.liquid_png_every.or(loaded.scene.output.liquid_png_every);
     let mut sim = Simulation::from_scene(&loaded)?;
     sim.record(args.csv.is_some());
+    // Say which side `resolution = "auto"` chose for each body that asked.
+    for (spec, body) in loaded.scene.bodies.iter().zip(&sim.bodies) {
+        if matches!(spec.resolution, ResolutionSpec::Auto(_)) {
+            eprintln!(
+                "{}: atlas {}² chosen for a tolerance of {:.1e} of its volume",
+                body.name,
+                body.resolution,
+                spec.tolerance.unwrap_or(DEFAULT_TOLERANCE)
+            );
+        }
+    }
     let mut pngs = 0;
     if png_every.is_some() {
         pngs += sim.write_liquid_pngs(&args.out)?.len();

@@ -6,6 +6,7 @@ mod error;
 mod hydrostatics;
 mod mass;
 mod parallel;
+mod resolution;
 mod tiled;
 mod water;
 
@@ -32,6 +33,7 @@ pub use self::mass::{
     MassModel, MassProperties, PrincipalInertia, VolumeMoments, inertia_from_second_moment, parallel_axis,
     shell, volume_moments,
 };
+pub use self::resolution::{AUTO_RESOLUTIONS, ResolutionChoice, ResolutionError, bake_to_tolerance};
 pub use self::tiled::{TileCounts, TileMoments, TiledAtlas};
 pub use self::water::{
     AIR_DENSITY, Gerstner, GerstnerWave, HeightField, MAX_PATCH_NODES, Plane, STANDARD_GRAVITY, Surface,

@@ -3,7 +3,7 @@
 
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions, load_mesh};
-use soak_hydro::{Drag, Gerstner, GerstnerWave, MassModel, Water};
+use soak_hydro::{Drag, Gerstner, GerstnerWave, MassModel, SeaSampling, Water};
 use soak_rapier::{BodyDesc, Effects, ForceGenerator};
 
 /// A device of its own for the test; `None` without an adapter (a failure
@@ -17,7 +17,10 @@ fn world(
     gpu: Option<&(wgpu::Device, wgpu::Queue)>,
 ) -> (PhysicsWorld, ForceGenerator, Vec<RigidBodyHandle>) {
     let mut world = PhysicsWorld::new();
-    let mut soak = ForceGenerator::new(water);
+    // The GPU inverts the Gerstner map at every texel: the CPU does the same
+    // here (the sampled read, the default, is checked against the exact one
+    // in soak-hydro's `sea_sampling` tests).
+    let mut soak = ForceGenerator::new(water).with_sea_sampling(SeaSampling::Exact);
     if let Some((d, q)) = gpu {
         soak = soak.with_gpu(d, q).unwrap();
     }

@@ -70,6 +70,42 @@ fn sea_sampling_is_checked_and_read() {
 }
 
 #[test]
+fn resolution_auto_picks_the_side_for_the_tolerance() {
+    let scene = |body: &str| {
+        format!(
+            "[water]\nkind = \"plane\"\n[[bodies]]\nname = \"crate\"\nmesh = \"builtin:box:0.8\"\nmass = {{ model = \"solid\", density = 500.0 }}\n{body}"
+        )
+    };
+    let loose = LoadedScene::from_str(
+        &scene("resolution = \"auto\"\ntolerance = 1e-2\n"),
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    let tight = LoadedScene::from_str(
+        &scene("resolution = \"auto\"\ntolerance = 1e-4\n"),
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    let (loose, tight) = (
+        Simulation::from_scene(&loose).unwrap(),
+        Simulation::from_scene(&tight).unwrap(),
+    );
+    assert!(loose.bodies[0].resolution >= 16);
+    assert!(tight.bodies[0].resolution > loose.bodies[0].resolution);
+    let fixed = LoadedScene::from_str(&scene("resolution = 48\n"), std::path::Path::new(".")).unwrap();
+    assert_eq!(Simulation::from_scene(&fixed).unwrap().bodies[0].resolution, 48);
+    // A tolerance without "auto", and a tolerance that is not positive, are refused.
+    for (body, key) in [
+        ("resolution = 64\ntolerance = 1e-3\n", "bodies[0].tolerance"),
+        ("resolution = \"auto\"\ntolerance = -1.0\n", "bodies[0].tolerance"),
+        ("resolution = \"fine\"\n", "resolution"),
+    ] {
+        let e = LoadedScene::from_str(&scene(body), std::path::Path::new(".")).unwrap_err();
+        assert!(e.to_string().contains(key), "{body}: {e}");
+    }
+}
+
+#[test]
 fn a_missing_mesh_names_the_body_and_line() {
     let (e, msg) = error("bad/scene_missing_mesh.toml");
     assert!(matches!(e, SceneError::Body { line: 6, .. }), "{msg}");

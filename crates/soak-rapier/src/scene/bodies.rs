@@ -6,9 +6,33 @@ use soak_hydro::{BuoyancyMode, Drag};
 use super::liquid_graph::{GraphSpec, HoleSpec};
 use super::wetting::WettingSpec;
 
-fn default_resolution() -> u32 {
-    256
+fn default_resolution() -> ResolutionSpec {
+    ResolutionSpec::Texels(256)
 }
+
+/// A body's atlas side: texels, or `"auto"`, the coarsest side whose
+/// buoyancy is within the body's `tolerance` of the exact clipping of its
+/// mesh (see [`soak_hydro::bake_to_tolerance`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum ResolutionSpec {
+    /// This many texels a side.
+    Texels(u32),
+    /// Chosen for the tolerance.
+    Auto(Auto),
+}
+
+/// The keyword `"auto"`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Auto {
+    /// `"auto"`.
+    Auto,
+}
+
+/// The tolerance of `resolution = "auto"` when the body gives none: a
+/// thousandth of its volume (and of its diagonal for the centre of buoyancy).
+pub const DEFAULT_TOLERANCE: f64 = 1e-3;
 
 /// How a body's mass is distributed.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -47,9 +71,12 @@ pub struct BodySpec {
     pub name: String,
     /// Mesh path (relative to the scene file) or `builtin:` name.
     pub mesh: String,
-    /// Atlas side, texels.
+    /// Atlas side, texels, or `"auto"` (see [`ResolutionSpec`]).
     #[serde(default = "default_resolution")]
-    pub resolution: u32,
+    pub resolution: ResolutionSpec,
+    /// With `resolution = "auto"`: the largest error allowed, as a fraction
+    /// of the body's volume (default [`DEFAULT_TOLERANCE`]).
+    pub tolerance: Option<f64>,
     /// Generate a physics atlas instead of using the mesh's UVs.
     #[serde(default)]
     pub unwrap: bool,

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use super::Scene;
-use super::bodies::{BodySpec, MassSpec};
+use super::bodies::{BodySpec, MassSpec, ResolutionSpec};
 use super::key_path::line_of;
 use super::liquid_graph::GraphSpec;
 use super::water::WaterKind;
@@ -247,11 +247,20 @@ impl LoadedScene {
             if !names.insert(b.name.as_str()) {
                 return Err(self.invalid(&key("name"), format!("`{}` is used by another body", b.name)));
             }
-            if b.resolution == 0 || b.resolution > soak_bake::MAX_RESOLUTION {
-                return Err(self.invalid(
-                    &key("resolution"),
-                    format!("{} is outside 1..={}", b.resolution, soak_bake::MAX_RESOLUTION),
-                ));
+            match b.resolution {
+                ResolutionSpec::Texels(n) if n == 0 || n > soak_bake::MAX_RESOLUTION => {
+                    return Err(self.invalid(
+                        &key("resolution"),
+                        format!("{n} is outside 1..={}", soak_bake::MAX_RESOLUTION),
+                    ));
+                }
+                ResolutionSpec::Texels(_) if b.tolerance.is_some() => {
+                    return Err(self.invalid(&key("tolerance"), "applies only to `resolution = \"auto\"`"));
+                }
+                _ => {}
+            }
+            if let Some(t) = b.tolerance {
+                positive(&key("tolerance"), t)?;
             }
             match b.mass {
                 MassSpec::Solid { density } => positive(&key("mass.density"), density)?,

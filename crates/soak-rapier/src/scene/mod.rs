@@ -15,7 +15,7 @@
 //! [[bodies]]
 //! name = "buoy"
 //! mesh = "builtin:sphere:0.5"   # or a path to .obj / .gltf / .glb, relative to the scene
-//! resolution = 256
+//! resolution = 256           # texels a side, or "auto" with `tolerance = 1e-3` (of its volume)
 //! mass = { model = "solid", density = 500.0 }   # or { model = "shell", areal_density = 20.0 }
 //! position = [0.0, 0.5, 0.0]
 //! rotation_deg = [0.0, 0.0, 0.0]
@@ -62,7 +62,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::generator::Backend;
 
-pub use self::bodies::{BodySpec, ColliderSpec, MassSpec};
+pub use self::bodies::{Auto, BodySpec, ColliderSpec, DEFAULT_TOLERANCE, MassSpec, ResolutionSpec};
 pub use self::key_path::line_of;
 pub use self::liquid_graph::{AutoGraphSpec, GraphSpec, HoleSpec};
 pub use self::loaded::LoadedScene;

@@ -11,7 +11,10 @@ use super::{SimBody, Simulation};
 use crate::convert;
 use crate::error::SceneError;
 use crate::generator::{BodyDesc, Effects, ForceGenerator};
-use crate::scene::{ColliderSpec, InitialLiquid, LoadedScene, MassSpec, WaterKind, WettingSpec};
+use crate::scene::{
+    ColliderSpec, DEFAULT_TOLERANCE, InitialLiquid, LoadedScene, MassSpec, ResolutionSpec, WaterKind,
+    WettingSpec,
+};
 
 /// Builds the fluid a scene describes.
 pub fn water_of(loaded: &LoadedScene) -> Result<Water, SceneError> {
@@ -180,11 +183,31 @@ impl Simulation {
                     .colliders
                     .insert_with_parent(c.density(0.0), handle, &mut world.bodies);
             }
+            let mut resolution = 0;
             let id = if b.fixed {
                 None
             } else {
-                let atlas = Atlas::bake(&mesh, BakeOptions::square(b.resolution))
-                    .map_err(|e| body_err(e.to_string()))?;
+                let atlas = match b.resolution {
+                    ResolutionSpec::Texels(n) => {
+                        resolution = n;
+                        Atlas::bake(&mesh, BakeOptions::square(n)).map_err(|e| body_err(e.to_string()))?
+                    }
+                    ResolutionSpec::Auto(_) => {
+                        let tolerance = b.tolerance.unwrap_or(DEFAULT_TOLERANCE);
+                        let (atlas, choice) =
+                            soak_hydro::bake_to_tolerance(&mesh, tolerance, BakeOptions::default())
+                                .map_err(|e| body_err(e.to_string()))?;
+                        resolution = choice.resolution;
+                        log::info!(
+                            "body `{}`: resolution {}² for tolerance {:.1e} (error {:.1e})",
+                            b.name,
+                            choice.resolution,
+                            tolerance,
+                            choice.error
+                        );
+                        atlas
+                    }
+                };
                 let mass_model = match b.mass {
                     MassSpec::Solid { density } => MassModel::Solid { density },
                     MassSpec::Shell { areal_density } => MassModel::Shell { areal_density },
@@ -225,6 +248,7 @@ impl Simulation {
                 name: b.name.clone(),
                 handle,
                 id,
+                resolution,
             });
         }
         let n = bodies.len();

@@ -27,6 +27,9 @@ pub struct SimBody {
     pub handle: RigidBodyHandle,
     /// The soak body, if it is not fixed.
     pub id: Option<SoakId>,
+    /// Its atlas side, texels: the scene's, or the one `resolution =
+    /// "auto"` chose for its tolerance (0 for a fixed body, which has none).
+    pub resolution: u32,
 }
 
 /// One recorded sample of one body.
