@@ -8,7 +8,7 @@ use soak_bake::Atlas;
 use crate::error::HydroError;
 use crate::hydrostatics::body_state::BodyState;
 use crate::hydrostatics::drag_kernel::{
-    Added, DragMoments, Facing, HBox, LocalDrag, add_drag_texels, uniform_velocity,
+    Added, DragLanes, DragMoments, Facing, FacingBounds, HBox, LocalDrag, add_drag_ranges, uniform_velocity,
 };
 use crate::hydrostatics::evaluation::{drag_sums, evaluate};
 use crate::hydrostatics::finish::finish;
@@ -111,8 +111,8 @@ impl Sums {
 #[derive(Clone, Debug)]
 struct Group {
     bounds: Bounds,
-    /// A box around the drag's `h = (A, x × A)` of the group's texels.
-    facing: HBox,
+    /// A box around the drag's `h = (A, x × A) / |A|` of the group's texels.
+    facing: FacingBounds,
     tiles: std::ops::Range<usize>,
 }
 
@@ -147,9 +147,9 @@ pub struct TiledAtlas {
     /// `prefix[i]` holds the sums of the moments of `tiles[..i]`: a run of
     /// tiles under water takes its sums from two entries, however long.
     prefix: Vec<Sums>,
-    /// Per tile, a box around the drag's `h = (A, x × A)` of its texels:
+    /// Per tile, a box around the drag's `h / |A| = (A, x × A) / |A|` of its texels:
     /// whether all of them face the flow, none does, or some may.
-    facing: Vec<HBox>,
+    facing: Vec<FacingBounds>,
     /// `drag_prefix[i]` holds the sums of the drag moments of `tiles[..i]`.
     drag_prefix: Vec<DragMoments>,
 }
@@ -243,7 +243,7 @@ impl TiledAtlas {
                     radius,
                     half_extent: (hi - lo) * 0.5,
                 },
-                facing: group_facing,
+                facing: group_facing.bounds(),
                 tiles: start..end,
             });
             start = end;
@@ -265,7 +265,7 @@ impl TiledAtlas {
             tiles,
             groups,
             prefix,
-            facing,
+            facing: facing.iter().map(HBox::bounds).collect(),
             drag_prefix,
         }
     }
@@ -476,12 +476,15 @@ impl TiledAtlas {
 /// The drag of one chunk of the tiled path's groups (object axes about the
 /// atlas origin): runs of tiles whose skin friction, or whose quadratic
 /// drag, takes the closed form of their moments, and the per-texel kernel
-/// for the rest.
+/// for the rest: the tiles it takes are listed as they come, by what the
+/// kernel is to do with them, and each list goes through the kernel in
+/// one call at the end.
 struct DragWalk<'a> {
     tiled: &'a TiledAtlas,
     atlas: &'a Atlas,
     p: LocalDrag,
-    acc: DragAcc,
+    /// Texel ranges for the kernel, by [`DragWalk::list`].
+    texels: [Vec<std::ops::Range<usize>>; 8],
     /// Tiles whose every texel adds its skin friction.
     linear: MomentRun,
     /// Tiles whose every texel adds `k_q h·w`.
@@ -494,14 +497,14 @@ impl<'a> DragWalk<'a> {
             tiled,
             atlas,
             p,
-            acc: DragAcc::default(),
+            texels: Default::default(),
             linear: MomentRun::default(),
             quadratic: MomentRun::default(),
         }
     }
 
     /// Tiles wholly under water, `facing` a box around their `h`.
-    fn submerged(&mut self, tiles: std::ops::Range<usize>, facing: &HBox) {
+    fn submerged(&mut self, tiles: std::ops::Range<usize>, facing: &FacingBounds) {
         if self.p.lin > 0.0 {
             self.linear.push(&self.tiled.drag_prefix, tiles.clone());
         }
@@ -511,7 +514,7 @@ impl<'a> DragWalk<'a> {
     }
 
     /// The quadratic drag of tiles wholly under water.
-    fn submerged_quadratic(&mut self, tiles: std::ops::Range<usize>, facing: &HBox) {
+    fn submerged_quadratic(&mut self, tiles: std::ops::Range<usize>, facing: &FacingBounds) {
         let prefix = &self.tiled.drag_prefix;
         match facing.facing(&self.p.w) {
             Facing::All => self.quadratic.push(prefix, tiles),
@@ -533,17 +536,11 @@ impl<'a> DragWalk<'a> {
                     self.quadratic.push(prefix, tiles);
                 }
                 let (start, end) = self.tiled.tiles[ti].range;
-                let p = LocalDrag { lin: 0.0, ..self.p };
-                add_drag_texels(
-                    &mut self.acc,
-                    self.atlas,
-                    start as usize..end as usize,
-                    &p,
-                    Added {
-                        linear: true,
-                        quadratic,
-                    },
-                );
+                let added = Added {
+                    linear: true,
+                    quadratic,
+                };
+                self.texels[Self::list(false, added)].push(start as usize..end as usize);
             }
         }
     }
@@ -583,21 +580,35 @@ impl<'a> DragWalk<'a> {
     /// The per-texel kernel over tile `ti`.
     fn texels(&mut self, ti: usize, added: Added) {
         let (start, end) = self.tiled.tiles[ti].range;
-        add_drag_texels(
-            &mut self.acc,
-            self.atlas,
-            start as usize..end as usize,
-            &self.p,
-            added,
-        );
+        self.texels[Self::list(self.p.lin > 0.0, added)].push(start as usize..end as usize);
+    }
+
+    /// Which list of [`DragWalk::texels`] takes tiles whose kernel adds
+    /// skin friction (`linear`, where there is any) and completes `added`.
+    fn list(linear: bool, added: Added) -> usize {
+        usize::from(linear) * 4 + usize::from(added.linear) * 2 + usize::from(added.quadratic)
     }
 
     /// The chunk's sums.
-    fn finish(mut self) -> DragAcc {
+    fn finish(self) -> DragAcc {
         let prefix = &self.tiled.drag_prefix;
-        self.linear.close(prefix).add_linear(&mut self.acc, &self.p);
-        self.quadratic.close(prefix).add_quadratic(&mut self.acc, &self.p);
-        self.acc
+        let mut lanes = DragLanes::default();
+        for (i, ranges) in self.texels.iter().enumerate() {
+            let p = LocalDrag {
+                lin: if i >= 4 { self.p.lin } else { 0.0 },
+                ..self.p
+            };
+            let added = Added {
+                linear: i & 2 != 0,
+                quadratic: i & 1 != 0,
+            };
+            add_drag_ranges(&mut lanes, self.atlas, ranges, &p, added);
+        }
+        let mut acc = DragAcc::default();
+        lanes.add_to(&mut acc);
+        self.linear.close(prefix).add_linear(&mut acc, &self.p);
+        self.quadratic.close(prefix).add_quadratic(&mut acc, &self.p);
+        acc
     }
 }
 

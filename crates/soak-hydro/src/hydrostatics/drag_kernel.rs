@@ -104,11 +104,7 @@ fn h_of(x: &[f64; 3], a: &[f64; 3]) -> [f64; 6] {
 /// says the closed forms have added for them already: the result is the
 /// submerged texels' sums, with the closed forms.
 ///
-/// Texels are taken [`LANES`] at a time side by side, like the planar
-/// kernel's (the last of a range in a group of their own, its empty lanes
-/// masked), a lane that adds nothing adding zeros; with AVX2 and FMA where
-/// the processor has them (the same operations, no fused multiply-adds, so
-/// the same bits as the portable code).
+/// See [`add_drag_ranges`], which this is for one range, summed at once.
 pub(crate) fn add_drag_texels(
     acc: &mut DragAcc,
     atlas: &Atlas,
@@ -116,23 +112,41 @@ pub(crate) fn add_drag_texels(
     p: &LocalDrag,
     added: Added,
 ) {
-    let t = DragColumns {
-        xs: atlas.local_positions().columns(range.clone()),
-        avs: atlas.area_vectors().columns(range),
-    };
     let mut lanes = DragLanes::default();
+    add_drag_ranges(&mut lanes, atlas, &[range], p, added);
+    lanes.add_to(acc);
+}
+
+/// [`add_drag_texels`] over several ranges into per-lane sums, which stay
+/// in registers from one range to the next; [`DragLanes::add_to`] sums the
+/// lanes once at the end.
+///
+/// Texels are taken [`LANES`] at a time side by side, like the planar
+/// kernel's (the last of a range in a group of their own, its empty lanes
+/// masked), a lane that adds nothing adding zeros, and a group none of
+/// whose lanes adds anything skipped after its tests; with AVX2 and FMA
+/// where the processor has them (the same operations, multiply-adds fused
+/// as the portable code's `mul_add`, so the same bits as it).
+pub(crate) fn add_drag_ranges(
+    lanes: &mut DragLanes,
+    atlas: &Atlas,
+    ranges: &[std::ops::Range<usize>],
+    p: &LocalDrag,
+    added: Added,
+) {
+    if ranges.is_empty() {
+        return;
+    }
+    let n = atlas.len();
+    let t = DragColumns {
+        xs: atlas.local_positions().columns(0..n),
+        avs: atlas.area_vectors().columns(0..n),
+    };
     match (p.lin > 0.0, p.quadratic()) {
-        (true, true) => drag_lanes::<true, true>(&mut lanes, &t, p, added),
-        (true, false) => drag_lanes::<true, false>(&mut lanes, &t, p, added),
-        (false, true) => drag_lanes::<false, true>(&mut lanes, &t, p, added),
-        (false, false) => return,
-    }
-    let sum = |v: &Lanes| (v[0] + v[1]) + (v[2] + v[3]);
-    for (s, v) in acc.iso.iter_mut().zip(&lanes.iso) {
-        *s += sum(v);
-    }
-    for (s, v) in acc.gg.iter_mut().zip(&lanes.gg) {
-        *s += sum(v);
+        (true, true) => drag_lanes::<true, true>(lanes, &t, ranges, p, added),
+        (true, false) => drag_lanes::<true, false>(lanes, &t, ranges, p, added),
+        (false, true) => drag_lanes::<false, true>(lanes, &t, ranges, p, added),
+        (false, false) => {}
     }
 }
 
@@ -142,14 +156,15 @@ const LANES: usize = 4;
 /// Lanes of f64, one per texel of a group.
 type Lanes = [f64; LANES];
 
-/// The positions and area vectors of a range of texels.
+/// The positions and area vectors of the atlas' texels.
 struct DragColumns<'a> {
     xs: [&'a [f32]; 3],
     avs: [&'a [f32]; 3],
 }
 
 /// [`DragAcc`]'s sums, one per lane.
-struct DragLanes {
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct DragLanes {
     iso: [Lanes; 10],
     gg: [Lanes; 21],
 }
@@ -163,10 +178,24 @@ impl Default for DragLanes {
     }
 }
 
-/// The kernel over the columns, with AVX2 where the processor has it.
+impl DragLanes {
+    /// Adds the sums of the lanes, in a fixed order, to `acc`.
+    pub(crate) fn add_to(&self, acc: &mut DragAcc) {
+        let sum = |v: &Lanes| (v[0] + v[1]) + (v[2] + v[3]);
+        for (s, v) in acc.iso.iter_mut().zip(&self.iso) {
+            *s += sum(v);
+        }
+        for (s, v) in acc.gg.iter_mut().zip(&self.gg) {
+            *s += sum(v);
+        }
+    }
+}
+
+/// The kernel over the ranges, with AVX2 where the processor has it.
 fn drag_lanes<const LINEAR: bool, const QUADRATIC: bool>(
     acc: &mut DragLanes,
     t: &DragColumns,
+    ranges: &[std::ops::Range<usize>],
     p: &LocalDrag,
     added: Added,
 ) {
@@ -176,23 +205,26 @@ fn drag_lanes<const LINEAR: bool, const QUADRATIC: bool>(
             // SAFETY: the processor has AVX2 and FMA, checked just above.
             #[allow(unsafe_code)]
             unsafe {
-                drag_lanes_avx2::<LINEAR, QUADRATIC>(acc, t, p, added)
+                drag_lanes_avx2::<LINEAR, QUADRATIC>(acc, t, ranges, p, added)
             };
             return;
         }
     }
-    drag_lanes_generic::<LINEAR, QUADRATIC>(acc, t, p, added);
+    for r in ranges {
+        drag_lanes_generic::<false, LINEAR, QUADRATIC>(acc, t, r.clone(), p, added);
+    }
 }
 
-/// [`drag_lanes_generic`] written with AVX2 intrinsics: the same
-/// operations in the same order on the same lanes (no multiply-add fused),
-/// so the same bits. The last `len % LANES` texels make a group of their
-/// own, padded with zeros and its empty lanes masked off.
+/// [`drag_lanes_generic`] with fused multiply-adds, written with AVX2
+/// intrinsics: the same operations in the same order on the same lanes,
+/// so the same bits. The last `len % LANES` texels of a range make a
+/// group of their own, padded with zeros and its empty lanes masked off.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
     acc: &mut DragLanes,
     t: &DragColumns,
+    ranges: &[std::ops::Range<usize>],
     p: &LocalDrag,
     added: Added,
 ) {
@@ -239,7 +271,10 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
     let (added_q, added_l) = (mask(added.quadratic), mask(added.linear));
     let anything_added = added.quadratic || added.linear;
     let mut iso = acc.iso.each_ref().map(|v| get(v));
-    let mut gg = acc.gg.each_ref().map(|v| get(v));
+    let mut gg = [zero; 21];
+    if LINEAR {
+        gg = acc.gg.each_ref().map(|v| get(v));
+    }
     let mut group = |xs: [&[f32]; 3], avs: [&[f32]; 3], at: usize, valid: __m256d| {
         let x = [load(xs[0], at), load(xs[1], at), load(xs[2], at)];
         let d = _mm256_add_pd(alpha, _mm256_mul_pd(beta[0], x[0]));
@@ -259,31 +294,37 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
             _mm256_sub_pd(_mm256_mul_pd(x[0], a[1]), _mm256_mul_pd(x[1], a[0])),
         ];
         let mut s = zero;
+        let mut any = zero;
         if QUADRATIC {
             let mut f = _mm256_mul_pd(h[0], w[0]);
             for j in 1..6 {
-                f = _mm256_add_pd(f, _mm256_mul_pd(h[j], w[j]));
+                f = _mm256_fmadd_pd(h[j], w[j], f);
             }
             let taken = _mm256_and_pd(wet, _mm256_cmp_pd::<_CMP_GT_OQ>(f, zero));
             let kf = _mm256_mul_pd(kq, f);
             let signed = _mm256_blendv_pd(_mm256_xor_pd(kf, neg), kf, taken);
             let counted = _mm256_and_pd(_mm256_xor_pd(taken, added_q), valid);
             s = _mm256_and_pd(signed, counted);
+            any = counted;
         }
         let mut wl = zero;
         if LINEAR {
-            let aa = _mm256_add_pd(_mm256_mul_pd(a[0], a[0]), _mm256_mul_pd(a[1], a[1]));
-            let area = _mm256_sqrt_pd(_mm256_add_pd(aa, _mm256_mul_pd(a[2], a[2])));
-            let counted = _mm256_and_pd(
-                _mm256_and_pd(_mm256_xor_pd(wet, added_l), valid),
-                _mm256_cmp_pd::<_CMP_GT_OQ>(area, zero),
-            );
+            let counted = _mm256_and_pd(_mm256_xor_pd(wet, added_l), valid);
+            any = _mm256_or_pd(any, counted);
+            if _mm256_movemask_pd(any) == 0 {
+                return;
+            }
+            let aa = _mm256_fmadd_pd(a[2], a[2], _mm256_fmadd_pd(a[1], a[1], _mm256_mul_pd(a[0], a[0])));
+            let area = _mm256_sqrt_pd(aa);
+            let counted = _mm256_and_pd(counted, _mm256_cmp_pd::<_CMP_GT_OQ>(area, zero));
             let ds = _mm256_mul_pd(lin, area);
             let dw = _mm256_div_pd(lin, area);
             let ds = _mm256_blendv_pd(_mm256_xor_pd(ds, neg), ds, wet);
             let dw = _mm256_blendv_pd(_mm256_xor_pd(dw, neg), dw, wet);
             s = _mm256_add_pd(s, _mm256_and_pd(ds, counted));
             wl = _mm256_and_pd(dw, counted);
+        } else if _mm256_movemask_pd(any) == 0 {
+            return;
         }
         let sr = [
             _mm256_mul_pd(s, x[0]),
@@ -294,76 +335,82 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
         iso[1] = _mm256_add_pd(iso[1], sr[0]);
         iso[2] = _mm256_add_pd(iso[2], sr[1]);
         iso[3] = _mm256_add_pd(iso[3], sr[2]);
-        iso[4] = _mm256_add_pd(iso[4], _mm256_mul_pd(sr[0], x[0]));
-        iso[5] = _mm256_add_pd(iso[5], _mm256_mul_pd(sr[1], x[1]));
-        iso[6] = _mm256_add_pd(iso[6], _mm256_mul_pd(sr[2], x[2]));
-        iso[7] = _mm256_add_pd(iso[7], _mm256_mul_pd(sr[0], x[1]));
-        iso[8] = _mm256_add_pd(iso[8], _mm256_mul_pd(sr[1], x[2]));
-        iso[9] = _mm256_add_pd(iso[9], _mm256_mul_pd(sr[2], x[0]));
+        iso[4] = _mm256_fmadd_pd(sr[0], x[0], iso[4]);
+        iso[5] = _mm256_fmadd_pd(sr[1], x[1], iso[5]);
+        iso[6] = _mm256_fmadd_pd(sr[2], x[2], iso[6]);
+        iso[7] = _mm256_fmadd_pd(sr[0], x[1], iso[7]);
+        iso[8] = _mm256_fmadd_pd(sr[1], x[2], iso[8]);
+        iso[9] = _mm256_fmadd_pd(sr[2], x[0], iso[9]);
         if LINEAR {
             let mut m = 0;
             for i in 0..6 {
                 let wh = _mm256_mul_pd(wl, h[i]);
                 for hj in &h[i..] {
-                    gg[m] = _mm256_add_pd(gg[m], _mm256_mul_pd(wh, *hj));
+                    gg[m] = _mm256_fmadd_pd(wh, *hj, gg[m]);
                     m += 1;
                 }
             }
         }
     };
     let all = mask(true);
-    let n = t.xs[0].len();
-    let whole = n - n % LANES;
-    for i in (0..whole).step_by(LANES) {
-        group(t.xs, t.avs, i, all);
-    }
-    if whole < n {
-        let k = n - whole;
-        let pad = |v: &[f32]| {
-            let mut padded = [0.0f32; LANES];
-            padded[..k].copy_from_slice(&v[whole..n]);
-            padded
-        };
-        let (xs, avs) = (t.xs.map(pad), t.avs.map(pad));
-        let valid = _mm256_castsi256_pd(_mm256_setr_epi64x(
-            -1,
-            if k > 1 { -1 } else { 0 },
-            if k > 2 { -1 } else { 0 },
-            0,
-        ));
-        group(
-            xs.each_ref().map(|v| &v[..]),
-            avs.each_ref().map(|v| &v[..]),
-            0,
-            valid,
-        );
+    for range in ranges {
+        let (start, end) = (range.start, range.end);
+        let whole = end - (end - start) % LANES;
+        for i in (start..whole).step_by(LANES) {
+            group(t.xs, t.avs, i, all);
+        }
+        if whole < end {
+            let k = end - whole;
+            let pad = |v: &[f32]| {
+                let mut padded = [0.0f32; LANES];
+                padded[..k].copy_from_slice(&v[whole..end]);
+                padded
+            };
+            let (xs, avs) = (t.xs.map(pad), t.avs.map(pad));
+            let valid = _mm256_castsi256_pd(_mm256_setr_epi64x(
+                -1,
+                if k > 1 { -1 } else { 0 },
+                if k > 2 { -1 } else { 0 },
+                0,
+            ));
+            group(
+                xs.each_ref().map(|v| &v[..]),
+                avs.each_ref().map(|v| &v[..]),
+                0,
+                valid,
+            );
+        }
     }
     for (out, v) in acc.iso.iter_mut().zip(iso) {
         put(out, v);
     }
-    for (out, v) in acc.gg.iter_mut().zip(gg) {
-        put(out, v);
+    if LINEAR {
+        for (out, v) in acc.gg.iter_mut().zip(gg) {
+            put(out, v);
+        }
     }
 }
 
-/// The kernel over the columns, [`LANES`] texels at a time.
+/// The kernel over the texels of `range`, [`LANES`] at a time, multiply-adds
+/// fused where `FMA`.
 #[inline(always)]
-fn drag_lanes_generic<const LINEAR: bool, const QUADRATIC: bool>(
+fn drag_lanes_generic<const FMA: bool, const LINEAR: bool, const QUADRATIC: bool>(
     acc: &mut DragLanes,
     t: &DragColumns,
+    range: std::ops::Range<usize>,
     p: &LocalDrag,
     added: Added,
 ) {
-    let n = t.xs[0].len();
-    let whole = n - n % LANES;
+    let (start, n) = (range.start, range.end);
+    let whole = n - (n - start) % LANES;
     let load = |v: &[f32], i: usize| -> Lanes {
         let v: &[f32; LANES] = v[i..i + LANES].try_into().expect("a slice of LANES floats");
         v.map(f64::from)
     };
-    for i in (0..whole).step_by(LANES) {
+    for i in (start..whole).step_by(LANES) {
         let x = t.xs.map(|v| load(v, i));
         let a = t.avs.map(|v| load(v, i));
-        drag_group::<LINEAR, QUADRATIC>(acc, p, added, &x, &a, &[true; LANES]);
+        drag_group::<FMA, LINEAR, QUADRATIC>(acc, p, added, &x, &a, &[true; LANES]);
     }
     if whole < n {
         let mut x = [[0.0; LANES]; 3];
@@ -376,7 +423,7 @@ fn drag_lanes_generic<const LINEAR: bool, const QUADRATIC: bool>(
             }
             valid[k] = true;
         }
-        drag_group::<LINEAR, QUADRATIC>(acc, p, added, &x, &a, &valid);
+        drag_group::<FMA, LINEAR, QUADRATIC>(acc, p, added, &x, &a, &valid);
     }
 }
 
@@ -386,9 +433,15 @@ fn lanes(f: impl FnMut(usize) -> f64) -> Lanes {
     std::array::from_fn(f)
 }
 
-/// One group of texels (see [`add_drag_texels`]).
+/// `a b + c`, fused where `FMA`.
 #[inline(always)]
-fn drag_group<const LINEAR: bool, const QUADRATIC: bool>(
+fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
+    if FMA { a.mul_add(b, c) } else { a * b + c }
+}
+
+/// One group of texels (see [`add_drag_ranges`]).
+#[inline(always)]
+fn drag_group<const FMA: bool, const LINEAR: bool, const QUADRATIC: bool>(
     acc: &mut DragLanes,
     p: &LocalDrag,
     added: Added,
@@ -410,15 +463,15 @@ fn drag_group<const LINEAR: bool, const QUADRATIC: bool>(
         lanes(|k| x[0][k] * a[1][k] - x[1][k] * a[0][k]),
     ];
     let mut s = [0.0; LANES];
+    let mut any = false;
     if QUADRATIC {
         let w = &p.w;
         let f = lanes(|k| {
-            h[0][k] * w[0]
-                + h[1][k] * w[1]
-                + h[2][k] * w[2]
-                + h[3][k] * w[3]
-                + h[4][k] * w[4]
-                + h[5][k] * w[5]
+            let mut f = h[0][k] * w[0];
+            for j in 1..6 {
+                f = madd::<FMA>(h[j][k], w[j], f);
+            }
+            f
         });
         s = std::array::from_fn(|k| {
             let taken = wet[k] && f[k] > 0.0;
@@ -431,17 +484,25 @@ fn drag_group<const LINEAR: bool, const QUADRATIC: bool>(
                 -kf
             }
         });
+        any = (0..LANES).any(|k| valid[k] && (wet[k] && f[k] > 0.0) != added.quadratic);
     }
     let mut w = [0.0; LANES];
     if LINEAR {
-        let area = lanes(|k| (a[0][k] * a[0][k] + a[1][k] * a[1][k] + a[2][k] * a[2][k]).sqrt());
+        let counted: [bool; LANES] = std::array::from_fn(|k| valid[k] && wet[k] != added.linear);
+        if !any && !counted.iter().any(|&c| c) {
+            return;
+        }
+        let area =
+            lanes(|k| madd::<FMA>(a[2][k], a[2][k], madd::<FMA>(a[1][k], a[1][k], a[0][k] * a[0][k])).sqrt());
         for k in 0..LANES {
-            let counted = valid[k] && wet[k] != added.linear && area[k] > 0.0;
+            let counted = counted[k] && area[k] > 0.0;
             let sign = if wet[k] { 1.0 } else { -1.0 };
             let (ds, dw) = (sign * (p.lin * area[k]), sign * (p.lin / area[k]));
             s[k] += if counted { ds } else { 0.0 };
             w[k] = if counted { dw } else { 0.0 };
         }
+    } else if !any {
+        return;
     }
     let sr = [
         lanes(|k| s[k] * x[0][k]),
@@ -454,12 +515,12 @@ fn drag_group<const LINEAR: bool, const QUADRATIC: bool>(
         iso[1][k] += sr[0][k];
         iso[2][k] += sr[1][k];
         iso[3][k] += sr[2][k];
-        iso[4][k] += sr[0][k] * x[0][k];
-        iso[5][k] += sr[1][k] * x[1][k];
-        iso[6][k] += sr[2][k] * x[2][k];
-        iso[7][k] += sr[0][k] * x[1][k];
-        iso[8][k] += sr[1][k] * x[2][k];
-        iso[9][k] += sr[2][k] * x[0][k];
+        iso[4][k] = madd::<FMA>(sr[0][k], x[0][k], iso[4][k]);
+        iso[5][k] = madd::<FMA>(sr[1][k], x[1][k], iso[5][k]);
+        iso[6][k] = madd::<FMA>(sr[2][k], x[2][k], iso[6][k]);
+        iso[7][k] = madd::<FMA>(sr[0][k], x[1][k], iso[7][k]);
+        iso[8][k] = madd::<FMA>(sr[1][k], x[2][k], iso[8][k]);
+        iso[9][k] = madd::<FMA>(sr[2][k], x[0][k], iso[9][k]);
     }
     if LINEAR {
         let mut m = 0;
@@ -467,7 +528,7 @@ fn drag_group<const LINEAR: bool, const QUADRATIC: bool>(
             let wh = lanes(|k| w[k] * h[i][k]);
             for hj in &h[i..] {
                 for k in 0..LANES {
-                    acc.gg[m][k] += wh[k] * hj[k];
+                    acc.gg[m][k] = madd::<FMA>(wh[k], hj[k], acc.gg[m][k]);
                 }
                 m += 1;
             }
@@ -589,9 +650,17 @@ impl Default for HBox {
 }
 
 impl HBox {
-    /// Grows the box around a texel at `x` with area vector `a`.
+    /// Grows the box around a texel at `x` with area vector `a`: around
+    /// its `h / |A|`, whose facing has the sign of `h`'s and which varies
+    /// over a tile far less than `h` (texels cut by a chart's edge have
+    /// small areas). A texel of no area never faces the flow and adds
+    /// nothing to any closed form: it is left out.
     pub(crate) fn add_texel(&mut self, x: &Vector3<f64>, a: &Vector3<f64>) {
-        let h = h_of(&[x.x, x.y, x.z], &[a.x, a.y, a.z]);
+        let area = a.norm();
+        if area <= 0.0 {
+            return;
+        }
+        let h = h_of(&[x.x, x.y, x.z], &[a.x, a.y, a.z]).map(|h| h / area);
         for ((lo, hi), h) in self.lo.iter_mut().zip(&mut self.hi).zip(h) {
             *lo = lo.min(h);
             *hi = hi.max(h);
@@ -606,21 +675,41 @@ impl HBox {
         }
     }
 
+    /// The box as its centre and half-widths, for [`FacingBounds::facing`].
+    pub(crate) fn bounds(&self) -> FacingBounds {
+        FacingBounds {
+            mid: std::array::from_fn(|j| 0.5 * (self.lo[j] + self.hi[j])),
+            half: std::array::from_fn(|j| 0.5 * (self.hi[j] - self.lo[j])),
+        }
+    }
+}
+
+/// An [`HBox`] as its centre and half-widths: `h·w` over it lies within
+/// `mid·w ± half·|w|`, a few multiply-adds on six lanes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct FacingBounds {
+    mid: [f64; 6],
+    half: [f64; 6],
+}
+
+impl FacingBounds {
     /// Where `h·w` lies over the box. The bounds are widened by a relative
-    /// 1e-12 so that a texel whose own facing rounds the other way is not
-    /// misplaced.
+    /// 1e-12 so that a texel whose own facing rounds the other way (or a
+    /// centre and half-width rounded off the box's faces) is not
+    /// misplaced. An empty box (no texel of any area) is mixed.
+    #[inline]
     pub(crate) fn facing(&self, w: &[f64; 6]) -> Facing {
-        let (mut lo, mut hi, mut size) = (0.0, 0.0, 0.0);
-        for ((lo_j, hi_j), w_j) in self.lo.iter().zip(&self.hi).zip(w) {
-            let (p, q) = (lo_j * w_j, hi_j * w_j);
-            lo += p.min(q);
-            hi += p.max(q);
-            size += p.abs().max(q.abs());
+        let (mut centre, mut reach, mut size) = (0.0, 0.0, 0.0);
+        for ((m, h), w) in self.mid.iter().zip(&self.half).zip(w) {
+            let (c, r) = (m * w, h * w.abs());
+            centre += c;
+            reach += r;
+            size += c.abs() + r;
         }
         let margin = 1e-12 * size;
-        if lo > margin {
+        if centre - reach > margin {
             Facing::All
-        } else if hi <= -margin {
+        } else if centre + reach <= -margin {
             Facing::None
         } else {
             Facing::Mixed
@@ -635,8 +724,9 @@ mod tests {
     use soak_bake::{BakeOptions, builtin};
 
     /// The AVX2 kernel (where the processor has it) and the portable one
-    /// give the same sums, over ranges of every length modulo the lanes and
-    /// with every combination of closed forms added.
+    /// with fused multiply-adds give the same sums, and the portable one
+    /// without them the same but for rounding, over ranges of every length
+    /// modulo the lanes and with every combination of closed forms added.
     #[test]
     fn the_avx2_and_portable_kernels_agree() {
         let atlas = Atlas::bake(&builtin::boat(4.0, 1.2, 0.6), BakeOptions::square(64)).unwrap();
@@ -659,19 +749,34 @@ mod tests {
             &Vector3::zeros(),
         );
         let n = atlas.len();
-        for range in [0..5, 5..6, 6..37, 37..39, 39..n] {
-            let t = DragColumns {
-                xs: atlas.local_positions().columns(range.clone()),
-                avs: atlas.area_vectors().columns(range.clone()),
-            };
-            for (linear, quadratic) in [(false, false), (true, false), (false, true), (true, true)] {
-                let added = Added { linear, quadratic };
-                let mut portable = DragLanes::default();
-                drag_lanes_generic::<true, true>(&mut portable, &t, &p, added);
-                let mut dispatched = DragLanes::default();
-                drag_lanes::<true, true>(&mut dispatched, &t, &p, added);
-                assert_eq!(portable.iso, dispatched.iso);
-                assert_eq!(portable.gg, dispatched.gg);
+        let t = DragColumns {
+            xs: atlas.local_positions().columns(0..n),
+            avs: atlas.area_vectors().columns(0..n),
+        };
+        let ranges = [0..5, 5..6, 6..37, 37..39, 39..n];
+        for (linear, quadratic) in [(false, false), (true, false), (false, true), (true, true)] {
+            let added = Added { linear, quadratic };
+            let (mut fused, mut plain) = (DragLanes::default(), DragLanes::default());
+            for r in &ranges {
+                drag_lanes_generic::<true, true, true>(&mut fused, &t, r.clone(), &p, added);
+                drag_lanes_generic::<false, true, true>(&mut plain, &t, r.clone(), &p, added);
+            }
+            let mut dispatched = DragLanes::default();
+            drag_lanes::<true, true>(&mut dispatched, &t, &ranges, &p, added);
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+                assert_eq!(fused, dispatched);
+            }
+            // Fused or not, the same sums but for rounding.
+            for (f, q) in fused
+                .iso
+                .iter()
+                .chain(&fused.gg)
+                .zip(plain.iso.iter().chain(&plain.gg))
+            {
+                for k in 0..LANES {
+                    assert!((f[k] - q[k]).abs() <= 1e-12 * (1.0 + q[k].abs()), "{f:?} {q:?}");
+                }
             }
         }
     }

@@ -163,7 +163,7 @@ proptest! {
         prop_assert!(dk <= 1e-11 && db <= 1e-11, "K {dk:e}, b {db:e}");
         // The closed forms: all the texels' skin friction and `k_q h·w`;
         // where every texel faces the flow that is the kernel's sum.
-        if hbox.facing(&p.w) == super::drag_kernel::Facing::All {
+        if hbox.bounds().facing(&p.w) == super::drag_kernel::Facing::All {
             let mut closed = DragAcc::default();
             if p.lin > 0.0 {
                 moments.add_linear(&mut closed, &p);
