@@ -8,7 +8,7 @@ use crate::chart::{Axis, BLACK_INK, Chart, Figure, Line, Marker, Series, palette
 
 fn count_label(v: f64) -> String {
     let n = v.round() as u64;
-    if n >= 1000 && n % 1000 == 0 {
+    if n >= 1000 && n.is_multiple_of(1000) {
         format!("{},000", n / 1000)
     } else {
         n.to_string()

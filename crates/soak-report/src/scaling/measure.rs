@@ -70,7 +70,7 @@ impl Fleet {
 
     /// The atlas of body `i`.
     pub fn atlas(&self, i: usize) -> &Atlas {
-        if i % 2 == 0 {
+        if i.is_multiple_of(2) {
             &self.box_atlas
         } else {
             &self.sphere_atlas
@@ -145,7 +145,7 @@ fn build(
         let handle = world
             .bodies
             .insert(RigidBodyBuilder::dynamic().translation(Vector::new(x as f32, y as f32, z as f32)));
-        let shape = if i % 2 == 0 {
+        let shape = if i.is_multiple_of(2) {
             ColliderBuilder::cuboid(
                 (BOX[0] / 2.0) as f32,
                 (BOX[1] / 2.0) as f32,
@@ -168,7 +168,7 @@ fn build(
                 &world.colliders,
                 handle,
                 BodyDesc {
-                    name: format!("{} {i}", if i % 2 == 0 { "box" } else { "sphere" }),
+                    name: format!("{} {i}", if i.is_multiple_of(2) { "box" } else { "sphere" }),
                     atlas: fleet.atlas(i).clone(),
                     mass_model: MassModel::Solid { density: DENSITY },
                     effects: effects.clone(),
@@ -206,6 +206,7 @@ pub fn measure(
     options: &ScalingOptions,
     gpu: &dyn Fn(ForceGenerator) -> Result<ForceGenerator, ScalingError>,
 ) -> Result<Measurement, ScalingError> {
+    let before = rss_mb();
     let start = Instant::now();
     let (mut world, mut soak) = build(fleet, case.bodies, &case.column, gpu)?;
     let setup_ms = start.elapsed().as_secs_f64() * 1e3;
@@ -248,6 +249,7 @@ pub fn measure(
         max_ms: times[times.len() - 1],
         setup_ms,
         rss_mb,
+        rss_growth_mb: rss_mb.zip(before).map(|(a, b)| a - b),
         submerged,
         firewall: soak.as_ref().map_or(0, |s| s.firewall().count()),
     })

@@ -245,6 +245,9 @@ pub struct Measurement {
     pub setup_ms: f64,
     /// Resident memory of the process after setup, MB (Linux only).
     pub rss_mb: Option<f64>,
+    /// What setup added to the resident memory, MB (Linux only; memory the
+    /// allocator kept from an earlier case is reused and not counted).
+    pub rss_growth_mb: Option<f64>,
     /// Smallest and largest submerged fraction of a body's volume at the
     /// last step (none for Rapier alone, which has no water).
     pub submerged: Option<(f64, f64)>,

@@ -36,7 +36,7 @@ fn count(n: usize) -> String {
     let s = n.to_string();
     let mut out = String::new();
     for (k, c) in s.chars().enumerate() {
-        if k > 0 && (s.len() - k) % 3 == 0 {
+        if k > 0 && (s.len() - k).is_multiple_of(3) {
             out.push(',');
         }
         out.push(c);
@@ -65,6 +65,25 @@ fn setup_of(report: &ScalingReport, n: usize) -> (f64, Option<f64>, Option<(f64,
         .filter_map(|m| m.submerged)
         .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)));
     (setup, rss, sub)
+}
+
+/// The setup and memory of the first generator column at the largest
+/// body count, per body.
+fn memory_note(report: &ScalingReport) -> Option<String> {
+    let n = *sizes(report).iter().max()?;
+    let m = report
+        .measurements
+        .iter()
+        .find(|m| m.case.bodies == n && m.case.column.water.is_some())?;
+    let growth = m.rss_growth_mb?;
+    Some(format!(
+        "setting up {} bodies ({}) took {} ({} per body) and {growth:.0} MB ({:.0} kB per body)",
+        count(n),
+        m.case.column.label(),
+        format_ms(m.setup_ms),
+        format_ms(m.setup_ms / n as f64),
+        growth * 1024.0 / n as f64
+    ))
 }
 
 fn sizes(report: &ScalingReport) -> Vec<usize> {
@@ -124,6 +143,9 @@ pub fn text_table(report: &ScalingReport) -> String {
         "(setup: building the world and registering its bodies, the slowest column; memory: resident after setup; \
          submerged: fraction of each body's volume under water at the last step, over the generator's columns)"
     );
+    if let Some(m) = memory_note(report) {
+        w!(out, "note: {m}");
+    }
     for note in &report.notes {
         w!(out, "note: {note}");
     }
@@ -160,6 +182,9 @@ pub fn markdown_table(report: &ScalingReport) -> String {
     }
     w!(out, "");
     w!(out, "{}.", header(report));
+    if let Some(m) = memory_note(report) {
+        w!(out, "- {m}");
+    }
     for note in &report.notes {
         w!(out, "- {note}");
     }
