@@ -69,7 +69,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
             scaling::format_ms(m.setup_ms)
         );
     })?;
-    let figure = write_figure(&report, &args.out)?;
+    // The table first: a run of minutes is not lost to a plot that cannot be written.
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else if args.markdown {
@@ -77,6 +77,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     } else {
         print!("{}", text_table(&report));
     }
+    let figure = write_figure(&report, &args.out)?;
     eprintln!("wrote {}", figure.display());
     Ok(())
 }
