@@ -2,6 +2,7 @@
 
 mod accuracy;
 mod bake;
+mod bench;
 mod common;
 mod demo;
 mod hydro;
@@ -36,6 +37,8 @@ enum Command {
     Accuracy(accuracy::Args),
     /// Segment a closed mesh into its liquid graph: print nodes and edges, draw them on the mesh.
     Segment(segment::Args),
+    /// Step time of a Rapier world against the number of floating bodies: a table and a log–log plot.
+    Bench(bench::Args),
     /// Stability matrix: meshes × densities × time steps × scales × waters × effects; non-zero exit on a failing cell.
     Stress(stress::Args),
     /// Render frames of a scene file (PNG): wet surfaces, water, debug views, force arrows.
@@ -63,6 +66,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Accuracy(args) => accuracy::run(&args),
         Command::Segment(args) => segment::run(&args),
         Command::Stress(args) => stress::run(&args),
+        Command::Bench(args) => bench::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Sweep(args) => sweep::run(&args),
     }

@@ -1,0 +1,83 @@
+//! `soak bench`: the step time of a Rapier world against the number of
+//! floating bodies ([`soak_report::scaling`]), printed as a table,
+//! Markdown or JSON, and plotted as PNG.
+
+use std::path::PathBuf;
+
+use soak_report::scaling::{self, ScalingOptions, markdown_table, text_table, write_figure};
+
+/// Arguments of `soak bench`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Up to 1,000 bodies and a few steps per case: seconds, for tests.
+    #[arg(long)]
+    pub quick: bool,
+    /// Print the table as Markdown (for the README).
+    #[arg(long, conflicts_with = "json")]
+    pub markdown: bool,
+    /// Print every measurement as JSON.
+    #[arg(long)]
+    pub json: bool,
+    /// Folder for the plot (`scaling.png`).
+    #[arg(long, default_value = "out/bench")]
+    pub out: PathBuf,
+    /// Body counts instead of the default ones (e.g. `--sizes 1,10,100`).
+    #[arg(long, value_delimiter = ',')]
+    pub sizes: Option<Vec<usize>>,
+    /// Most timed steps per case [default: 200, 10 with --quick].
+    #[arg(long)]
+    pub max_steps: Option<usize>,
+    /// Seconds of timed steps per case, once the fewest are done
+    /// [default: 2, 0.2 with --quick].
+    #[arg(long)]
+    pub budget: Option<f64>,
+    /// Also run the generator's columns on the GPU (skipped with a note
+    /// when there is no adapter).
+    #[arg(long)]
+    pub gpu: bool,
+    /// Largest body count run on the GPU.
+    #[arg(long, default_value_t = 1_000)]
+    pub gpu_max_bodies: usize,
+}
+
+/// Runs `soak bench`.
+pub fn run(args: &Args) -> anyhow::Result<()> {
+    let mut options = if args.quick {
+        ScalingOptions::quick()
+    } else {
+        ScalingOptions::full()
+    };
+    if let Some(sizes) = &args.sizes {
+        options.sizes = sizes.clone();
+    }
+    if let Some(m) = args.max_steps {
+        options.max_steps = m;
+        options.min_steps = options.min_steps.min(m);
+    }
+    if let Some(b) = args.budget {
+        options.budget_s = b;
+    }
+    options.gpu = args.gpu;
+    options.gpu_max_bodies = args.gpu_max_bodies;
+    let report = scaling::run(&options, |m| {
+        eprintln!(
+            "{:>6} bodies, {:<34} {:>10} per step ({} steps, setup {})",
+            m.case.bodies,
+            m.case.column.label(),
+            scaling::format_ms(m.median_ms),
+            m.steps,
+            scaling::format_ms(m.setup_ms)
+        );
+    })?;
+    // The table first: a run of minutes is not lost to a plot that cannot be written.
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else if args.markdown {
+        print!("{}", markdown_table(&report));
+    } else {
+        print!("{}", text_table(&report));
+    }
+    let figure = write_figure(&report, &args.out)?;
+    eprintln!("wrote {}", figure.display());
+    Ok(())
+}

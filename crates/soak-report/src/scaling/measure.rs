@@ -1,0 +1,364 @@
+//! Building the worlds and timing their steps.
+
+use std::time::Instant;
+
+use rapier3d::prelude::*;
+use soak_bake::{Atlas, BakeOptions, builtin};
+use soak_hydro::{Drag, MassModel, Water};
+use soak_rapier::{BodyDesc, Effects, ForceGenerator};
+
+use super::{
+    Case, Column, Device, Measurement, ScalingError, ScalingOptions, ScalingReport, Variant, WaterKind,
+};
+
+/// Solid density of every body, kg/m³.
+pub const DENSITY: f64 = 500.0;
+/// Grid spacing, m.
+pub const SPACING: f64 = 2.0;
+/// The drag of the buoyancy + drag columns.
+pub const DRAG: Drag = Drag {
+    coefficient: 0.8,
+    linear: 20.0,
+};
+/// Box size, m.
+pub const BOX: [f64; 3] = [1.0, 0.6, 0.8];
+/// Sphere radius, m.
+pub const RADIUS: f64 = 0.5;
+
+/// The two meshes, each baked once, and what every body of that mesh
+/// shares: its mass and volume.
+#[derive(Clone, Debug)]
+pub struct Fleet {
+    /// The box's atlas (even bodies).
+    pub box_atlas: Atlas,
+    /// The sphere's atlas (odd bodies).
+    pub sphere_atlas: Atlas,
+    /// Volumes of the box and the sphere, m³.
+    pub volumes: [f64; 2],
+    /// Masses of the box and the sphere, kg.
+    pub masses: [f64; 2],
+    /// Baking both, ms.
+    pub bake_ms: f64,
+}
+
+impl Fleet {
+    /// Bakes the box and the sphere at `resolution`².
+    ///
+    /// # Errors
+    /// A mesh that does not bake.
+    pub fn bake(resolution: u32, sphere_segments: (usize, usize)) -> Result<Self, ScalingError> {
+        let start = Instant::now();
+        let bake = |mesh: &soak_bake::Mesh, name: &'static str| {
+            Atlas::bake(mesh, BakeOptions::square(resolution))
+                .map_err(|source| ScalingError::Bake { mesh: name, source })
+        };
+        let box_atlas = bake(&builtin::cuboid(BOX[0], BOX[1], BOX[2]), "box")?;
+        let sphere_atlas = bake(
+            &builtin::sphere(RADIUS, sphere_segments.0, sphere_segments.1),
+            "sphere",
+        )?;
+        let bake_ms = start.elapsed().as_secs_f64() * 1e3;
+        let volumes = [box_atlas.volume(), sphere_atlas.volume()];
+        Ok(Self {
+            box_atlas,
+            sphere_atlas,
+            volumes,
+            masses: volumes.map(|v| v * DENSITY),
+            bake_ms,
+        })
+    }
+
+    /// The atlas of body `i`.
+    pub fn atlas(&self, i: usize) -> &Atlas {
+        if i.is_multiple_of(2) {
+            &self.box_atlas
+        } else {
+            &self.sphere_atlas
+        }
+    }
+}
+
+/// Bytes of an atlas' arrays (what each body's copy costs).
+pub fn atlas_bytes(a: &Atlas) -> usize {
+    use std::mem::size_of_val;
+    let columns = |c: &soak_bake::Columns| 3 * size_of_val(c.x());
+    columns(a.local_positions())
+        + columns(a.area_vectors())
+        + size_of_val(a.areas())
+        + size_of_val(a.triangle_ids())
+        + size_of_val(a.barycentrics())
+        + size_of_val(a.texels())
+        + size_of_val(a.centroid_samples())
+        + size_of_val(a.tiles())
+        + size_of_val(a.triangles())
+        + size_of_val(a.texels_per_triangle())
+}
+
+/// Where body `i` of `n` sits on the grid (x, z), m.
+fn grid(i: usize, n: usize) -> (f64, f64) {
+    let side = (n as f64).sqrt().ceil().max(1.0) as usize;
+    ((i % side) as f64 * SPACING, (i / side) as f64 * SPACING)
+}
+
+/// The water of a case.
+fn water(kind: WaterKind) -> Result<Water, ScalingError> {
+    Ok(match kind {
+        WaterKind::Calm => Water::calm(0.0),
+        WaterKind::Swell => crate::accuracy::swell()?,
+    })
+}
+
+/// A world of `n` bodies driven as `column` says, and the generator
+/// driving it (none for Rapier alone). `gpu` makes the generator's GPU
+/// backend (called before any body is registered).
+fn build(
+    fleet: &Fleet,
+    n: usize,
+    column: &Column,
+    gpu: &dyn Fn(ForceGenerator) -> Result<ForceGenerator, ScalingError>,
+) -> Result<(PhysicsWorld, Option<ForceGenerator>), ScalingError> {
+    let mut world = PhysicsWorld::new();
+    world.integration_parameters.dt = 1.0 / 60.0;
+    let height = match column.water {
+        Some(w) => Some(water(w)?),
+        None => None,
+    };
+    let mut soak = match column.water {
+        None => None,
+        Some(w) => {
+            let g = ForceGenerator::new(water(w)?);
+            Some(match column.device {
+                Device::Cpu => g,
+                Device::Gpu => gpu(g)?,
+            })
+        }
+    };
+    let effects = match column.variant {
+        Variant::RapierAlone | Variant::Buoyancy => Effects::buoyancy(),
+        Variant::BuoyancyDrag => Effects::buoyancy().with_drag(DRAG),
+    };
+    for i in 0..n {
+        let (x, z) = grid(i, n);
+        // At the floating draft: half as dense as water, each body floats
+        // with its centre at the surface.
+        let y = height.as_ref().map_or(0.0, |w| w.surface.height(x, z, 0.0));
+        let handle = world
+            .bodies
+            .insert(RigidBodyBuilder::dynamic().translation(Vector::new(x as f32, y as f32, z as f32)));
+        let shape = if i.is_multiple_of(2) {
+            ColliderBuilder::cuboid(
+                (BOX[0] / 2.0) as f32,
+                (BOX[1] / 2.0) as f32,
+                (BOX[2] / 2.0) as f32,
+            )
+        } else {
+            ColliderBuilder::ball(RADIUS as f32)
+        };
+        let collider = match &soak {
+            // The same mass as the generator gives the body.
+            None => shape.mass(fleet.masses[i % 2] as f32),
+            Some(_) => shape.density(0.0),
+        };
+        world
+            .colliders
+            .insert_with_parent(collider, handle, &mut world.bodies);
+        if let Some(soak) = &mut soak {
+            soak.register(
+                &mut world.bodies,
+                &world.colliders,
+                handle,
+                BodyDesc {
+                    name: format!("{} {i}", if i.is_multiple_of(2) { "box" } else { "sphere" }),
+                    atlas: fleet.atlas(i).clone(),
+                    mass_model: MassModel::Solid { density: DENSITY },
+                    effects: effects.clone(),
+                },
+            )?;
+        }
+    }
+    Ok((world, soak))
+}
+
+/// One step of the world.
+fn step(world: &mut PhysicsWorld, soak: &mut Option<ForceGenerator>) -> Result<(), ScalingError> {
+    match soak {
+        Some(s) => s.step(world)?,
+        None => world.step(),
+    }
+    Ok(())
+}
+
+/// Resident memory of this process, MB (from `/proc/self/status`).
+fn rss_mb() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb / 1024.0)
+}
+
+/// Builds and times one case.
+///
+/// # Errors
+/// A body that does not register or a step that fails.
+pub fn measure(
+    fleet: &Fleet,
+    case: &Case,
+    options: &ScalingOptions,
+    gpu: &dyn Fn(ForceGenerator) -> Result<ForceGenerator, ScalingError>,
+) -> Result<Measurement, ScalingError> {
+    let before = rss_mb();
+    let start = Instant::now();
+    let (mut world, mut soak) = build(fleet, case.bodies, &case.column, gpu)?;
+    let setup_ms = start.elapsed().as_secs_f64() * 1e3;
+    let rss_mb = rss_mb();
+    for _ in 0..options.settle_steps {
+        step(&mut world, &mut soak)?;
+    }
+    let mut times = Vec::new();
+    let timing = Instant::now();
+    let max_steps = options.max_steps.max(options.min_steps).max(1);
+    while times.len() < max_steps
+        && (times.len() < options.min_steps.max(1) || timing.elapsed().as_secs_f64() < options.budget_s)
+    {
+        let s = Instant::now();
+        step(&mut world, &mut soak)?;
+        times.push(s.elapsed().as_secs_f64() * 1e3);
+    }
+    let mean_ms = times.iter().sum::<f64>() / times.len() as f64;
+    times.sort_by(f64::total_cmp);
+    let median_ms = if times.len() % 2 == 1 {
+        times[times.len() / 2]
+    } else {
+        0.5 * (times[times.len() / 2 - 1] + times[times.len() / 2])
+    };
+    let submerged = soak.as_ref().map(|s| {
+        s.bodies()
+            .iter()
+            .enumerate()
+            .map(|(i, b)| b.forces().submerged_volume / fleet.volumes[i % 2])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), f| {
+                (lo.min(f), hi.max(f))
+            })
+    });
+    Ok(Measurement {
+        case: *case,
+        steps: times.len(),
+        median_ms,
+        mean_ms,
+        min_ms: times[0],
+        max_ms: times[times.len() - 1],
+        setup_ms,
+        rss_mb,
+        rss_growth_mb: rss_mb.zip(before).map(|(a, b)| a - b),
+        submerged,
+        firewall: soak.as_ref().map_or(0, |s| s.firewall().count()),
+    })
+}
+
+/// Runs the bench: every size, every column, in that order; `progress`
+/// sees each measurement as it is made.
+///
+/// With `options.gpu` but no `gpu` feature or no adapter, the GPU
+/// columns are skipped with a note; they run up to
+/// `options.gpu_max_bodies` bodies.
+///
+/// # Errors
+/// No sizes, a mesh that does not bake, a body that does not register or
+/// a step that fails.
+pub fn run(
+    options: &ScalingOptions,
+    mut progress: impl FnMut(&Measurement),
+) -> Result<ScalingReport, ScalingError> {
+    if options.sizes.is_empty() || options.sizes.contains(&0) {
+        return Err(ScalingError::Sizes(options.sizes.clone()));
+    }
+    let start = Instant::now();
+    let fleet = Fleet::bake(options.resolution, options.sphere_segments)?;
+    let mut notes = vec![
+        "Rapier alone: the same bodies and masses without the generator; with no water they fall freely (no contacts)."
+            .to_string(),
+        format!(
+            "each body holds its own copy of its atlas ({} B for a box, {} B for a sphere) and of its tiles: setup and memory grow with N",
+            atlas_bytes(&fleet.box_atlas),
+            atlas_bytes(&fleet.sphere_atlas)
+        ),
+    ];
+    #[cfg(feature = "gpu")]
+    let (device, gpu_label) = if options.gpu {
+        match soak_hydro::gpu::headless_device() {
+            Ok((device, queue, info)) => {
+                let mut label = soak_hydro::gpu::adapter_label(&info);
+                if soak_hydro::gpu::is_software(&info) {
+                    label.push_str(
+                        " (a software adapter: its times are CPU times, meaningless for GPU speed)",
+                    );
+                }
+                notes.push(format!("GPU: {label}"));
+                (Some((device, queue)), Some(label))
+            }
+            Err(e) => {
+                notes.push(format!("GPU columns skipped: no adapter ({e})"));
+                (None, None)
+            }
+        }
+    } else {
+        (None, None)
+    };
+    #[cfg(not(feature = "gpu"))]
+    let gpu_label: Option<String> = {
+        if options.gpu {
+            notes.push("GPU columns skipped: this soak was built without its `gpu` feature".to_string());
+        }
+        None
+    };
+    let run_gpu = gpu_label.is_some();
+    let gpu = |g: ForceGenerator| -> Result<ForceGenerator, ScalingError> {
+        #[cfg(feature = "gpu")]
+        if let Some((device, queue)) = &device {
+            return Ok(g.with_gpu(device, queue)?);
+        }
+        Ok(g)
+    };
+    if run_gpu && options.sizes.iter().any(|&n| n > options.gpu_max_bodies) {
+        notes.push(format!(
+            "GPU columns run up to {} bodies (every body's atlas is uploaded)",
+            options.gpu_max_bodies
+        ));
+    }
+    let columns = Column::all(run_gpu);
+    let mut measurements = Vec::new();
+    for &n in &options.sizes {
+        for column in &columns {
+            if column.device == Device::Gpu && n > options.gpu_max_bodies {
+                continue;
+            }
+            let m = measure(
+                &fleet,
+                &Case {
+                    bodies: n,
+                    column: *column,
+                },
+                options,
+                &gpu,
+            )?;
+            progress(&m);
+            measurements.push(m);
+        }
+    }
+    Ok(ScalingReport {
+        options: options.clone(),
+        columns,
+        measurements,
+        texels: (fleet.box_atlas.len(), fleet.sphere_atlas.len()),
+        atlas_bytes: (atlas_bytes(&fleet.box_atlas), atlas_bytes(&fleet.sphere_atlas)),
+        bake_ms: fleet.bake_ms,
+        threads: rayon_threads(),
+        gpu: gpu_label,
+        notes,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+fn rayon_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
