@@ -25,7 +25,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             mass_model: MassModel::Shell {
                 areal_density: fabric_kg / atlas.area(),
             },
-            atlas,
+            atlas: atlas.into(),
             effects: Effects::buoyancy().with_drag(Drag {
                 coefficient: 0.5,
                 linear: 0.0,

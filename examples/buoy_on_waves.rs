@@ -40,7 +40,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         buoy,
         BodyDesc {
             name: "buoy".into(),
-            atlas,
+            atlas: atlas.into(),
             mass_model: MassModel::Solid { density: 150.0 },
             effects: Effects::buoyancy()
                 .with_mode(BuoyancyMode::Pressure)

@@ -22,7 +22,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         crate_body,
         BodyDesc {
             name: "crate".into(),
-            atlas,
+            atlas: atlas.into(),
             mass_model: MassModel::Solid { density: 500.0 },
             effects: Effects::buoyancy().with_drag(Drag {
                 coefficient: 1.0,

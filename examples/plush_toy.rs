@@ -146,7 +146,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         handle,
         BodyDesc {
             name: "plush".into(),
-            atlas: atlas.clone(),
+            atlas: atlas.clone().into(),
             mass_model: MassModel::Solid { density: 50.0 },
             effects: Effects::buoyancy()
                 .with_drag(Drag {

@@ -111,7 +111,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         handle,
         BodyDesc {
             name: "boat".into(),
-            atlas: atlas.clone(),
+            atlas: atlas.clone().into(),
             mass_model: MassModel::Shell { areal_density: 40.0 },
             effects: Effects::buoyancy()
                 .with_drag(Drag {

@@ -97,7 +97,7 @@ impl World {
             h,
             BodyDesc {
                 name: name.into(),
-                atlas,
+                atlas: atlas.into(),
                 mass_model: mass,
                 effects,
             },

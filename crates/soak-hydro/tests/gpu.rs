@@ -19,7 +19,7 @@ use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuError, GpuHydro, GpuHydroError, GpuOptions, adapter_label};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HeightField, HydroForces, HydroOptions, MassModel,
-    MassProperties, Plane, Surface, Unbounded, Water, evaluate,
+    MassProperties, Plane, SeaSampling, Surface, Unbounded, Water, evaluate,
 };
 
 const MESHES: [&str; 7] = [
@@ -44,6 +44,16 @@ type Device = (wgpu::Device, wgpu::Queue, wgpu::AdapterInfo);
 /// device serialises all work behind one context lock, which wgpu gives up
 /// on after 6 s: tests running in parallel on one GL device could trip it).
 /// `None` (with a notice) when there is no adapter, a failure under `CI=true`.
+/// The CPU reference's options: the GPU inverts the Gerstner map at every
+/// texel, so the CPU reads the sea exactly too (the sampled read is held
+/// to the exact one in `sea_sampling.rs`).
+fn exact_options() -> HydroOptions {
+    HydroOptions {
+        sea: SeaSampling::Exact,
+        ..HydroOptions::default()
+    }
+}
+
 fn device() -> Option<Device> {
     soak_hydro::gpu::test_device()
 }
@@ -465,7 +475,7 @@ fn parity(
                     buoyancy,
                     drag,
                     dt: 1.0 / 60.0,
-                    ..HydroOptions::default()
+                    ..exact_options()
                 };
                 (water, state, options)
             })
@@ -600,7 +610,7 @@ fn a_batch_of_100_equals_100_single_evaluations() {
             buoyancy: BuoyancyMode::Pressure,
             drag: (k % 3 != 0).then_some(DRAG),
             dt: 1.0 / 120.0,
-            ..HydroOptions::default()
+            ..exact_options()
         };
         bodies.push((b, GpuBody::from((id, water, state, b.mass, options))));
     }
@@ -688,7 +698,7 @@ fn deformation_on_the_gpu_matches_refresh() {
                     let state = rng.state(&deformed, level, 5.0, 1.0);
                     let options = HydroOptions {
                         drag: Some(DRAG),
-                        ..HydroOptions::default()
+                        ..exact_options()
                     };
                     let c = evaluate(&cpu_atlas, &water, &state, &mass, 0.5, &options).unwrap();
                     let g = gpu.evaluate(id, &water, &state, &mass, 0.5, &options).unwrap();
@@ -760,7 +770,7 @@ fn an_atlas_larger_than_the_binding_limit_is_split_and_agrees() {
             let state = rng.state(&sphere_baked, 0.3, 10.0, 1.0);
             let options = HydroOptions {
                 drag: Some(DRAG),
-                ..HydroOptions::default()
+                ..exact_options()
             };
             let bodies: Vec<GpuBody> = [first, split, boat]
                 .iter()
@@ -821,7 +831,7 @@ fn an_atlas_larger_than_the_binding_limit_is_split_and_agrees() {
                 &waters[0],
                 BodyState::at_rest(Isometry3::identity()),
                 mass,
-                HydroOptions::default(),
+                exact_options(),
             ))
         })
         .collect();
@@ -857,7 +867,7 @@ fn a_custom_surface_is_a_typed_error() {
     let custom = Water::new(Ripples);
     let calm = plane();
     let state = BodyState::at_rest(Isometry3::identity());
-    let options = HydroOptions::default();
+    let options = exact_options();
     assert_eq!(
         gpu.hydro.evaluate(id, &custom, &state, &b.mass, 0.0, &options),
         Err(GpuHydroError::UnsupportedSurface { body: 0 })
@@ -881,7 +891,7 @@ fn non_finite_input_is_a_typed_error() {
     let id = gpu.id(b);
     let water = plane();
     let ok = BodyState::at_rest(Isometry3::translation(0.0, 0.2, 0.0));
-    let options = HydroOptions::default();
+    let options = exact_options();
     let eval =
         |s: &BodyState, m: &MassProperties, t: f64, w: &Water| gpu.hydro.evaluate(id, w, s, m, t, &options);
 

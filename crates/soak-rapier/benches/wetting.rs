@@ -53,7 +53,7 @@ fn setup(variant: Variant) -> (PhysicsWorld, ForceGenerator) {
         handle,
         BodyDesc {
             name: "crate".into(),
-            atlas,
+            atlas: atlas.into(),
             mass_model: MassModel::Solid { density: 400.0 },
             effects: Effects {
                 wetting,

@@ -20,7 +20,11 @@ enum Variant {
     EffectsOff,
 }
 
-fn world(n: usize, atlas: &Atlas, variant: Variant) -> (PhysicsWorld, Option<ForceGenerator>) {
+fn world(
+    n: usize,
+    atlas: &std::sync::Arc<Atlas>,
+    variant: Variant,
+) -> (PhysicsWorld, Option<ForceGenerator>) {
     let mut world = PhysicsWorld::new();
     world.integration_parameters.dt = 1.0 / 60.0;
     let mut soak = ForceGenerator::new(Water::calm(0.0));
@@ -59,7 +63,8 @@ fn world(n: usize, atlas: &Atlas, variant: Variant) -> (PhysicsWorld, Option<For
 }
 
 fn step(c: &mut Criterion) {
-    let atlas = Atlas::bake(&builtin::sphere(0.5, 32, 16), BakeOptions::square(128)).unwrap();
+    let atlas =
+        std::sync::Arc::new(Atlas::bake(&builtin::sphere(0.5, 32, 16), BakeOptions::square(128)).unwrap());
     let mut g = c.benchmark_group("world_step");
     g.sample_size(10);
     for n in [1usize, 10, 100, 1000] {

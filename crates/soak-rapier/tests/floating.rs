@@ -26,7 +26,7 @@ fn sim(mesh: &Mesh, res: u32, model: MassModel, effects: Effects, pose: Pose, dt
             handle,
             BodyDesc {
                 name: mesh.name.clone(),
-                atlas,
+                atlas: atlas.into(),
                 mass_model: model,
                 effects,
             },
@@ -351,7 +351,7 @@ fn colliders_with_mass_are_refused_and_effects_off_cost_nothing() {
     let mut soak = ForceGenerator::new(Water::calm(0.0));
     let desc = BodyDesc {
         name: "heavy collider".into(),
-        atlas: atlas.clone(),
+        atlas: atlas.clone().into(),
         mass_model: MassModel::Solid { density: 500.0 },
         effects: Effects::buoyancy(),
     };
@@ -373,7 +373,7 @@ fn colliders_with_mass_are_refused_and_effects_off_cost_nothing() {
             h2,
             BodyDesc {
                 name: "inert".into(),
-                atlas,
+                atlas: atlas.into(),
                 mass_model: MassModel::Solid { density: 500.0 },
                 effects: Effects::default(),
             },

@@ -39,7 +39,7 @@ fn world(
             h,
             BodyDesc {
                 name: name.to_string(),
-                atlas,
+                atlas: atlas.into(),
                 mass_model: MassModel::Solid {
                     density: 400.0 + 100.0 * i as f64,
                 },

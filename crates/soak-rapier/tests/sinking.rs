@@ -64,7 +64,7 @@ fn boat() -> Boat {
             handle,
             BodyDesc {
                 name: "boat".into(),
-                atlas: atlas.clone(),
+                atlas: atlas.clone().into(),
                 mass_model: MassModel::Shell {
                     areal_density: HULL_AREAL_DENSITY,
                 },
@@ -332,7 +332,7 @@ fn the_plush_toy_soaks_up_water_through_its_segmented_graph() {
             handle,
             BodyDesc {
                 name: "plush".into(),
-                atlas: atlas.clone(),
+                atlas: atlas.clone().into(),
                 mass_model: MassModel::Solid { density: 50.0 },
                 effects: Effects::buoyancy()
                     .with_drag(Drag {

@@ -29,7 +29,7 @@ fn a_very_light_body_at_a_tenth_of_a_second_step_does_not_gain_energy() {
         handle,
         BodyDesc {
             name: "speck".into(),
-            atlas,
+            atlas: atlas.into(),
             mass_model: MassModel::Solid { density },
             effects: Effects::buoyancy(),
         },

@@ -83,7 +83,7 @@ fn floating_box(
             handle,
             BodyDesc {
                 name: "box".into(),
-                atlas,
+                atlas: atlas.into(),
                 mass_model: MassModel::Solid { density: 500.0 },
                 effects: Effects {
                     wetting,

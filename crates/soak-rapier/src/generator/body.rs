@@ -2,6 +2,8 @@
 //! per-step work needs of it ([`Shape`]), its mass, its last forces and its
 //! effects (with the liquid inside it and in its surface).
 
+use std::sync::Arc;
+
 use rapier3d::prelude::RigidBodyHandle;
 use soak_bake::Atlas;
 use soak_graph::Flooding;
@@ -15,11 +17,12 @@ use super::config::Effects;
 pub struct SoakBody {
     pub(super) name: String,
     pub(super) handle: RigidBodyHandle,
-    pub(super) atlas: Atlas,
+    pub(super) atlas: Arc<Atlas>,
     /// The atlas' volume and the bounds the stiff-step treatment uses,
     /// computed when the atlas is set (each is a pass over the texels).
     pub(super) shape: Shape,
-    pub(super) tiled: Option<TiledAtlas>,
+    /// The atlas' tiles, shared by the bodies that share the atlas.
+    pub(super) tiled: Option<Arc<TiledAtlas>>,
     pub(super) mass_model: MassModel,
     /// Mass from the model alone.
     pub(super) model_mass: MassProperties,

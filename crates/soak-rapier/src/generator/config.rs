@@ -2,6 +2,8 @@
 //! ([`Effects`]: buoyancy, drag, flooding, wetting), the CPU backend ([`Backend`]), what to register
 //! ([`BodyDesc`]) and the id a registered body gets ([`SoakId`]).
 
+use std::sync::Arc;
+
 use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
 use soak_graph::Flooding;
@@ -85,7 +87,7 @@ impl Effects {
     /// let mut soak = ForceGenerator::new(Water::calm(0.0));
     /// let id = soak.register(&mut world.bodies, &world.colliders, handle, BodyDesc {
     ///     name: "box".into(),
-    ///     atlas,
+    ///     atlas: atlas.into(),
     ///     mass_model: MassModel::Shell { areal_density: 20.0 },
     ///     effects: Effects::buoyancy().with_flooding(flooding),
     /// })?;
@@ -141,8 +143,11 @@ pub struct SoakId(pub usize);
 pub struct BodyDesc {
     /// A name for reports and log lines.
     pub name: String,
-    /// The baked atlas of the body's mesh, in the rigid body's local frame.
-    pub atlas: Atlas,
+    /// The baked atlas of the body's mesh, in the rigid body's local frame,
+    /// shared: bodies registered with clones of one `Arc` (a hundred crates
+    /// of one mesh) share its texels and its tiles, in memory and in the
+    /// cache (`Arc::new(atlas)`, or `atlas.into()`).
+    pub atlas: Arc<Atlas>,
     /// How the body's mass is distributed.
     pub mass_model: MassModel,
     /// The effects it takes part in.

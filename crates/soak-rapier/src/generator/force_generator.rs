@@ -3,6 +3,8 @@
 //! shape, wetting and flooding between steps. Each step's work is in `driver.rs`, the
 //! saved state in `state.rs`.
 
+use std::sync::Arc;
+
 use nalgebra::Point3;
 use rapier3d::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
 use soak_graph::Flooding;
@@ -45,7 +47,7 @@ use crate::firewall::Firewall;
 /// let mut soak = ForceGenerator::new(Water::calm(0.0));
 /// soak.register(&mut world.bodies, &world.colliders, handle, BodyDesc {
 ///     name: "crate".into(),
-///     atlas,
+///     atlas: atlas.into(),
 ///     mass_model: MassModel::Solid { density: 500.0 },
 ///     effects: Effects::buoyancy().with_drag(Drag::default()),
 /// })?;
@@ -112,9 +114,11 @@ impl ForceGenerator {
     /// The same generator with another CPU backend.
     pub fn with_backend(mut self, backend: Backend) -> Self {
         self.backend = backend;
-        for b in &mut self.bodies {
-            b.tiled = (backend != Backend::PerTexel && b.effects.needs_hydrostatics())
-                .then(|| TiledAtlas::new(&b.atlas));
+        for k in 0..self.bodies.len() {
+            let b = &self.bodies[k];
+            let tiled = (backend != Backend::PerTexel && b.effects.needs_hydrostatics())
+                .then(|| shared_tiles(&self.bodies[..k], &b.atlas));
+            self.bodies[k].tiled = tiled;
         }
         self
     }
@@ -396,7 +400,7 @@ impl ForceGenerator {
         }
         push_mass(&desc.name, body, colliders, &mass)?;
         let tiled = (self.backend != Backend::PerTexel && desc.effects.needs_hydrostatics())
-            .then(|| TiledAtlas::new(&desc.atlas));
+            .then(|| shared_tiles(&self.bodies, &desc.atlas));
         #[cfg(feature = "gpu")]
         if let Some(gpu) = &mut self.gpu {
             gpu.upload(&desc.atlas)?;
@@ -495,7 +499,7 @@ impl ForceGenerator {
         colliders: &ColliderSet,
     ) -> Result<(), SoakError> {
         let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
-        let mut atlas = b.atlas.clone();
+        let mut atlas = soak_bake::Atlas::clone(&b.atlas);
         atlas.refresh(positions).map_err(|source| SoakError::Bake {
             name: b.name.clone(),
             source,
@@ -513,7 +517,7 @@ impl ForceGenerator {
         let total = with_extra(&mass, b.extra_mass.as_ref());
         push_mass(&b.name, rb, colliders, &total)?;
         if b.tiled.is_some() {
-            b.tiled = Some(TiledAtlas::new(&atlas));
+            b.tiled = Some(Arc::new(TiledAtlas::new(&atlas)));
         }
         if let Some(w) = &mut b.effects.wetting {
             // The texels moved in object space: rebin the diffusion field.
@@ -524,7 +528,7 @@ impl ForceGenerator {
             gpu.deform(id.0, positions)?;
         }
         b.shape = Shape::of(&atlas);
-        b.atlas = atlas;
+        b.atlas = Arc::new(atlas);
         b.model_mass = mass;
         b.mass = total;
         Ok(())
@@ -532,6 +536,19 @@ impl ForceGenerator {
 }
 
 /// Refuses a wetting state made for an atlas of another size.
+/// The tiles of `atlas`: those of a body in `bodies` that shares it (the
+/// same `Arc`), or new ones.
+fn shared_tiles(bodies: &[SoakBody], atlas: &Arc<soak_bake::Atlas>) -> Arc<TiledAtlas> {
+    // Bodies of one mesh are usually registered together: look back from
+    // the last.
+    bodies
+        .iter()
+        .rev()
+        .find(|b| Arc::ptr_eq(&b.atlas, atlas))
+        .and_then(|b| b.tiled.clone())
+        .unwrap_or_else(|| Arc::new(TiledAtlas::new(atlas)))
+}
+
 fn check_wetting(name: &str, atlas: &soak_bake::Atlas, w: &Wetting) -> Result<(), SoakError> {
     if w.texels() == atlas.len() {
         return Ok(());

@@ -13,7 +13,7 @@ fn default_resolution() -> ResolutionSpec {
 /// A body's atlas side: texels, or `"auto"`, the coarsest side whose
 /// buoyancy is within the body's `tolerance` of the exact clipping of its
 /// mesh (see [`soak_hydro::bake_to_tolerance`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(untagged)]
 pub enum ResolutionSpec {
     /// This many texels a side.
@@ -23,7 +23,7 @@ pub enum ResolutionSpec {
 }
 
 /// The keyword `"auto"`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Auto {
     /// `"auto"`.

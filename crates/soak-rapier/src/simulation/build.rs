@@ -2,6 +2,9 @@
 //! every body with its mesh baked, its collider, its wetting and its liquid
 //! graph.
 
+use std::collections::HashMap;
+use std::sync::Arc;
+
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions, UnwrapOptions};
@@ -132,6 +135,8 @@ impl Simulation {
         }
         let mut bodies = Vec::new();
         let mut holes = Vec::new();
+        let mut atlases: HashMap<(String, bool, ResolutionSpec, Option<u64>), (Arc<Atlas>, u32)> =
+            HashMap::new();
         for (i, b) in scene.bodies.iter().enumerate() {
             let body_err = |message: String| SceneError::Body {
                 path: loaded.path.clone(),
@@ -187,27 +192,45 @@ impl Simulation {
             let id = if b.fixed {
                 None
             } else {
-                let atlas = match b.resolution {
-                    ResolutionSpec::Texels(n) => {
-                        resolution = n;
-                        Atlas::bake(&mesh, BakeOptions::square(n)).map_err(|e| body_err(e.to_string()))?
-                    }
-                    ResolutionSpec::Auto(_) => {
-                        let tolerance = b.tolerance.unwrap_or(DEFAULT_TOLERANCE);
-                        let (atlas, choice) =
-                            soak_hydro::bake_to_tolerance(&mesh, tolerance, BakeOptions::default())
-                                .map_err(|e| body_err(e.to_string()))?;
-                        resolution = choice.resolution;
-                        log::info!(
-                            "body `{}`: resolution {}² for tolerance {:.1e} (error {:.1e})",
-                            b.name,
-                            choice.resolution,
-                            tolerance,
-                            choice.error
-                        );
-                        atlas
+                // Bodies of one mesh at one resolution share one atlas (and
+                // so its tiles): baked once, one copy in memory.
+                let key = (
+                    b.mesh.clone(),
+                    b.unwrap,
+                    b.resolution,
+                    b.tolerance.map(f64::to_bits),
+                );
+                let (atlas, side) = match atlases.get(&key) {
+                    Some(known) => known.clone(),
+                    None => {
+                        let made = match b.resolution {
+                            ResolutionSpec::Texels(n) => (
+                                Arc::new(
+                                    Atlas::bake(&mesh, BakeOptions::square(n))
+                                        .map_err(|e| body_err(e.to_string()))?,
+                                ),
+                                n,
+                            ),
+                            ResolutionSpec::Auto(_) => {
+                                let tolerance = b.tolerance.unwrap_or(DEFAULT_TOLERANCE);
+                                let (atlas, choice) =
+                                    soak_hydro::bake_to_tolerance(&mesh, tolerance, BakeOptions::default())
+                                        .map_err(|e| body_err(e.to_string()))?;
+                                log::info!(
+                                    "body `{}`: resolution {}² for tolerance {:.1e} (error {:.1e})",
+                                    b.name,
+                                    choice.resolution,
+                                    tolerance,
+                                    choice.error
+                                );
+                                (Arc::new(atlas), choice.resolution)
+                            }
+                        };
+                        atlases.insert(key, made.clone());
+                        made
                     }
                 };
+                resolution = side;
                 let mass_model = match b.mass {
                     MassSpec::Solid { density } => MassModel::Solid { density },
                     MassSpec::Shell { areal_density } => MassModel::Shell { areal_density },

@@ -1,5 +1,7 @@
 //! Building the worlds and timing their steps.
 
+use std::sync::Arc;
+
 use std::time::Instant;
 
 use rapier3d::prelude::*;
@@ -29,10 +31,10 @@ pub const RADIUS: f64 = 0.5;
 /// shares: its mass and volume.
 #[derive(Clone, Debug)]
 pub struct Fleet {
-    /// The box's atlas (even bodies).
-    pub box_atlas: Atlas,
-    /// The sphere's atlas (odd bodies).
-    pub sphere_atlas: Atlas,
+    /// The box's atlas (even bodies), shared by every box.
+    pub box_atlas: Arc<Atlas>,
+    /// The sphere's atlas (odd bodies), shared by every sphere.
+    pub sphere_atlas: Arc<Atlas>,
     /// Volumes of the box and the sphere, m³.
     pub volumes: [f64; 2],
     /// Masses of the box and the sphere, kg.
@@ -60,8 +62,8 @@ impl Fleet {
         let bake_ms = start.elapsed().as_secs_f64() * 1e3;
         let volumes = [box_atlas.volume(), sphere_atlas.volume()];
         Ok(Self {
-            box_atlas,
-            sphere_atlas,
+            box_atlas: Arc::new(box_atlas),
+            sphere_atlas: Arc::new(sphere_atlas),
             volumes,
             masses: volumes.map(|v| v * DENSITY),
             bake_ms,
@@ -69,7 +71,7 @@ impl Fleet {
     }
 
     /// The atlas of body `i`.
-    pub fn atlas(&self, i: usize) -> &Atlas {
+    pub fn atlas(&self, i: usize) -> &Arc<Atlas> {
         if i.is_multiple_of(2) {
             &self.box_atlas
         } else {

@@ -122,7 +122,7 @@ pub(crate) fn run_cell(
         handle,
         BodyDesc {
             name: cell.name(),
-            atlas: f.atlas.clone(),
+            atlas: f.atlas.clone().into(),
             mass_model: MassModel::Solid {
                 density: cell.density * RHO_W,
             },
