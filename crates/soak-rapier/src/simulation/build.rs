@@ -106,6 +106,10 @@ fn with_gpu(_: ForceGenerator) -> Result<ForceGenerator, String> {
     Err("`gpu` needs soak built with its `gpu` feature".into())
 }
 
+/// What makes two scene bodies' atlases the same: mesh, unwrap, resolution
+/// and tolerance (its bits).
+type AtlasKey = (String, bool, ResolutionSpec, Option<u64>);
+
 impl Simulation {
     /// Builds the world a scene describes: loads and bakes every mesh,
     /// registers the bodies with their effects.
@@ -135,8 +139,7 @@ impl Simulation {
         }
         let mut bodies = Vec::new();
         let mut holes = Vec::new();
-        let mut atlases: HashMap<(String, bool, ResolutionSpec, Option<u64>), (Arc<Atlas>, u32)> =
-            HashMap::new();
+        let mut atlases: HashMap<AtlasKey, (Arc<Atlas>, u32)> = HashMap::new();
         for (i, b) in scene.bodies.iter().enumerate() {
             let body_err = |message: String| SceneError::Body {
                 path: loaded.path.clone(),
