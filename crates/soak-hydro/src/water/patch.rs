@@ -138,6 +138,9 @@ impl SurfacePatch {
         // Heights and slopes at the nodes, each probe warm-starting the next.
         let n = nodes[0] * nodes[1];
         let (mut h, mut sx, mut sz) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        // Each node's hint after its probe: where the velocities are
+        // sampled above and below it, the surface starts from there.
+        let mut hints = vec![[0.0; 2]; n];
         let mut hint = [0.0; 2];
         for j in 0..nodes[1] {
             for i in 0..nodes[0] {
@@ -146,6 +149,7 @@ impl SurfacePatch {
                 let (depth, _) = surface.probe(&Point3::new(x, 0.0, z), t, false, &mut hint);
                 let [gx, gz] = surface.slope(x, z, t, &hint);
                 (h[k], sx[k], sz[k]) = (depth, gx, gz);
+                hints[k] = hint;
             }
         }
         // Twists `∂²f/∂x∂z`: central differences of the slopes (one-sided
@@ -220,7 +224,7 @@ impl SurfacePatch {
         let velocity = match velocity {
             None => None,
             Some((y_min, y_max)) => Some(Self::sample_velocity(
-                surface, t, origin, spacing, nodes, &h, y_min, y_max,
+                surface, t, origin, spacing, nodes, &h, &hints, y_min, y_max,
             )?),
         };
         Ok(Self {
@@ -242,6 +246,7 @@ impl SurfacePatch {
         spacing: f64,
         nodes: [usize; 2],
         heights: &[f64],
+        hints: &[[f64; 2]],
         y_min: f64,
         y_max: f64,
     ) -> Result<VelocityGrid, WaterError> {
@@ -253,7 +258,6 @@ impl SurfacePatch {
         let dy = spacing;
         let ny = (((y_max - y_min).max(0.0) / dy).ceil() as usize + 1).min(MAX_PATCH_NODES);
         let mut values = Vec::with_capacity(nodes[0] * nodes[1] * ny);
-        let mut hint = [0.0; 2];
         for l in 0..ny {
             let y = y_min + l as f64 * dy;
             for j in 0..nodes[1] {
@@ -261,6 +265,7 @@ impl SurfacePatch {
                     let (x, z) = (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
                     // Above the surface the velocity is the surface's own.
                     let y = y.min(heights[j * nodes[0] + i]);
+                    let mut hint = hints[j * nodes[0] + i];
                     let (_, v) = surface.probe(&Point3::new(x, y, z), t, true, &mut hint);
                     if let Some(c) = v.iter().find(|c| !c.is_finite()) {
                         return Err(WaterError::Parameter {
@@ -351,24 +356,32 @@ impl SurfacePatch {
             return Vector3::zeros();
         };
         let [nx, ny, nz] = g.nodes;
-        let axis = |q: f64, n: usize| -> (usize, usize, f64) {
+        // Index of the lower node along an axis and the fraction past it.
+        #[inline(always)]
+        fn axis(q: f64, n: usize) -> (usize, usize, f64) {
             let f = q.clamp(0.0, (n - 1) as f64);
             let i = (f as usize).min(n.saturating_sub(2));
-            (i, (i + 1).min(n - 1), f - i as f64)
-        };
-        let (i0, i1, fx) = axis((p.x - self.origin[0]) / self.spacing, nx);
-        let (k0, k1, fz) = axis((p.z - self.origin[1]) / self.spacing, nz);
-        let (l0, l1, fy) = axis((p.y - g.y0) / g.dy, ny);
-        let at = |i: usize, l: usize, k: usize| Vector3::from(g.values[(l * nz + k) * nx + i]);
-        let lerp = |a: Vector3<f64>, b: Vector3<f64>, f: f64| a + (b - a) * f;
-        let layer = |l: usize| {
-            lerp(
-                lerp(at(i0, l, k0), at(i1, l, k0), fx),
-                lerp(at(i0, l, k1), at(i1, l, k1), fx),
-                fz,
-            )
-        };
-        lerp(layer(l0), layer(l1), fy)
+            (i, (i + 1).min(n - 1) - i, f - i as f64)
+        }
+        let inv = 1.0 / self.spacing;
+        let (i0, di, fx) = axis((p.x - self.origin[0]) * inv, nx);
+        let (k0, dk, fz) = axis((p.z - self.origin[1]) * inv, nz);
+        let (l0, dl, fy) = axis((p.y - g.y0) / g.dy, ny);
+        let base = (l0 * nz + k0) * nx + i0;
+        let (sx, sz, sy) = (di, dk * nx, dl * nz * nx);
+        let v = &g.values;
+        let corner = |k: usize| Vector3::from(v[k]);
+        let (c000, c100) = (corner(base), corner(base + sx));
+        let (c010, c110) = (corner(base + sz), corner(base + sz + sx));
+        let (c001, c101) = (corner(base + sy), corner(base + sy + sx));
+        let (c011, c111) = (corner(base + sy + sz), corner(base + sy + sz + sx));
+        let x00 = c000 + (c100 - c000) * fx;
+        let x10 = c010 + (c110 - c010) * fx;
+        let x01 = c001 + (c101 - c001) * fx;
+        let x11 = c011 + (c111 - c011) * fx;
+        let z0 = x00 + (x10 - x00) * fz;
+        let z1 = x01 + (x11 - x01) * fz;
+        z0 + (z1 - z0) * fy
     }
 }
 
