@@ -318,19 +318,19 @@ impl<'a> Disjoint<'a> {
     }
 }
 
-/// The values of cell `v`'s 8 nearest cells for each octant (`corners`
-/// layout), zero where a corner is not defined, and a mask, 1 where it is.
+/// Writes the values of cell `v`'s 8 nearest cells for each octant
+/// (`corners` layout) into `value`, zero where a corner is not defined, and
+/// a mask into `mask`, 1 where it is.
 #[inline]
-fn corner_values(layout: &Layout, values: &[f64], v: usize) -> ([f64; 64], [f64; 64]) {
+fn corner_values(layout: &Layout, values: &[f64], v: usize, value: &mut [f64; 64], mask: &mut [f64; 64]) {
     let ids = &layout.corners[64 * v..64 * v + 64];
-    let (mut value, mut mask) = ([0.0; 64], [0.0; 64]);
     for (j, &id) in ids.iter().enumerate() {
-        if id != NONE {
-            value[j] = values[id as usize];
-            mask[j] = 1.0;
-        }
+        (value[j], mask[j]) = if id != NONE {
+            (values[id as usize], 1.0)
+        } else {
+            (0.0, 0.0)
+        };
     }
-    (value, mask)
 }
 
 fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scratch) {
@@ -398,7 +398,8 @@ fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scra
                 return;
             }
             let hmax = layout.segments[layout.cell_segment[v] as usize].saturation;
-            let (near, defined) = corner_values(layout, dphi, v);
+            let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
+            corner_values(layout, dphi, v, &mut near, &mut defined);
             let r = layout.slots(v);
             for k in r.clone() {
                 let i = layout.members[k] as usize;
@@ -511,7 +512,8 @@ fn thesis(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scratch) {
         .with_min_len(CELLS_PER_TASK)
         .for_each(|v| {
             let hmax = layout.segments[layout.cell_segment[v] as usize].saturation;
-            let (near, defined) = corner_values(layout, value, v);
+            let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
+            corner_values(layout, value, v, &mut near, &mut defined);
             for k in layout.slots(v) {
                 let (o, t) = layout.octant(k);
                 let (near, defined) = (&near[8 * o..8 * o + 8], &defined[8 * o..8 * o + 8]);
