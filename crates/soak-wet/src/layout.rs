@@ -366,9 +366,18 @@ mod tests {
         for v in 0..layout.defined() {
             let list = &layout.members[layout.start[v] as usize..layout.start[v + 1] as usize];
             assert!(list.windows(2).all(|w| w[0] < w[1]));
-            for &i in list {
+            for (k, &i) in layout.slots(v).zip(list) {
                 assert_eq!(layout.voxel_of[i as usize], v as u32);
                 seen[i as usize] = true;
+                assert_eq!(layout.slot_area[k], layout.areas[i as usize]);
+                // The slot's position in its cell, in voxels from its lower
+                // corner: the texel lies in the cell (to the binning slack).
+                let f = layout.slot_frac[k];
+                assert!(
+                    f.iter()
+                        .all(|&x| (-SLACK as f32..=1.0 + SLACK as f32).contains(&x)),
+                    "{f:?}"
+                );
             }
         }
         assert!(seen.iter().all(|&s| s));
