@@ -103,6 +103,17 @@ fn bench(c: &mut Criterion) {
                 );
             }
         }
+        // A fingerprint of the liquid after the warm-up steps: variants of
+        // the kernels that compute the same bits print the same value.
+        let bits = w
+            .liquid()
+            .iter()
+            .fold(0u64, |acc, h| acc.rotate_left(5) ^ h.to_bits());
+        eprintln!(
+            "{}: total {:.15e} m³, bits {bits:016x}",
+            s.name,
+            w.total_liquid(&atlas)
+        );
         g.bench_function(BenchmarkId::new("cpu", s.name), |b| {
             b.iter(|| {
                 t += dt;

@@ -252,10 +252,6 @@ pub(crate) fn run(
     }
 }
 
-fn members(layout: &Layout, v: usize) -> &[u32] {
-    &layout.members[layout.start[v] as usize..layout.start[v + 1] as usize]
-}
-
 fn neighbours(layout: &Layout, v: usize) -> &[u32] {
     &layout.neighbours[layout.nstart[v] as usize..layout.nstart[v + 1] as usize]
 }
@@ -265,15 +261,89 @@ fn resize(buffer: &mut Vec<f64>, n: usize) {
     buffer.resize(n, 0.0);
 }
 
+/// Cells per task of the per-cell parallel passes (a fixed split would do
+/// as well: each cell's result is computed by one task in a fixed order,
+/// so the thread count changes nothing).
+const CELLS_PER_TASK: usize = 64;
+
+/// A slice that several tasks write at distinct indices: each cell's task
+/// touches only its own texels (every binned texel is the member of
+/// exactly one cell) and its own member slots.
+struct Disjoint<'a> {
+    ptr: *mut f64,
+    len: usize,
+    _slice: std::marker::PhantomData<&'a mut [f64]>,
+}
+
+// SAFETY: `Disjoint` only hands out element reads and writes through
+// `unsafe fn`s whose callers promise no index is used by two tasks at once.
+#[allow(unsafe_code)]
+unsafe impl Sync for Disjoint<'_> {}
+#[allow(unsafe_code)]
+unsafe impl Send for Disjoint<'_> {}
+
+impl<'a> Disjoint<'a> {
+    fn new(slice: &'a mut [f64]) -> Self {
+        Self {
+            ptr: slice.as_mut_ptr(),
+            len: slice.len(),
+            _slice: std::marker::PhantomData,
+        }
+    }
+
+    /// Element `i`.
+    ///
+    /// # Safety
+    /// No other task accesses element `i` during this pass.
+    #[allow(unsafe_code)]
+    #[inline]
+    unsafe fn get(&self, i: usize) -> f64 {
+        assert!(i < self.len);
+        // SAFETY: in bounds (checked), and not written concurrently (the
+        // caller's promise).
+        unsafe { *self.ptr.add(i) }
+    }
+
+    /// Sets element `i`.
+    ///
+    /// # Safety
+    /// No other task accesses element `i` during this pass.
+    #[allow(unsafe_code)]
+    #[inline]
+    unsafe fn set(&self, i: usize, x: f64) {
+        assert!(i < self.len);
+        // SAFETY: in bounds (checked), and not accessed concurrently (the
+        // caller's promise).
+        unsafe { *self.ptr.add(i) = x }
+    }
+}
+
+/// Writes the values of cell `v`'s 8 nearest cells for each octant
+/// (`corners` layout) into `value`, zero where a corner is not defined, and
+/// a mask into `mask`, 1 where it is.
+#[inline]
+fn corner_values(layout: &Layout, values: &[f64], v: usize, value: &mut [f64; 64], mask: &mut [f64; 64]) {
+    let ids = &layout.corners[64 * v..64 * v + 64];
+    for (j, &id) in ids.iter().enumerate() {
+        (value[j], mask[j]) = if id != NONE {
+            (values[id as usize], 1.0)
+        } else {
+            (0.0, 0.0)
+        };
+    }
+}
+
 fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scratch) {
     let nv = layout.defined();
     resize(&mut s.start, nv);
     resize(&mut s.next, nv);
     resize(&mut s.aux, nv);
     s.start.par_iter_mut().enumerate().for_each(|(v, m)| {
-        *m = members(layout, v)
+        let r = layout.slots(v);
+        *m = layout.members[r.clone()]
             .iter()
-            .map(|&i| layout.areas[i as usize] as f64 * h[i as usize])
+            .zip(&layout.slot_area[r])
+            .map(|(&i, &a)| a as f64 * h[i as usize])
             .sum();
     });
     s.value.clear();
@@ -309,88 +379,91 @@ fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scra
     s.active.par_iter_mut().enumerate().for_each(|(v, a)| {
         *a = dphi[v] != 0.0 || neighbours(layout, v).iter().any(|&u| dphi[u as usize] != 0.0);
     });
-    // Each texel's smooth share of the change (zero where nothing nearby
-    // changed).
+    // Per active cell, in one pass over its texels: each texel's smooth
+    // share of the change (zero where nothing nearby changed), then what
+    // the shares leave over of the cell's change, as a factor (f > 0 fills
+    // that fraction of the room left, f < 0 takes that fraction of the
+    // liquid left), then the texels' new liquid.
     let active = &s.active;
-    s.delta.clear();
-    s.delta.resize(h.len(), 0.0);
-    for seg in &layout.segments {
-        let hmax = seg.saturation;
-        let range = seg.start..seg.end;
-        s.delta[range.clone()]
-            .par_iter_mut()
-            .zip(h[range.clone()].par_iter())
-            .zip(layout.voxel_of[range].par_iter())
-            .enumerate()
-            .for_each(|(k, ((d, &h), &v))| {
-                if v != NONE && active[v as usize] {
-                    *d = smooth_change(layout, dphi, seg.start + k, v as usize, h, hmax);
-                }
-            });
-    }
-    // Per cell, what the smooth shares leave over of its change, as a
-    // factor: f > 0 fills that fraction of the room left, f < 0 takes that
-    // fraction of the liquid left.
-    let delta = &s.delta;
-    s.next.par_iter_mut().enumerate().for_each(|(v, f)| {
-        if !active[v] {
-            *f = 0.0;
-            return;
-        }
-        let spread: f64 = members(layout, v)
-            .iter()
-            .map(|&i| layout.areas[i as usize] as f64 * delta[i as usize])
-            .sum();
-        let (m0, c) = (start[v], cap[v]);
-        let rest = (value[v].clamp(0.0, c) - m0) - spread;
-        let (room, content) = (c - m0 - spread, m0 + spread);
-        *f = if rest > 0.0 && room > 0.0 {
-            (rest / room).min(1.0)
-        } else if rest < 0.0 && content > 0.0 {
-            (rest / content).max(-1.0)
-        } else {
-            0.0
-        };
-    });
-    let factor = &s.next;
-    for seg in &layout.segments {
-        let hmax = seg.saturation;
-        let range = seg.start..seg.end;
-        h[range.clone()]
-            .par_iter_mut()
-            .zip(layout.voxel_of[range.clone()].par_iter())
-            .zip(delta[range].par_iter())
-            .for_each(|((h, &v), &d)| {
-                if v != NONE && active[v as usize] {
-                    let x = *h + d;
-                    let f = factor[v as usize];
+    // Every slot of an active cell is written before it is read: no need
+    // to clear.
+    s.delta.resize(layout.members.len(), 0.0);
+    let delta = Disjoint::new(&mut s.delta);
+    let out = Disjoint::new(h);
+    (0..nv)
+        .into_par_iter()
+        .with_min_len(CELLS_PER_TASK)
+        .for_each(|v| {
+            if !active[v] {
+                return;
+            }
+            let hmax = layout.segments[layout.cell_segment[v] as usize].saturation;
+            let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
+            corner_values(layout, dphi, v, &mut near, &mut defined);
+            let r = layout.slots(v);
+            for k in r.clone() {
+                let i = layout.members[k] as usize;
+                // SAFETY: texel `i` and slot `k` belong to cell `v` alone.
+                #[allow(unsafe_code)]
+                let x = unsafe { out.get(i) };
+                let d = smooth_change(layout, &near, &defined, k, x, hmax);
+                // SAFETY: as above.
+                #[allow(unsafe_code)]
+                unsafe {
+                    delta.set(k, d)
+                };
+            }
+            // SAFETY: the slots of cell `v` are its own.
+            #[allow(unsafe_code)]
+            let spread: f64 = layout.slot_area[r.clone()]
+                .iter()
+                .zip(r.clone())
+                .map(|(&a, k)| a as f64 * unsafe { delta.get(k) })
+                .sum();
+            let (m0, c) = (start[v], cap[v]);
+            let rest = (value[v].clamp(0.0, c) - m0) - spread;
+            let (room, content) = (c - m0 - spread, m0 + spread);
+            let f = if rest > 0.0 && room > 0.0 {
+                (rest / room).min(1.0)
+            } else if rest < 0.0 && content > 0.0 {
+                (rest / content).max(-1.0)
+            } else {
+                0.0
+            };
+            for k in r {
+                let i = layout.members[k] as usize;
+                // SAFETY: texel `i` and slot `k` belong to cell `v` alone.
+                #[allow(unsafe_code)]
+                unsafe {
+                    let x = out.get(i) + delta.get(k);
                     let x = if f < 0.0 {
                         x * (1.0 + f)
                     } else {
                         x + f * (hmax - x)
                     };
-                    *h = x.clamp(0.0, hmax);
+                    out.set(i, x.clamp(0.0, hmax));
                 }
-            });
-    }
+            }
+        });
 }
 
-/// The smooth share of texel `i`'s change in the conservative return: the
-/// cells' fill changes `dphi` interpolated trilinearly at the texel over
-/// the defined cells of its body among the 8 nearest, times `h_max`,
-/// clamped so the texel stays in `[0, h_max]`.
+/// The smooth share of a texel's change in the conservative return (member
+/// slot `k`, liquid `h`): the cells' fill changes interpolated trilinearly
+/// at the texel over the defined cells of its body among the 8 nearest
+/// (`near`, `defined`: [`corner_values`] of the fill changes), times
+/// `h_max`, clamped so the texel stays in `[0, h_max]`.
 #[inline]
-fn smooth_change(layout: &Layout, dphi: &[f64], i: usize, v: usize, h: f64, hmax: f64) -> f64 {
-    let (ids, t) = layout.nearest(i, v);
+fn smooth_change(layout: &Layout, near: &[f64; 64], defined: &[f64; 64], k: usize, h: f64, hmax: f64) -> f64 {
+    let (o, t) = layout.octant(k);
+    let (near, defined) = (&near[8 * o..8 * o + 8], &defined[8 * o..8 * o + 8]);
     let (mut num, mut den) = (0.0, 0.0);
-    for (corner, &id) in ids.iter().enumerate() {
-        if id == NONE {
-            continue;
-        }
+    for corner in 0..8 {
         let w = |k: usize| if (corner >> k) & 1 == 1 { t[k] } else { 1.0 - t[k] };
         let w = w(0) * w(1) * w(2);
-        num += w * dphi[id as usize];
-        den += w;
+        // Undefined corners add +0 to both sums: the same bits as
+        // leaving them out (neither sum can be −0).
+        num += w * near[corner];
+        den += w * defined[corner];
     }
     if den > 0.0 {
         (num / den * hmax).clamp(-h, hmax - h)
@@ -410,13 +483,13 @@ fn thesis(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scratch) {
     resize(&mut s.value, nv);
     resize(&mut s.next, nv);
     s.value.par_iter_mut().enumerate().for_each(|(v, out)| {
-        let c = layout.cells[v].map(|x| x as f64 + 0.5);
         let (mut num, mut den) = (0.0, 0.0);
-        for &i in members(layout, v) {
-            let g = layout.grid_pos[i as usize];
-            let d2 = (0..3).map(|k| (g[k] as f64 - c[k]).powi(2)).sum::<f64>();
+        for k in layout.slots(v) {
+            // Offsets from the cell's centre (exact: see `slot_frac`).
+            let g = layout.slot_frac[k];
+            let d2 = (0..3).map(|a| (g[a] as f64 - 0.5).powi(2)).sum::<f64>();
             let wgt = shepard(d2);
-            num += wgt * h[i as usize];
+            num += wgt * h[layout.members[k] as usize];
             den += wgt;
         }
         *out = num / den;
@@ -433,33 +506,35 @@ fn thesis(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scratch) {
         std::mem::swap(&mut s.value, &mut s.next);
     }
     let value = &s.value;
-    for seg in &layout.segments {
-        let hmax = seg.saturation;
-        let range = seg.start..seg.end;
-        h[range.clone()]
-            .par_iter_mut()
-            .zip(layout.voxel_of[range].par_iter())
-            .enumerate()
-            .for_each(|(k, (h, &v))| {
-                if v == NONE {
-                    return;
-                }
-                let (ids, t) = layout.nearest(seg.start + k, v as usize);
+    let out = Disjoint::new(h);
+    (0..nv)
+        .into_par_iter()
+        .with_min_len(CELLS_PER_TASK)
+        .for_each(|v| {
+            let hmax = layout.segments[layout.cell_segment[v] as usize].saturation;
+            let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
+            corner_values(layout, value, v, &mut near, &mut defined);
+            for k in layout.slots(v) {
+                let (o, t) = layout.octant(k);
+                let (near, defined) = (&near[8 * o..8 * o + 8], &defined[8 * o..8 * o + 8]);
                 let (mut num, mut den) = (0.0, 0.0);
-                for (corner, &id) in ids.iter().enumerate() {
-                    if id == NONE {
-                        continue;
-                    }
-                    let d2: f64 = (0..3).map(|k| (t[k] - ((corner >> k) & 1) as f64).powi(2)).sum();
+                for corner in 0..8 {
+                    let d2: f64 = (0..3).map(|a| (t[a] - ((corner >> a) & 1) as f64).powi(2)).sum();
                     let wgt = shepard(d2);
-                    num += wgt * value[id as usize];
-                    den += wgt;
+                    // Undefined corners add +0 to both sums (the weight is
+                    // positive and finite): the same bits as leaving them out.
+                    num += wgt * near[corner];
+                    den += wgt * defined[corner];
                 }
                 if den > 0.0 {
-                    *h = (num / den).clamp(0.0, hmax);
+                    // SAFETY: texel `members[k]` belongs to cell `v` alone.
+                    #[allow(unsafe_code)]
+                    unsafe {
+                        out.set(layout.members[k] as usize, (num / den).clamp(0.0, hmax))
+                    };
                 }
-            });
-    }
+            }
+        });
 }
 
 #[cfg(test)]

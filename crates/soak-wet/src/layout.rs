@@ -46,8 +46,6 @@ pub(crate) struct Layout {
     pub segments: Vec<Segment>,
     /// Per texel: area, m² (concatenated over segments).
     pub areas: Vec<f32>,
-    /// Per texel: grid coordinates (voxel units).
-    pub grid_pos: Vec<[f32; 3]>,
     /// Per texel: compact id of its voxel, or [`NONE`].
     pub voxel_of: Vec<u32>,
     /// Per (grid voxel, segment), at `voxel · segments + segment`: compact
@@ -60,6 +58,14 @@ pub(crate) struct Layout {
     /// Texels of cell `v`: `members[start[v]..start[v+1]]`.
     pub start: Vec<u32>,
     pub members: Vec<u32>,
+    /// Per member slot (in `members` order, so each cell's texels are
+    /// contiguous): the texel's area, m², and its position in its cell,
+    /// voxel units from the cell's lower corner (`grid coordinates − cell`,
+    /// exact in `f32`: the difference of an `f32` and an integer below
+    /// 2^24 that lies within about one voxel of it). The per-step passes
+    /// read these in order instead of looking texels up.
+    pub slot_area: Vec<f32>,
+    pub slot_frac: Vec<[f32; 3]>,
     /// Neighbour cells of cell `v` (3×3×3 block, other bodies' cells of
     /// the same voxel included): `neighbours[nstart[v]..nstart[v+1]]`.
     pub nstart: Vec<u32>,
@@ -79,24 +85,30 @@ pub(crate) struct Layout {
 }
 
 impl Layout {
-    /// The 8 nearest cells of texel `i` (in cell `v`) and its trilinear
-    /// coordinates `t` ∈ [0, 1]³ from the lower corner: corner `c` has the
-    /// weight `Π_k (t_k if bit k of c else 1 − t_k)`.
+    /// The octant `o` of its cell that member slot `k` lies in (index of
+    /// its 8 nearest cells in `corners[64 v + 8 o..]`) and its trilinear
+    /// coordinates `t` ∈ [0, 1]³ from the lower of those 8 centres: corner
+    /// `c` has the weight `Π_k (t_k if bit k of c else 1 − t_k)`.
     #[inline]
-    pub fn nearest(&self, i: usize, v: usize) -> (&[u32], [f64; 3]) {
-        let g = self.grid_pos[i];
-        let c = self.cells[v];
+    pub fn octant(&self, k: usize) -> (usize, [f64; 3]) {
+        let g = self.slot_frac[k];
         let mut o = 0;
         let mut t = [0.0; 3];
-        for k in 0..3 {
-            let f = g[k] as f64 - c[k] as f64;
+        for a in 0..3 {
+            let f = g[a] as f64;
             let upper = f >= 0.5;
-            o |= usize::from(upper) << k;
+            o |= usize::from(upper) << a;
             // Lower corner at c - 1 + upper, centre 0.5 further.
             let base = if upper { 0.5 } else { -0.5 };
-            t[k] = (f - base).clamp(0.0, 1.0);
+            t[a] = (f - base).clamp(0.0, 1.0);
         }
-        (&self.corners[64 * v + 8 * o..64 * v + 8 * o + 8], t)
+        (o, t)
+    }
+
+    /// Member slots of cell `v`.
+    #[inline]
+    pub fn slots(&self, v: usize) -> std::ops::Range<usize> {
+        self.start[v] as usize..self.start[v + 1] as usize
     }
 
     /// Defined voxels.
@@ -107,13 +119,14 @@ impl Layout {
     /// Bytes held.
     pub fn bytes(&self) -> usize {
         self.areas.capacity() * 4
-            + self.grid_pos.capacity() * 12
             + self.voxel_of.capacity() * 4
             + self.dense.capacity() * 4
             + self.cells.capacity() * 12
             + self.cell_segment.capacity() * 4
             + self.start.capacity() * 4
             + self.members.capacity() * 4
+            + self.slot_area.capacity() * 4
+            + self.slot_frac.capacity() * 12
             + self.nstart.capacity() * 4
             + self.neighbours.capacity() * 4
             + self.corners.capacity() * 4
@@ -129,8 +142,7 @@ impl Layout {
         let n: usize = placements.iter().map(|p| p.atlas.len()).sum();
         self.segments.clear();
         self.areas.clear();
-        self.grid_pos.clear();
-        self.grid_pos.resize(n, [0.0; 3]);
+        let mut grid_pos = vec![[0.0f32; 3]; n];
         self.voxel_of.clear();
         self.voxel_of.resize(n, NONE);
         let mut at = 0;
@@ -146,7 +158,7 @@ impl Layout {
             let usable = p.saturation > 0.0;
             let local = p.atlas.local_positions();
             let areas = p.atlas.areas();
-            self.grid_pos[at..at + len]
+            grid_pos[at..at + len]
                 .par_iter_mut()
                 .zip(self.voxel_of[at..at + len].par_iter_mut())
                 .enumerate()
@@ -221,6 +233,19 @@ impl Layout {
                 fill[c as usize] += 1;
             }
         }
+        self.slot_area.clear();
+        self.slot_area
+            .extend(self.members.iter().map(|&i| self.areas[i as usize]));
+        self.slot_frac.clear();
+        self.slot_frac.resize(total as usize, [0.0; 3]);
+        let (members, cells, start) = (&self.members, &self.cells, &self.start);
+        self.slot_frac.par_iter_mut().enumerate().for_each(|(k, f)| {
+            // The slot's cell: the last v with start[v] <= k.
+            let v = start.partition_point(|&s| s as usize <= k) - 1;
+            let g = grid_pos[members[k] as usize];
+            let c = cells[v];
+            *f = [0, 1, 2].map(|a| (g[a] as f64 - c[a] as f64) as f32);
+        });
 
         // Areas and capacities per defined voxel, in member order.
         let defined = self.cells.len();
@@ -341,9 +366,18 @@ mod tests {
         for v in 0..layout.defined() {
             let list = &layout.members[layout.start[v] as usize..layout.start[v + 1] as usize];
             assert!(list.windows(2).all(|w| w[0] < w[1]));
-            for &i in list {
+            for (k, &i) in layout.slots(v).zip(list) {
                 assert_eq!(layout.voxel_of[i as usize], v as u32);
                 seen[i as usize] = true;
+                assert_eq!(layout.slot_area[k], layout.areas[i as usize]);
+                // The slot's position in its cell, in voxels from its lower
+                // corner: the texel lies in the cell (to the binning slack).
+                let f = layout.slot_frac[k];
+                assert!(
+                    f.iter()
+                        .all(|&x| (-SLACK as f32..=1.0 + SLACK as f32).contains(&x)),
+                    "{f:?}"
+                );
             }
         }
         assert!(seen.iter().all(|&s| s));
