@@ -12,6 +12,15 @@
 //! still at work is waited for by spinning a little (its chunk is short)
 //! before parking.
 //!
+//! Measured against rayon's own `(0..n).into_par_iter().map(f).collect()`
+//! (two threads, each variant built and run in turn three times, the
+//! sphere at 1024² and 128² and a world of 100 floating spheres): the
+//! per-texel pass and the world step take the same time either way, and a
+//! tiled evaluation at 1024² (about 6 µs) takes 5.3–5.6 µs here against
+//! 6.5 µs with rayon when the caller runs inside rayon's pool (as rapier
+//! runs its step) and 11–23 µs when it does not (a game loop calling
+//! `evaluate`). So the loop stays.
+//!
 //! The lifetime of the caller's task is erased for the helpers (they are
 //! `'static` rayon jobs); the tests below exercise the hand-over under
 //! Miri too: `MIRIFLAGS="-Zmiri-tree-borrows -Zmiri-permissive-provenance
