@@ -280,7 +280,7 @@ pub fn run(
         "Rapier alone: the same bodies and masses without the generator; with no water they fall freely (no contacts)."
             .to_string(),
         format!(
-            "each body holds its own copy of its atlas ({} B for a box, {} B for a sphere) and of its tiles: setup and memory grow with N",
+            "the bodies of one mesh share its atlas ({} B for the box, {} B for the sphere) and its tiles; each body holds its own state",
             atlas_bytes(&fleet.box_atlas),
             atlas_bytes(&fleet.sphere_atlas)
         ),

@@ -267,8 +267,8 @@ pub struct ScalingReport {
     pub measurements: Vec<Measurement>,
     /// Texels of the box's and the sphere's atlas.
     pub texels: (usize, usize),
-    /// Bytes of one box atlas and one sphere atlas (their arrays), as each
-    /// body holds its own copy.
+    /// Bytes of the box's atlas and the sphere's (their arrays), which the
+    /// bodies of each mesh share.
     pub atlas_bytes: (usize, usize),
     /// Baking both meshes, ms (once per run).
     pub bake_ms: f64,
