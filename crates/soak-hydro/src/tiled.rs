@@ -1,5 +1,10 @@
 //! The tiled path for planar water: same answer as the per-texel sums, far
 //! less work.
+//!
+//! Longer than the other files on purpose: the tiles' moments for buoyancy
+//! and for drag are built in one pass over the atlas and read by one
+//! classification of groups and tiles against the waterline and the flow;
+//! split, each half would have to repeat the classification.
 
 use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;

@@ -4,6 +4,12 @@
 //!
 //! Everything here sums [`DragAcc`]; [`DragAcc::system`] turns the sums
 //! into the world-axes system about the centre of mass once.
+//!
+//! Longer than the other files on purpose: the portable and the AVX2 forms
+//! of the kernel must do the same operations in the same order on the same
+//! lanes (the tests hold them to the same bits), and the per-tile moments
+//! and facing bounds are the kernel's own sums over a tile, closed form for
+//! closed form.
 
 use nalgebra::{Matrix3, Vector3};
 use soak_bake::Atlas;

@@ -12,7 +12,7 @@ use super::frame::{Frame, texel};
 use super::options::{BuoyancyMode, Drag, HydroOptions, SeaSampling};
 use super::planar_kernel::{PlanarTexels, add_planar_ranges};
 use super::sea_kernel::{self, SeaFrame, add_sea_range};
-use super::sums::{BuoyancySums, DragAcc, DragSums};
+use super::sums::{BuoyancySums, DragAcc, DragSums, TexelDrag};
 use crate::error::{HydroError, WaterError};
 use crate::mass::{CHUNK, MassProperties, chunked_sum};
 use crate::water::{Surface, SurfaceKind, SurfacePatch, Water};
@@ -21,7 +21,7 @@ use crate::water::{Surface, SurfaceKind, SurfacePatch, Water};
 #[derive(Clone, Copy, Default)]
 struct Both {
     b: BuoyancySums,
-    d: DragSums,
+    d: TexelDrag,
 }
 
 impl std::ops::Add for Both {
@@ -137,7 +137,7 @@ pub fn evaluate(
                     None => general_sums(atlas, water, state, &frame, t, options, &Exact(&*water.surface)),
                 },
             };
-            let drag = options.drag.map(|_| both.d);
+            let drag = options.drag.map(|_| both.d.sums());
             return Ok(finish(
                 &frame,
                 water,
@@ -257,7 +257,7 @@ fn general_sums<S: TexelSurface>(
                 if let Some(drag) = &options.drag {
                     let rc = p - frame.com;
                     let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
-                    s.d.add_texel(drag, water.density, &rc, &aw, &v, &u);
+                    s.d.add(drag, water.density, &rc, &aw, &v, &u);
                 }
             }
         }
@@ -297,7 +297,6 @@ fn patch_sums(
         };
         let mut depths = vec![0.0; range.len()];
         add_sea_range(&mut s.b, atlas, range.clone(), &sea, Some(&mut depths));
-        let mut acc = SeaDrag::default();
         for (i, d) in range.zip(depths) {
             if d > 0.0 {
                 let (x, a) = texel(atlas, i);
@@ -305,146 +304,11 @@ fn patch_sums(
                 let rc = p - frame.com;
                 let u = patch.velocity_at(&p);
                 let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
-                acc.add(drag, water.density, &rc, &(frame.rot * a), &v, &u);
+                s.d.add(drag, water.density, &rc, &(frame.rot * a), &v, &u);
             }
         }
-        s.d = acc.sums();
         s
     })
-}
-
-/// The drag of texels in a flow that varies from texel to texel, summed
-/// in the symmetric form of [`DragSums::add_texel`] (the same `K` and `b`,
-/// each texel in straight-line code) and turned into a [`DragSums`] once.
-#[derive(Default)]
-struct SeaDrag {
-    /// Σ s, Σ s r, Σ s r rᵀ (xx, xy, xz, yy, yz, zz).
-    s: f64,
-    sr: Vector3<f64>,
-    srr: [f64; 6],
-    /// Σ w g gᵀ, upper triangle row by row, `g = (a, r × a)`.
-    gg: [f64; 21],
-    /// Σ K_i u and Σ r × K_i u.
-    f: Vector3<f64>,
-    rf: Vector3<f64>,
-}
-
-impl SeaDrag {
-    #[inline]
-    fn add(
-        &mut self,
-        drag: &Drag,
-        rho: f64,
-        r: &Vector3<f64>,
-        a: &Vector3<f64>,
-        vrel: &Vector3<f64>,
-        u: &Vector3<f64>,
-    ) {
-        let facing = a.dot(vrel);
-        let kq = if facing > 0.0 {
-            0.5 * rho * drag.coefficient * facing
-        } else {
-            0.0
-        };
-        let area = a.norm();
-        let (s, w) = if drag.linear > 0.0 && area > 0.0 {
-            (kq + drag.linear * area, drag.linear / area)
-        } else {
-            (kq, 0.0)
-        };
-        if s == 0.0 {
-            return;
-        }
-        self.s += s;
-        self.sr += s * r;
-        let sr = s * r;
-        self.srr[0] += sr.x * r.x;
-        self.srr[1] += sr.x * r.y;
-        self.srr[2] += sr.x * r.z;
-        self.srr[3] += sr.y * r.y;
-        self.srr[4] += sr.y * r.z;
-        self.srr[5] += sr.z * r.z;
-        if w != 0.0 {
-            let g = [
-                a.x,
-                a.y,
-                a.z,
-                r.y * a.z - r.z * a.y,
-                r.z * a.x - r.x * a.z,
-                r.x * a.y - r.y * a.x,
-            ];
-            let mut k = 0;
-            for i in 0..6 {
-                let wg = w * g[i];
-                for gj in &g[i..] {
-                    self.gg[k] += wg * gj;
-                    k += 1;
-                }
-            }
-        }
-        let f = s * u - (w * a.dot(u)) * a;
-        self.f += f;
-        self.rf += r.cross(&f);
-    }
-
-    /// `K = s [[I, −[r]×], [[r]×, |r|² I − r rᵀ]] − Σ w g gᵀ` and `b`.
-    fn sums(&self) -> DragSums {
-        let mut d = DragSums::default();
-        let (s, c) = (self.s, self.sr);
-        let [xx, xy, xz, yy, yz, zz] = self.srr;
-        let tr = xx + yy + zz;
-        let iso = nalgebra::Matrix6::new(
-            s,
-            0.0,
-            0.0,
-            0.0,
-            c.z,
-            -c.y, //
-            0.0,
-            s,
-            0.0,
-            -c.z,
-            0.0,
-            c.x, //
-            0.0,
-            0.0,
-            s,
-            c.y,
-            -c.x,
-            0.0, //
-            0.0,
-            -c.z,
-            c.y,
-            tr - xx,
-            -xy,
-            -xz, //
-            c.z,
-            0.0,
-            -c.x,
-            -xy,
-            tr - yy,
-            -yz, //
-            -c.y,
-            c.x,
-            0.0,
-            -xz,
-            -yz,
-            tr - zz,
-        );
-        d.k = iso;
-        let mut k = 0;
-        for i in 0..6 {
-            for j in i..6 {
-                d.k[(i, j)] -= self.gg[k];
-                if i != j {
-                    d.k[(j, i)] -= self.gg[k];
-                }
-                k += 1;
-            }
-        }
-        d.b = nalgebra::Vector6::new(self.f.x, self.f.y, self.f.z, self.rf.x, self.rf.y, self.rf.z);
-        d
-    }
 }
 
 /// The water's surface sampled once over the footprint of a body at
@@ -561,8 +425,8 @@ pub(crate) fn drag_sums(
         });
         return acc.system(&frame.rot, &c, &u);
     }
-    chunked_sum(range.len(), DragSums::default(), |r| {
-        let mut s = DragSums::default();
+    chunked_sum(range.len(), TexelDrag::default(), |r| {
+        let mut s = TexelDrag::default();
         for i in r.start + start..r.end + start {
             let (x, a) = texel(atlas, i);
             let rr = frame.rot * x;
@@ -572,57 +436,10 @@ pub(crate) fn drag_sums(
                 let rc = p - frame.com;
                 let u = water.surface.velocity(&Point3::from(p), t);
                 let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
-                s.add_texel(drag, water.density, &rc, &(frame.rot * a), &v, &u);
+                s.add(drag, water.density, &rc, &(frame.rot * a), &v, &u);
             }
         }
         s
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// [`SeaDrag`] sums what [`DragSums::add_texel`] sums, texel by texel.
-    #[test]
-    fn sea_drag_sums_what_add_texel_sums() {
-        let mut seed = 7u64;
-        let mut next = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
-        for drag in [
-            Drag {
-                coefficient: 0.8,
-                linear: 20.0,
-            },
-            Drag {
-                coefficient: 1.2,
-                linear: 0.0,
-            },
-            Drag {
-                coefficient: 0.0,
-                linear: 5.0,
-            },
-        ] {
-            let (mut want, mut got) = (DragSums::default(), SeaDrag::default());
-            for _ in 0..500 {
-                let mut v = || Vector3::new(next(), next(), next());
-                let (r, a, vrel, u) = (v(), 0.01 * v(), v(), 0.3 * v());
-                want.add_texel(&drag, 1000.0, &r, &a, &vrel, &u);
-                got.add(&drag, 1000.0, &r, &a, &vrel, &u);
-            }
-            let got = got.sums();
-            let scale = want.k.norm().max(1e-300);
-            assert!(
-                (got.k - want.k).norm() <= 1e-12 * scale,
-                "K {} vs {}",
-                got.k,
-                want.k
-            );
-            assert!((got.b - want.b).norm() <= 1e-12 * want.b.norm().max(1e-300), "b");
-        }
-    }
+    .sums()
 }

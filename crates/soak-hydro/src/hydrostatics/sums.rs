@@ -305,18 +305,29 @@ impl DragAcc {
     }
 }
 
-impl DragSums {
-    /// Adds a submerged texel at `rc` from the centre of mass with world area
-    /// vector `a`, relative velocity `vrel` and fluid velocity `u`.
-    ///
-    /// `K += Jᵀ K_i J` and `b += Jᵀ K_i u` with `J = [I, −[r]×]` and
-    /// `K_i = s I − w a aᵀ` (see [`DragAcc`]), in their symmetric forms.
+/// The drag of submerged texels taken one by one, each in its own fluid
+/// velocity (any surface), in world axes about the centre of mass: the
+/// sums of [`DragAcc`] (per texel `s (1, r, r rᵀ)` and `w g gᵀ`), and
+/// `b = Σ Jᵀ K_i u_i`, which a fluid velocity that varies from texel to
+/// texel keeps from being `K (u, 0)`. [`TexelDrag::sums`] turns them into
+/// a [`DragSums`] once.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct TexelDrag {
+    acc: DragAcc,
+    /// Σ K_i u_i and Σ r × K_i u_i.
+    f: Vector3<f64>,
+    rf: Vector3<f64>,
+}
+
+impl TexelDrag {
+    /// Adds a submerged texel at `r` from the centre of mass with world
+    /// area vector `a`, relative velocity `vrel` and fluid velocity `u`.
     #[inline]
-    pub(crate) fn add_texel(
+    pub(crate) fn add(
         &mut self,
         drag: &Drag,
         rho: f64,
-        rc: &Vector3<f64>,
+        r: &Vector3<f64>,
         a: &Vector3<f64>,
         vrel: &Vector3<f64>,
         u: &Vector3<f64>,
@@ -327,55 +338,52 @@ impl DragSums {
         } else {
             0.0
         };
-        if kq == 0.0 && drag.linear <= 0.0 {
-            return;
-        }
         let area = a.norm();
         let (s, w) = if drag.linear > 0.0 && area > 0.0 {
             (kq + drag.linear * area, drag.linear / area)
         } else {
             (kq, 0.0)
         };
-        let r = rc;
-        let rr = r.norm_squared();
-        let g = [
-            a.x,
-            a.y,
-            a.z,
-            r.y * a.z - r.z * a.y,
-            r.z * a.x - r.x * a.z,
-            r.x * a.y - r.y * a.x,
-        ];
-        // s [[I, −[r]×], [[r]×, |r|² I − r rᵀ]] − w g gᵀ, upper triangle.
-        let iso = |i: usize, j: usize| -> f64 {
-            match (i, j) {
-                (0, 0) | (1, 1) | (2, 2) => s,
-                (0, 4) => s * r.z,
-                (0, 5) => -s * r.y,
-                (1, 3) => -s * r.z,
-                (1, 5) => s * r.x,
-                (2, 3) => s * r.y,
-                (2, 4) => -s * r.x,
-                (3..=5, 3..=5) => {
-                    let (p, q) = (i - 3, j - 3);
-                    s * (if p == q { rr } else { 0.0 } - r[p] * r[q])
-                }
-                _ => 0.0,
-            }
-        };
-        for (i, gi) in g.iter().enumerate() {
-            let wg = w * gi;
-            for (j, gj) in g.iter().enumerate().skip(i) {
-                let e = iso(i, j) - wg * gj;
-                self.k[(i, j)] += e;
-                if i != j {
-                    self.k[(j, i)] += e;
-                }
-            }
+        if s == 0.0 {
+            return;
+        }
+        self.acc.add_iso(s, &[r.x, r.y, r.z]);
+        if w != 0.0 {
+            let g = [
+                a.x,
+                a.y,
+                a.z,
+                r.y * a.z - r.z * a.y,
+                r.z * a.x - r.x * a.z,
+                r.x * a.y - r.y * a.x,
+            ];
+            self.acc.add_rank1(w, &g);
         }
         // K_i u = s u − w (a·u) a.
         let f = s * u - (w * a.dot(u)) * a;
-        let rf = r.cross(&f);
-        self.b += Vector6::new(f.x, f.y, f.z, rf.x, rf.y, rf.z);
+        self.f += f;
+        self.rf += r.cross(&f);
+    }
+
+    /// The system: `K` from the [`DragAcc`] sums, `b` as summed.
+    pub(crate) fn sums(&self) -> DragSums {
+        let k = self.acc.k();
+        // The same matrix to the last bit on either side of the diagonal.
+        let k = Matrix6::from_fn(|i, j| if i <= j { k[(i, j)] } else { k[(j, i)] });
+        DragSums {
+            k,
+            b: Vector6::new(self.f.x, self.f.y, self.f.z, self.rf.x, self.rf.y, self.rf.z),
+        }
+    }
+}
+
+impl std::ops::Add for TexelDrag {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self {
+            acc: self.acc + o.acc,
+            f: self.f + o.f,
+            rf: self.rf + o.rf,
+        }
     }
 }
