@@ -12,7 +12,7 @@
 use std::path::{Path, PathBuf};
 
 use libfuzzer_sys::fuzz_target;
-use soak_rapier::scene::{GraphSpec, MassSpec, WaterKind};
+use soak_rapier::scene::{GraphSpec, MassSpec, ResolutionSpec, WaterKind};
 use soak_rapier::{Backend, LoadedScene, Simulation};
 
 const MAX_BODIES: usize = 4;
@@ -91,7 +91,12 @@ fuzz_target!(|data: &[u8]| {
             return;
         }
         physical &= sizes;
-        b.resolution = b.resolution.min(MAX_RESOLUTION);
+        // `"auto"` bakes up to 1024²: too slow for a fuzz run; a fixed side
+        // is capped.
+        b.resolution = match b.resolution {
+            ResolutionSpec::Texels(n) => ResolutionSpec::Texels(n.min(MAX_RESOLUTION)),
+            ResolutionSpec::Auto(_) => ResolutionSpec::Texels(MAX_RESOLUTION),
+        };
         match &mut b.graph {
             Some(GraphSpec::File(f)) => {
                 let name = f.strip_prefix("../graphs/").unwrap_or("");

@@ -3,7 +3,8 @@
 //! read of the same atlas (the bandwidth floor), exact clipping and the
 //! per-triangle baseline; and on a Gerstner sea, per texel, in Archimedes
 //! mode (which also takes the surface's slope for its torque) and in
-//! pressure mode; the sphere moving with drag, per texel and tiled, at
+//! pressure mode, and on the two-wave swell of `buoy_on_waves.toml`
+//! sampled (the default) and read exactly; the sphere moving with drag, per texel and tiled, at
 //! 1024² and 128²; the boat at 1024², per texel and tiled; the sphere at
 //! 2048², beyond the cache.
 
@@ -13,7 +14,7 @@ use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::reference::{self, ClipPlane};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HydroOptions, MassModel, MassProperties,
-    TiledAtlas, Water, evaluate, streaming_read,
+    SeaSampling, TiledAtlas, Water, evaluate, streaming_read,
 };
 
 /// `mesh` baked at `n`², and the mass properties of a solid of half the
@@ -95,6 +96,41 @@ fn hydro(c: &mut Criterion) {
         };
         g.bench_function(name, |b| {
             b.iter(|| evaluate(&atlas, &sea, &state, &mass, 0.0, &o).unwrap())
+        });
+    }
+    // The two-wave swell of `buoy_on_waves.toml`, sampled once per
+    // evaluation (the default, sampling included) and read exactly at
+    // every texel: against `per_texel` on the plane, what a sea costs.
+    let swell = Water::new(
+        Gerstner::new(
+            0.0,
+            vec![
+                GerstnerWave {
+                    amplitude: 0.25,
+                    wavelength: 9.0,
+                    direction_deg: 0.0,
+                    steepness: 0.6,
+                    phase: 0.0,
+                },
+                GerstnerWave {
+                    amplitude: 0.10,
+                    wavelength: 4.0,
+                    direction_deg: 35.0,
+                    steepness: 0.4,
+                    phase: 1.0,
+                },
+            ],
+            9.80665,
+        )
+        .unwrap(),
+    );
+    for (name, sea) in [
+        ("swell_sampled", SeaSampling::default()),
+        ("swell_exact", SeaSampling::Exact),
+    ] {
+        let o = HydroOptions { sea, ..opts };
+        g.bench_function(name, |b| {
+            b.iter(|| evaluate(&atlas, &swell, &state, &mass, 0.0, &o).unwrap())
         });
     }
     g.finish();

@@ -15,7 +15,7 @@ use super::sea_kernel::{self, SeaFrame, add_sea_range};
 use super::sums::{BuoyancySums, DragAcc, DragSums, TexelDrag};
 use crate::error::{HydroError, WaterError};
 use crate::mass::{CHUNK, MassProperties, chunked_sum};
-use crate::water::{Surface, SurfaceKind, SurfacePatch, Water};
+use crate::water::{MAX_PATCH_NODES, Surface, SurfaceKind, SurfacePatch, Water};
 
 /// Buoyancy and drag sums of one pass.
 #[derive(Clone, Copy, Default)]
@@ -313,9 +313,10 @@ fn patch_sums(
 
 /// The water's surface sampled once over the footprint of a body at
 /// `state` (its bounding sphere's, one node spacing wider), as
-/// [`HydroOptions::sea`] asks: `None` when it asks for the exact read or
-/// the surface has no [`Surface::sampling_length`] (planes, height fields,
-/// surfaces of your own). With drag, the fluid's velocity is sampled too,
+/// [`HydroOptions::sea`] asks: `None` when it asks for the exact read, the
+/// surface has no [`Surface::sampling_length`] (planes, height fields,
+/// surfaces of your own), or the body is so large against the waves that
+/// its patch would need more than [`MAX_PATCH_NODES`] nodes a side. With drag, the fluid's velocity is sampled too,
 /// over the body's height.
 ///
 /// [`evaluate`] samples on its own when handed a sea; sample once and
@@ -347,6 +348,11 @@ fn sample_patch(
     let spacing = length / per;
     let centre = state.pose * atlas.origin();
     let reach = atlas.bounding_radius() + spacing;
+    // A body so large against the waves that its patch would need more
+    // nodes than a patch holds is read exactly rather than more coarsely.
+    if 2.0 * reach / spacing > (MAX_PATCH_NODES - 1) as f64 {
+        return Ok(None);
+    }
     let min = [centre.x - reach, centre.z - reach];
     let max = [centre.x + reach, centre.z + reach];
     let r = atlas.bounding_radius();

@@ -68,7 +68,9 @@ pub struct HydroOptions {
 /// the bicubic Hermite interpolant, whose error falls as the fourth power
 /// of the node spacing. Surfaces that do not report a
 /// [`Surface::sampling_length`](crate::Surface::sampling_length) (height
-/// fields, your own) are read exactly either way.
+/// fields, your own) are read exactly either way, and so is a body so large
+/// against the waves that its patch would need more than
+/// [`MAX_PATCH_NODES`](crate::MAX_PATCH_NODES) nodes a side.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SeaSampling {
