@@ -102,9 +102,6 @@ fn speedup_line(report: &Report) -> String {
 pub fn text_table(report: &Report) -> String {
     let mut all: Vec<[String; 16]> = vec![HEADERS.map(String::from)];
     all.extend(report.rows.iter().map(cells));
-    let widths: Vec<usize> = (0..16)
-        .map(|c| all.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
-        .collect();
     let mut s = String::new();
     s.push_str(&format!(
         "soak accuracy{}: max error over {} water levels against exact clipping; times are medians of {} runs, texel paths on {} threads\n",
@@ -113,25 +110,7 @@ pub fn text_table(report: &Report) -> String {
         report.timing_runs,
         report.threads
     ));
-    let mut last = String::new();
-    for (i, r) in all.iter().enumerate() {
-        if i > 1 && r[0] != last {
-            s.push('\n');
-        }
-        last = r[0].clone();
-        for (c, cell) in r.iter().enumerate() {
-            let pad = widths[c] - cell.chars().count();
-            if c == 0 {
-                s.push_str(cell);
-                s.push_str(&" ".repeat(pad));
-            } else {
-                s.push_str("  ");
-                s.push_str(&" ".repeat(pad));
-                s.push_str(cell);
-            }
-        }
-        s.push('\n');
-    }
+    s.push_str(&aligned(&all, true));
     s.push_str("volume err: |V − V_exact| / V_body; CoB err: |C − C_exact| / bounding-box diagonal (levels ≥ 1 % submerged);\n");
     s.push_str("inertia err: largest |I − I_exact| component / tr I_exact; (centres): texel centres as in the thesis, no moment matching.\n");
     s.push_str(&speedup_line(report));
@@ -154,22 +133,35 @@ per evaluation with the sampling included, beside the same body on calm water.\n
 
 /// The sea rows as aligned text.
 fn sea_text(report: &Report) -> String {
-    let rows = sea_cells(&report.sea);
-    let widths: Vec<usize> = (0..10)
-        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
-        .collect();
     let mut s = String::from(
         "\non the two-wave swell: sampled read against the exact inversion (worst of six poses)\n",
     );
-    for r in &rows {
+    s.push_str(&aligned(&sea_cells(&report.sea), false));
+    s
+}
+
+/// Rows as aligned text: the first column left-aligned, the others
+/// right-aligned two spaces apart; with `gaps`, an empty line where the
+/// first column changes (after the header).
+fn aligned<const N: usize>(rows: &[[String; N]], gaps: bool) -> String {
+    let widths: Vec<usize> = (0..N)
+        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
+        .collect();
+    let mut s = String::new();
+    let mut last = "";
+    for (i, r) in rows.iter().enumerate() {
+        if gaps && i > 1 && r[0] != last {
+            s.push('\n');
+        }
+        last = &r[0];
         for (c, cell) in r.iter().enumerate() {
-            let pad = widths[c] - cell.chars().count();
+            let pad = " ".repeat(widths[c] - cell.chars().count());
             if c == 0 {
                 s.push_str(cell);
-                s.push_str(&" ".repeat(pad));
+                s.push_str(&pad);
             } else {
                 s.push_str("  ");
-                s.push_str(&" ".repeat(pad));
+                s.push_str(&pad);
                 s.push_str(cell);
             }
         }
