@@ -13,10 +13,22 @@ cd "$(dirname "$0")/.."
 root="$(pwd)"
 # Full debug information is not needed to check that a crate builds.
 export CARGO_PROFILE_DEV_DEBUG="${CARGO_PROFILE_DEV_DEBUG:-0}"
-cargo package --workspace --all-features --locked
-
 version="$(cargo metadata --format-version 1 --no-deps |
   python3 -c 'import json,sys; print(next(p["version"] for p in json.load(sys.stdin)["packages"] if p["name"] == "soak-hydro"))')"
+# `cargo package --workspace` verifies each crate against the others through
+# a temporary local registry under target/package, which cargo unpacks into
+# $CARGO_HOME/registry/src/-<hash of its path>/ and, when a folder of the same
+# name and version is already there, does not unpack again. A checkout at the
+# same path as an earlier run would verify against the earlier run's sources:
+# remove our crates' unpacked copies from the local registries (the folders
+# whose name starts with '-'; crates.io's are named after its host) first.
+cargo_home="${CARGO_HOME:-$HOME/.cargo}"
+for unpacked in "$cargo_home"/registry/src/-*/soak-"$version" \
+  "$cargo_home"/registry/src/-*/soak-*-"$version"; do
+  if [ -d "$unpacked" ]; then rm -rf "$unpacked"; fi
+done
+cargo package --workspace --all-features --locked
+
 check="$root/target/package-check"
 rm -rf "$check"
 mkdir -p "$check/unpacked" "$check/app/src"
