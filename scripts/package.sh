@@ -16,23 +16,28 @@ export CARGO_PROFILE_DEV_DEBUG="${CARGO_PROFILE_DEV_DEBUG:-0}"
 version="$(cargo metadata --format-version 1 --no-deps |
   python3 -c 'import json,sys; print(next(p["version"] for p in json.load(sys.stdin)["packages"] if p["name"] == "soak-hydro"))')"
 # `cargo package --workspace` verifies each crate against the others through
-# a temporary local registry under target/package, which cargo unpacks into
+# a temporary local registry, which cargo unpacks into
 # $CARGO_HOME/registry/src/-<hash of its path>/ and, when a folder of the same
-# name and version is already there, does not unpack again. A checkout at the
-# same path as an earlier run would verify against the earlier run's sources:
-# remove our crates' unpacked copies from the local registries (the folders
-# whose name starts with '-'; crates.io's are named after its host) first.
+# name and version is already there, does not unpack again; and it takes the
+# build of a registry crate of the same name and version in its target
+# folder as up to date. A checkout at the same path as an earlier run would
+# verify against the earlier run's sources: remove our crates' unpacked
+# copies from the local registries (the folders whose name starts with '-';
+# crates.io's are named after its host), and verify in a target folder of
+# its own, emptied first.
 cargo_home="${CARGO_HOME:-$HOME/.cargo}"
 for unpacked in "$cargo_home"/registry/src/-*/soak-"$version" \
   "$cargo_home"/registry/src/-*/soak-*-"$version"; do
   if [ -d "$unpacked" ]; then rm -rf "$unpacked"; fi
 done
-cargo package --workspace --all-features --locked
+packed="$root/target/package-verify"
+rm -rf "$packed"
+CARGO_TARGET_DIR="$packed" cargo package --workspace --all-features --locked
 
 check="$root/target/package-check"
 rm -rf "$check"
 mkdir -p "$check/unpacked" "$check/app/src"
-for crate in "$root"/target/package/*-"$version".crate; do
+for crate in "$packed"/package/*-"$version".crate; do
   tar xzf "$crate" -C "$check/unpacked"
 done
 patches=""
@@ -74,4 +79,4 @@ RS
 cp "$root/Cargo.lock" "$check/app/Cargo.lock"
 # The same target folder as the verification above: only the packed soak
 # crates build again.
-CARGO_TARGET_DIR="$root/target" cargo run --quiet --manifest-path "$check/app/Cargo.toml"
+CARGO_TARGET_DIR="$packed" cargo run --quiet --manifest-path "$check/app/Cargo.toml"
