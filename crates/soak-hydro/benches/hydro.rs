@@ -1,12 +1,13 @@
-//! Hydrostatics at 1024²: per texel in Archimedes mode (and with the body all
-//! dry and all submerged) and in pressure mode, tiled, a plain streaming
-//! read of the same atlas (the bandwidth floor), exact clipping and the
-//! per-triangle baseline; and on a Gerstner sea, per texel, in Archimedes
-//! mode (which also takes the surface's slope for its torque) and in
-//! pressure mode, and on the two-wave swell of `buoy_on_waves.toml`
-//! sampled (the default) and read exactly; the sphere moving with drag, per texel and tiled, at
-//! 1024² and 128²; the boat at 1024², per texel and tiled; the sphere at
-//! 2048², beyond the cache.
+//! Hydrostatics at 1024²: per texel in Archimedes mode (and with the body
+//! all dry and all submerged) and in pressure mode, tiled, a plain
+//! streaming read of the same atlas (the bandwidth floor), exact clipping
+//! and the per-triangle baseline; and on a Gerstner sea, per texel, in
+//! Archimedes mode (which also takes the surface's slope for its torque)
+//! and in pressure mode, and on the two-wave swell of `buoy_on_waves.toml`
+//! sampled (the default) and read exactly; the sphere moving with drag,
+//! per texel and tiled, and on the swell (sampled) with and without drag,
+//! at 1024² and 128²; the boat at 1024², per texel and tiled; the sphere
+//! at 2048², beyond the cache.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
@@ -25,6 +26,33 @@ fn baked(mesh: &Mesh, n: u32) -> (Atlas, MassProperties) {
         .mass_properties(&atlas)
         .unwrap();
     (atlas, mass)
+}
+
+/// The two-wave swell of `buoy_on_waves.toml`.
+fn swell() -> Water {
+    Water::new(
+        Gerstner::new(
+            0.0,
+            vec![
+                GerstnerWave {
+                    amplitude: 0.25,
+                    wavelength: 9.0,
+                    direction_deg: 0.0,
+                    steepness: 0.6,
+                    phase: 0.0,
+                },
+                GerstnerWave {
+                    amplitude: 0.10,
+                    wavelength: 4.0,
+                    direction_deg: 35.0,
+                    steepness: 0.4,
+                    phase: 1.0,
+                },
+            ],
+            9.80665,
+        )
+        .unwrap(),
+    )
 }
 
 fn hydro(c: &mut Criterion) {
@@ -101,29 +129,7 @@ fn hydro(c: &mut Criterion) {
     // The two-wave swell of `buoy_on_waves.toml`, sampled once per
     // evaluation (the default, sampling included) and read exactly at
     // every texel: against `per_texel` on the plane, what a sea costs.
-    let swell = Water::new(
-        Gerstner::new(
-            0.0,
-            vec![
-                GerstnerWave {
-                    amplitude: 0.25,
-                    wavelength: 9.0,
-                    direction_deg: 0.0,
-                    steepness: 0.6,
-                    phase: 0.0,
-                },
-                GerstnerWave {
-                    amplitude: 0.10,
-                    wavelength: 4.0,
-                    direction_deg: 35.0,
-                    steepness: 0.4,
-                    phase: 1.0,
-                },
-            ],
-            9.80665,
-        )
-        .unwrap(),
-    );
+    let swell = swell();
     for (name, sea) in [
         ("swell_sampled", SeaSampling::default()),
         ("swell_exact", SeaSampling::Exact),
@@ -164,6 +170,15 @@ fn drag_rows(
     });
     g.bench_function("tiled_drag", |b| {
         b.iter(|| tiled.evaluate(atlas, &water, &moving, mass, 0.0, &opts).unwrap())
+    });
+    // On the swell, sampled (the default), with and without drag.
+    let swell = swell();
+    let still = HydroOptions { drag: None, ..opts };
+    g.bench_function("swell_moving", |b| {
+        b.iter(|| evaluate(atlas, &swell, &moving, mass, 0.0, &still).unwrap())
+    });
+    g.bench_function("swell_drag", |b| {
+        b.iter(|| evaluate(atlas, &swell, &moving, mass, 0.0, &opts).unwrap())
     });
 }
 

@@ -213,6 +213,20 @@ fn the_patch_passes_through_the_surface_at_its_nodes_and_near_it_between() {
             let (_, _) = water.surface.probe(&Point3::new(x, 0.0, z), t, false, &mut hint);
             let s = water.surface.slope(x, z, t, &hint);
             assert!((slope[0] - s[0]).abs() < 1e-9 && (slope[1] - s[1]).abs() < 1e-9);
+            // The velocity at the grid's nodes (below the surface) is the
+            // surface's, and on the edge between two of them the mean of
+            // theirs (trilinear).
+            for l in 0..3 {
+                let y = -1.0 + 0.25 * l as f64;
+                let node = Point3::new(x, y, z);
+                let v = patch.velocity(&node, t);
+                let ve = water.surface.velocity(&node, t);
+                assert!((v - ve).norm() < 1e-12 * ve.norm().max(1.0), "node {node}: {v} vs {ve}");
+                let above = Point3::new(x, y + 0.25, z);
+                let mid = patch.velocity(&Point3::new(x, y + 0.125, z), t);
+                let mean = (v + patch.velocity(&above, t)) / 2.0;
+                assert!((mid - mean).norm() < 1e-12 * mean.norm().max(1.0), "{mid} vs {mean}");
+            }
         }
     }
     // Between nodes: within 1e-4 m of the 0.35 m-high swell (its sharper

@@ -13,6 +13,7 @@ use super::evaluation::{drag_sums, evaluate};
 use super::frame::{Frame, texel};
 use super::implicit_drag::implicit_drag;
 use super::options::{Drag, HydroOptions};
+use super::sea_drag::{SeaDragBlock, SeaDragParams};
 use super::sums::{DragAcc, DragSums, TexelDrag};
 use crate::mass::{MassModel, MassProperties};
 use crate::tiled::TiledAtlas;
@@ -173,6 +174,41 @@ proptest! {
             let (dk, db) = differences(&closed.system(&rot, &c, &u), &want);
             prop_assert!(dk <= 1e-11 && db <= 1e-11, "closed form: K {dk:e}, b {db:e}");
         }
+    }
+}
+
+proptest! {
+    /// The sea's drag kernel (object axes about the atlas origin, the
+    /// fluid's velocity texel by texel), turned into the world system
+    /// about the centre of mass, gives what the plain products give, over
+    /// more texels than a block holds and fewer (a short last group).
+    #[test]
+    fn the_sea_drag_kernel_gives_the_world_system(
+        texels in prop::collection::vec((vec3(), vec3(), vec3()), 1..150),
+        angles in prop::array::uniform3(-3.0..3.0f64),
+        c in vec3(),
+        v in vec3(),
+        omega in vec3(),
+        drag in drag_coefficients(),
+    ) {
+        let rot = UnitQuaternion::from_euler_angles(angles[0], angles[1], angles[2])
+            .to_rotation_matrix()
+            .into_inner();
+        let p = SeaDragParams::new(&drag, 1000.0, &rot, &c, &v, &omega);
+        let mut block = SeaDragBlock::new(&p);
+        let mut want = DragSums::default();
+        for (k, (x, a, u)) in texels.iter().enumerate() {
+            // Every seventh texel without area, as the atlas has some.
+            let a = if k % 7 == 3 { Vector3::zeros() } else { *a };
+            let rc = rot * (x - c);
+            let vrel = v + omega.cross(&rc) - u;
+            reference_texel(&mut want, &drag, 1000.0, &rc, &(rot * a), &vrel, u);
+            block.push(x, &a, &(rot.transpose() * u));
+        }
+        let got = block.finish().system(&rot, &c);
+        let (dk, db) = differences(&got, &want);
+        prop_assert!(dk <= 1e-11 && db <= 1e-11, "K {dk:e}, b {db:e}");
+        prop_assert_eq!(got.k, got.k.transpose());
     }
 }
 

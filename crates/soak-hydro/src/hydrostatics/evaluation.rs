@@ -11,6 +11,7 @@ use super::forces::HydroForces;
 use super::frame::{Frame, texel};
 use super::options::{BuoyancyMode, Drag, HydroOptions, SeaSampling};
 use super::planar_kernel::{PlanarTexels, add_planar_ranges};
+use super::sea_drag::{SeaDragBlock, SeaDragParams, SeaDragSums, push_submerged};
 use super::sea_kernel::{self, SeaFrame, add_sea_range};
 use super::sums::{BuoyancySums, DragAcc, DragSums, TexelDrag};
 use crate::error::{HydroError, WaterError};
@@ -25,6 +26,23 @@ struct Both {
 }
 
 impl std::ops::Add for Both {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self {
+            b: self.b + o.b,
+            d: self.d + o.d,
+        }
+    }
+}
+
+/// Buoyancy and drag sums of one pass under a sampled sea.
+#[derive(Clone, Copy, Default)]
+struct SeaBoth {
+    b: BuoyancySums,
+    d: SeaDragSums,
+}
+
+impl std::ops::Add for SeaBoth {
     type Output = Self;
     fn add(self, o: Self) -> Self {
         Self {
@@ -126,7 +144,7 @@ pub fn evaluate(
         })
         .rotated(&frame.rot),
         None => {
-            let both = match water
+            let (sums, drag) = match water
                 .surface
                 .as_any()
                 .and_then(|s| s.downcast_ref::<SurfacePatch>())
@@ -134,19 +152,14 @@ pub fn evaluate(
                 Some(patch) => patch_sums(atlas, water, state, &frame, t, options, patch),
                 None => match sample_patch(atlas, water, state, t, options)? {
                     Some(patch) => patch_sums(atlas, water, state, &frame, t, options, &patch),
-                    None => general_sums(atlas, water, state, &frame, t, options, &Exact(&*water.surface)),
+                    None => {
+                        let both =
+                            general_sums(atlas, water, state, &frame, t, options, &Exact(&*water.surface));
+                        (both.b, options.drag.map(|_| both.d.sums()))
+                    }
                 },
             };
-            let drag = options.drag.map(|_| both.d.sums());
-            return Ok(finish(
-                &frame,
-                water,
-                state,
-                mass,
-                &both.b,
-                drag.as_ref(),
-                options,
-            ));
+            return Ok(finish(&frame, water, state, mass, &sums, drag.as_ref(), options));
         }
     };
     let drag = options
@@ -267,7 +280,8 @@ fn general_sums<S: TexelSurface>(
 
 /// [`general_sums`] over a sampled surface: the sea kernel (AVX2) where
 /// the processor has it, the per-texel loop elsewhere. With drag the
-/// kernel hands each chunk's depths to a loop over the submerged texels.
+/// kernel hands each chunk's depths to a loop that gathers the submerged
+/// texels with the fluid's velocity for the sea's drag kernel.
 fn patch_sums(
     atlas: &Atlas,
     water: &Water,
@@ -276,9 +290,10 @@ fn patch_sums(
     t: f64,
     options: &HydroOptions,
     patch: &SurfacePatch,
-) -> Both {
+) -> (BuoyancySums, Option<DragSums>) {
     if !sea_kernel::available() {
-        return general_sums(atlas, water, state, frame, t, options, patch);
+        let both = general_sums(atlas, water, state, frame, t, options, patch);
+        return (both.b, options.drag.map(|_| both.d.sums()));
     }
     let sea = SeaFrame {
         rot: frame.rot,
@@ -289,26 +304,36 @@ fn patch_sums(
         patch,
         archimedes: options.buoyancy == BuoyancyMode::Archimedes,
     };
-    chunked_sum(atlas.len(), Both::default(), |range| {
-        let mut s = Both::default();
-        let Some(drag) = &options.drag else {
-            add_sea_range(&mut s.b, atlas, range, &sea, None);
-            return s;
-        };
-        let mut depths = vec![0.0; range.len()];
-        add_sea_range(&mut s.b, atlas, range.clone(), &sea, Some(&mut depths));
-        for (i, d) in range.zip(depths) {
-            if d > 0.0 {
-                let (x, a) = texel(atlas, i);
-                let p = frame.ow + frame.rot * x;
-                let rc = p - frame.com;
-                let u = patch.velocity_at(&p);
-                let v = state.linear_velocity + state.angular_velocity.cross(&rc) - u;
-                s.d.add(drag, water.density, &rc, &(frame.rot * a), &v, &u);
-            }
+    let Some(drag) = &options.drag else {
+        let sums = chunked_sum(atlas.len(), BuoyancySums::default(), |range| {
+            let mut s = BuoyancySums::default();
+            add_sea_range(&mut s, atlas, range, &sea, None);
+            s
+        });
+        return (sums, None);
+    };
+    let c = frame.rot.transpose() * (frame.com - frame.ow);
+    let params = SeaDragParams::new(
+        drag,
+        water.density,
+        &frame.rot,
+        &c,
+        &state.linear_velocity,
+        &state.angular_velocity,
+    );
+    let both = chunked_sum(atlas.len(), SeaBoth::default(), |range| {
+        let mut s = BuoyancySums::default();
+        let mut depths = [0.0; CHUNK];
+        let depths = &mut depths[..range.len()];
+        add_sea_range(&mut s, atlas, range.clone(), &sea, Some(depths));
+        let mut block = SeaDragBlock::new(&params);
+        push_submerged(&mut block, atlas, range, depths, &frame.rot, &frame.ow, patch);
+        SeaBoth {
+            b: s,
+            d: block.finish(),
         }
-        s
-    })
+    });
+    (both.b, Some(both.d.system(&frame.rot, &c)))
 }
 
 /// The water's surface sampled once over the footprint of a body at

@@ -13,6 +13,8 @@
 //! - `drag_kernel`: the drag sums under planar water with a uniform
 //!   current, per texel and as per-tile moments.
 //! - `sea_kernel`: the buoyancy sums under a sampled sea, AVX2.
+//! - `sea_drag`: the drag sums under a sampled sea, where the fluid's
+//!   velocity differs from texel to texel.
 //! - `slope_torque`: Archimedes' torque as the derivative of the potential.
 //! - `deep_volume`: the volume of a body wholly under a surface that is not
 //!   a plane.
@@ -33,6 +35,7 @@ pub(crate) mod frame;
 pub(crate) mod implicit_drag;
 pub(crate) mod options;
 pub(crate) mod planar_kernel;
+pub(crate) mod sea_drag;
 pub(crate) mod sea_kernel;
 pub(crate) mod slope_torque;
 pub(crate) mod sums;

@@ -63,17 +63,98 @@ pub(crate) struct PatchGrid<'a> {
     pub coefficients: &'a [[[f64; 4]; 4]],
 }
 
-/// Fluid velocities on a grid over the patch's rectangle and a height range.
+/// Fluid velocities on a grid over the patch's rectangle and a height
+/// range, kept per cell as the coefficients of the trilinear interpolant.
 #[derive(Clone, Debug)]
 struct VelocityGrid {
     /// Lowest height of the grid, m.
     y0: f64,
-    /// Vertical spacing, m.
-    dy: f64,
+    /// The reciprocal of the spacing (horizontal and vertical alike), 1/m.
+    inv_spacing: f64,
     /// Nodes along x, y and z.
     nodes: [usize; 3],
-    /// Velocities, m/s, x fastest, then z, then y.
-    values: Vec<[f64; 3]>,
+    /// Cells along x, y and z: one fewer than the nodes, and at least one
+    /// (a single node makes a cell of no extent).
+    cells: [usize; 3],
+    /// Per cell, x fastest, then z, then y: `c[k]` of the trilinear
+    /// `c0 + x c1 + z c2 + y c3 + x z c4 + x y c5 + z y c6 + x z y c7` in
+    /// the fractions across the cell, each a velocity (m/s, the fourth
+    /// lane zero).
+    coefficients: Vec<[[f64; 4]; 8]>,
+}
+
+impl VelocityGrid {
+    /// The grid of velocities `values` (m/s, at `nodes` nodes, x fastest,
+    /// then z, then y), lowest at `y0`, `spacing` apart.
+    fn new(y0: f64, spacing: f64, nodes: [usize; 3], values: &[[f64; 3]]) -> Self {
+        let [nx, ny, nz] = nodes;
+        let cells = nodes.map(|n| n.saturating_sub(1).max(1));
+        let node = |i: usize, l: usize, k: usize| {
+            let v = values[(l.min(ny - 1) * nz + k.min(nz - 1)) * nx + i.min(nx - 1)];
+            [v[0], v[1], v[2], 0.0]
+        };
+        let mut coefficients = Vec::with_capacity(cells.iter().product());
+        for l in 0..cells[1] {
+            for k in 0..cells[2] {
+                for i in 0..cells[0] {
+                    let c = |di: usize, dl: usize, dk: usize| node(i + di, l + dl, k + dk);
+                    let (c000, c100, c010, c110) = (c(0, 0, 0), c(1, 0, 0), c(0, 0, 1), c(1, 0, 1));
+                    let (c001, c101, c011, c111) = (c(0, 1, 0), c(1, 1, 0), c(0, 1, 1), c(1, 1, 1));
+                    // Corners named x z y; the coefficients of the
+                    // products of the fractions.
+                    let lane = |f: &dyn Fn(usize) -> f64| -> [f64; 4] { std::array::from_fn(f) };
+                    coefficients.push([
+                        c000,
+                        lane(&|m| c100[m] - c000[m]),
+                        lane(&|m| c010[m] - c000[m]),
+                        lane(&|m| c001[m] - c000[m]),
+                        lane(&|m| c110[m] - c010[m] - c100[m] + c000[m]),
+                        lane(&|m| c101[m] - c001[m] - c100[m] + c000[m]),
+                        lane(&|m| c011[m] - c001[m] - c010[m] + c000[m]),
+                        lane(&|m| {
+                            c111[m] - c011[m] - c101[m] - c110[m] + c100[m] + c010[m] + c001[m] - c000[m]
+                        }),
+                    ]);
+                }
+            }
+        }
+        Self {
+            y0,
+            inv_spacing: 1.0 / spacing,
+            nodes,
+            cells,
+            coefficients,
+        }
+    }
+
+    /// The velocity at `p` (world, m), clamped to the grid, multiply-adds
+    /// fused where `FMA`.
+    #[inline(always)]
+    fn at<const FMA: bool>(&self, origin: &[f64; 2], p: &Vector3<f64>) -> [f64; 4] {
+        #[inline(always)]
+        fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
+            if FMA { a.mul_add(b, c) } else { a * b + c }
+        }
+        // The cell along an axis and the fraction across it.
+        #[inline(always)]
+        fn axis(q: f64, nodes: usize, cells: usize) -> (usize, f64) {
+            let f = q.clamp(0.0, (nodes - 1) as f64);
+            let i = (f as usize).min(cells - 1);
+            (i, f - i as f64)
+        }
+        let inv = self.inv_spacing;
+        let (i, fx) = axis((p.x - origin[0]) * inv, self.nodes[0], self.cells[0]);
+        let (l, fy) = axis((p.y - self.y0) * inv, self.nodes[1], self.cells[1]);
+        let (k, fz) = axis((p.z - origin[1]) * inv, self.nodes[2], self.cells[2]);
+        let c = &self.coefficients[(l * self.cells[2] + k) * self.cells[0] + i];
+        std::array::from_fn(|m| {
+            let a = madd::<FMA>(fx, c[1][m], c[0][m]);
+            let b = madd::<FMA>(fx, c[4][m], c[2][m]);
+            let e = madd::<FMA>(fx, c[5][m], c[3][m]);
+            let d = madd::<FMA>(fx, c[7][m], c[6][m]);
+            madd::<FMA>(fy, madd::<FMA>(fz, d, e), madd::<FMA>(fz, b, a))
+        })
+    }
 }
 
 /// Where a horizontal position falls in the patch: its cell and its
@@ -277,12 +358,7 @@ impl SurfacePatch {
                 }
             }
         }
-        Ok(VelocityGrid {
-            y0: y_min,
-            dy,
-            nodes: [nodes[0], ny, nodes[1]],
-            values,
-        })
+        Ok(VelocityGrid::new(y_min, dy, [nodes[0], ny, nodes[1]], &values))
     }
 
     /// Node spacing, m.
@@ -352,36 +428,18 @@ impl SurfacePatch {
     /// to it; zero when velocities were not sampled.
     #[inline]
     pub fn velocity_at(&self, p: &Vector3<f64>) -> Vector3<f64> {
-        let Some(g) = &self.velocity else {
-            return Vector3::zeros();
-        };
-        let [nx, ny, nz] = g.nodes;
-        // Index of the lower node along an axis and the fraction past it.
-        #[inline(always)]
-        fn axis(q: f64, n: usize) -> (usize, usize, f64) {
-            let f = q.clamp(0.0, (n - 1) as f64);
-            let i = (f as usize).min(n.saturating_sub(2));
-            (i, (i + 1).min(n - 1) - i, f - i as f64)
+        let [x, y, z, _] = self.velocity_lanes::<false>(p);
+        Vector3::new(x, y, z)
+    }
+
+    /// [`SurfacePatch::velocity_at`] as four lanes (the last zero),
+    /// multiply-adds fused where `FMA` (for callers compiled with it).
+    #[inline(always)]
+    pub(crate) fn velocity_lanes<const FMA: bool>(&self, p: &Vector3<f64>) -> [f64; 4] {
+        match &self.velocity {
+            Some(g) => g.at::<FMA>(&self.origin, p),
+            None => [0.0; 4],
         }
-        let inv = 1.0 / self.spacing;
-        let (i0, di, fx) = axis((p.x - self.origin[0]) * inv, nx);
-        let (k0, dk, fz) = axis((p.z - self.origin[1]) * inv, nz);
-        let (l0, dl, fy) = axis((p.y - g.y0) / g.dy, ny);
-        let base = (l0 * nz + k0) * nx + i0;
-        let (sx, sz, sy) = (di, dk * nx, dl * nz * nx);
-        let v = &g.values;
-        let corner = |k: usize| Vector3::from(v[k]);
-        let (c000, c100) = (corner(base), corner(base + sx));
-        let (c010, c110) = (corner(base + sz), corner(base + sz + sx));
-        let (c001, c101) = (corner(base + sy), corner(base + sy + sx));
-        let (c011, c111) = (corner(base + sy + sz), corner(base + sy + sz + sx));
-        let x00 = c000 + (c100 - c000) * fx;
-        let x10 = c010 + (c110 - c010) * fx;
-        let x01 = c001 + (c101 - c001) * fx;
-        let x11 = c011 + (c111 - c011) * fx;
-        let z0 = x00 + (x10 - x00) * fz;
-        let z1 = x01 + (x11 - x01) * fz;
-        z0 + (z1 - z0) * fy
     }
 }
 

@@ -1,0 +1,415 @@
+//! Drag under a sampled sea, where the fluid's velocity differs from texel
+//! to texel: the submerged texels of a chunk are gathered a block at a
+//! time with the fluid's velocity where each is, and summed four side by
+//! side in object axes about the atlas origin (AVX2 and FMA where the
+//! processor has them).
+//!
+//! A texel at `x` (object axes, from the atlas origin) with area vector
+//! `A` in fluid moving at `u` moves through it at `W + ω × x − u`, so its
+//! facing is `h·w − A·u`, with `h = (A, x × A)` and `w = (W, ω)` the body's
+//! own velocity (see [`LocalDrag`](super::drag_kernel::LocalDrag), which
+//! is this with one `u` for every texel). The texel adds [`DragAcc`]'s
+//! sums, `s (1, x, x xᵀ)` and `w h hᵀ`, and its part of the right-hand side
+//! `b = Σ J_iᵀ K_i u_i = Σ (s u, s x × u) − w (A·u) h`.
+
+use std::ops::Range;
+
+use nalgebra::{Matrix3, Vector3, Vector6};
+use soak_bake::Atlas;
+
+use super::frame::texel;
+use super::options::Drag;
+use super::sums::{DragAcc, DragSums};
+use crate::water::SurfacePatch;
+
+/// Texels taken side by side.
+const LANES: usize = 4;
+
+/// Texels gathered before they are summed (a multiple of [`LANES`]).
+const BLOCK: usize = 64;
+
+type Lanes = [f64; LANES];
+
+/// What every texel of an evaluation shares.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SeaDragParams {
+    /// `(W, ω)`: the atlas origin's velocity and the angular velocity,
+    /// object axes, m/s and rad/s.
+    w: [f64; 6],
+    /// `½ ρ C_d`.
+    kq: f64,
+    /// Skin friction where it counts (positive), else zero.
+    lin: f64,
+}
+
+impl SeaDragParams {
+    /// The drag of a body whose object axes `rot` turns into the world's,
+    /// with its centre of mass at `c` (object axes, from the atlas origin)
+    /// moving at `v` and `omega` (world), in fluid of density `rho`.
+    pub(crate) fn new(
+        drag: &Drag,
+        rho: f64,
+        rot: &Matrix3<f64>,
+        c: &Vector3<f64>,
+        v: &Vector3<f64>,
+        omega: &Vector3<f64>,
+    ) -> Self {
+        let om = rot.transpose() * omega;
+        let w0 = rot.transpose() * v - om.cross(c);
+        Self {
+            w: [w0.x, w0.y, w0.z, om.x, om.y, om.z],
+            kq: 0.5 * rho * drag.coefficient,
+            lin: if drag.linear > 0.0 { drag.linear } else { 0.0 },
+        }
+    }
+}
+
+/// The sums of submerged texels in object axes about the atlas origin:
+/// [`DragAcc`]'s and `b`'s. [`SeaDragSums::system`] turns them into the
+/// drag system once.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct SeaDragSums {
+    acc: DragAcc,
+    /// `Σ (s u, s x × u) − w (A·u) h`.
+    b: [f64; 6],
+}
+
+impl std::ops::Add for SeaDragSums {
+    type Output = Self;
+    fn add(mut self, o: Self) -> Self {
+        self.acc += &o.acc;
+        for (x, y) in self.b.iter_mut().zip(&o.b) {
+            *x += y;
+        }
+        self
+    }
+}
+
+impl SeaDragSums {
+    /// The drag system about the centre of mass in world axes (`rot` and
+    /// `c` as in [`SeaDragParams::new`]): `K` by [`DragAcc::system`], and
+    /// `b` turned about the centre of mass, `(F, τ − c × F)`, and into the
+    /// world's axes.
+    pub(crate) fn system(&self, rot: &Matrix3<f64>, c: &Vector3<f64>) -> DragSums {
+        let k = self.acc.system(rot, c, &Vector3::zeros()).k;
+        let f = Vector3::new(self.b[0], self.b[1], self.b[2]);
+        let tau = Vector3::new(self.b[3], self.b[4], self.b[5]) - c.cross(&f);
+        let (f, tau) = (rot * f, rot * tau);
+        DragSums {
+            k,
+            b: Vector6::new(f.x, f.y, f.z, tau.x, tau.y, tau.z),
+        }
+    }
+}
+
+/// Running sums per lane.
+#[derive(Clone, Copy)]
+struct SumLanes {
+    /// `Σ s`, `Σ s x` (3), `Σ s x xᵀ` (xx, yy, zz, xy, yz, zx), as
+    /// [`DragAcc::iso`].
+    iso: [Lanes; 10],
+    /// `Σ w h hᵀ`, its upper triangle row by row, as [`DragAcc::gg`].
+    gg: [Lanes; 21],
+    /// `Σ s u`, `Σ s x × u`.
+    su: [Lanes; 6],
+    /// `Σ w (A·u) h`.
+    wh: [Lanes; 6],
+}
+
+impl Default for SumLanes {
+    fn default() -> Self {
+        Self {
+            iso: [[0.0; LANES]; 10],
+            gg: [[0.0; LANES]; 21],
+            su: [[0.0; LANES]; 6],
+            wh: [[0.0; LANES]; 6],
+        }
+    }
+}
+
+/// Submerged texels gathered a block at a time: [`SeaDragBlock::push`]
+/// each, [`SeaDragBlock::finish`] once.
+pub(crate) struct SeaDragBlock<'a> {
+    p: &'a SeaDragParams,
+    n: usize,
+    /// Position, area vector and fluid velocity, object axes, per texel.
+    x: [[f64; BLOCK]; 3],
+    a: [[f64; BLOCK]; 3],
+    u: [[f64; BLOCK]; 3],
+    sums: SumLanes,
+}
+
+impl<'a> SeaDragBlock<'a> {
+    pub(crate) fn new(p: &'a SeaDragParams) -> Self {
+        Self {
+            p,
+            n: 0,
+            x: [[0.0; BLOCK]; 3],
+            a: [[0.0; BLOCK]; 3],
+            u: [[0.0; BLOCK]; 3],
+            sums: SumLanes::default(),
+        }
+    }
+
+    /// Adds a submerged texel at `x` with area vector `a` in fluid moving
+    /// at `u` (object axes).
+    #[inline]
+    pub(crate) fn push(&mut self, x: &Vector3<f64>, a: &Vector3<f64>, u: &Vector3<f64>) {
+        let n = self.n;
+        for c in 0..3 {
+            self.x[c][n] = x[c];
+            self.a[c][n] = a[c];
+            self.u[c][n] = u[c];
+        }
+        self.n += 1;
+        if self.n == BLOCK {
+            self.flush();
+        }
+    }
+
+    /// Sums the gathered texels, the last group padded with texels of no
+    /// area (which add zeros).
+    fn flush(&mut self) {
+        let n = self.n;
+        let whole = n.next_multiple_of(LANES);
+        for c in 0..3 {
+            self.x[c][n..whole].fill(0.0);
+            self.a[c][n..whole].fill(0.0);
+            self.u[c][n..whole].fill(0.0);
+        }
+        sum_block(&mut self.sums, self.p, &self.x, &self.a, &self.u, whole);
+        self.n = 0;
+    }
+
+    /// The sums of every texel pushed, the lanes added in a fixed order.
+    pub(crate) fn finish(mut self) -> SeaDragSums {
+        if self.n > 0 {
+            self.flush();
+        }
+        let sum = |v: &Lanes| (v[0] + v[1]) + (v[2] + v[3]);
+        let mut out = SeaDragSums::default();
+        for (s, v) in out.acc.iso.iter_mut().zip(&self.sums.iso) {
+            *s = sum(v);
+        }
+        for (s, v) in out.acc.gg.iter_mut().zip(&self.sums.gg) {
+            *s = sum(v);
+        }
+        for (j, b) in out.b.iter_mut().enumerate() {
+            *b = sum(&self.sums.su[j]) - sum(&self.sums.wh[j]);
+        }
+        out
+    }
+}
+
+/// Pushes the texels of `range` whose depth (`depths`, one per texel of
+/// the range) is positive into `block`, each with the fluid's velocity
+/// where it is (read from `patch`), for a body whose object axes `rot`
+/// turns into the world's with its atlas origin at `ow` (world, m).
+pub(crate) fn push_submerged(
+    block: &mut SeaDragBlock,
+    atlas: &Atlas,
+    range: Range<usize>,
+    depths: &[f64],
+    rot: &Matrix3<f64>,
+    ow: &Vector3<f64>,
+    patch: &SurfacePatch,
+) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+            // SAFETY: the processor has AVX2 and FMA, checked just above.
+            #[allow(unsafe_code)]
+            unsafe {
+                push_submerged_avx2(block, atlas, range, depths, rot, ow, patch)
+            };
+            return;
+        }
+    }
+    push_texels::<false>(block, atlas, range, depths, rot, ow, patch);
+}
+
+/// [`push_texels`] compiled for AVX2, multiply-adds fused.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn push_submerged_avx2(
+    block: &mut SeaDragBlock,
+    atlas: &Atlas,
+    range: Range<usize>,
+    depths: &[f64],
+    rot: &Matrix3<f64>,
+    ow: &Vector3<f64>,
+    patch: &SurfacePatch,
+) {
+    push_texels::<true>(block, atlas, range, depths, rot, ow, patch);
+}
+
+#[inline(always)]
+fn push_texels<const FMA: bool>(
+    block: &mut SeaDragBlock,
+    atlas: &Atlas,
+    range: Range<usize>,
+    depths: &[f64],
+    rot: &Matrix3<f64>,
+    ow: &Vector3<f64>,
+    patch: &SurfacePatch,
+) {
+    let rot_t = rot.transpose();
+    for (i, &d) in range.zip(depths) {
+        if d > 0.0 {
+            let (x, a) = texel(atlas, i);
+            let [ux, uy, uz, _] = patch.velocity_lanes::<FMA>(&(ow + rot * x));
+            block.push(&x, &a, &(rot_t * Vector3::new(ux, uy, uz)));
+        }
+    }
+}
+
+/// The first `n` texels of a block (a multiple of [`LANES`]), with AVX2
+/// and FMA where the processor has them.
+fn sum_block(
+    sums: &mut SumLanes,
+    p: &SeaDragParams,
+    x: &[[f64; BLOCK]; 3],
+    a: &[[f64; BLOCK]; 3],
+    u: &[[f64; BLOCK]; 3],
+    n: usize,
+) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+            // SAFETY: the processor has AVX2 and FMA, checked just above.
+            #[allow(unsafe_code)]
+            unsafe {
+                sum_block_avx2(sums, p, x, a, u, n)
+            };
+            return;
+        }
+    }
+    sum_lanes::<false>(sums, p, x, a, u, n);
+}
+
+/// [`sum_lanes`] compiled for AVX2, multiply-adds fused.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn sum_block_avx2(
+    sums: &mut SumLanes,
+    p: &SeaDragParams,
+    x: &[[f64; BLOCK]; 3],
+    a: &[[f64; BLOCK]; 3],
+    u: &[[f64; BLOCK]; 3],
+    n: usize,
+) {
+    sum_lanes::<true>(sums, p, x, a, u, n);
+}
+
+/// `a b + c`, fused where `FMA`.
+#[inline(always)]
+fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
+    if FMA { a.mul_add(b, c) } else { a * b + c }
+}
+
+/// Lanes from a function of the lane.
+#[inline(always)]
+fn lanes(f: impl FnMut(usize) -> f64) -> Lanes {
+    std::array::from_fn(f)
+}
+
+/// The texels `0..n` of a block, [`LANES`] at a time.
+#[inline(always)]
+fn sum_lanes<const FMA: bool>(
+    sums: &mut SumLanes,
+    p: &SeaDragParams,
+    x: &[[f64; BLOCK]; 3],
+    a: &[[f64; BLOCK]; 3],
+    u: &[[f64; BLOCK]; 3],
+    n: usize,
+) {
+    let w = &p.w;
+    for g in (0..n).step_by(LANES) {
+        let get = |v: &[f64; BLOCK]| -> Lanes { std::array::from_fn(|k| v[g + k]) };
+        let (x, a, u) = (
+            x.each_ref().map(get),
+            a.each_ref().map(get),
+            u.each_ref().map(get),
+        );
+        let h = [
+            a[0],
+            a[1],
+            a[2],
+            lanes(|k| x[1][k] * a[2][k] - x[2][k] * a[1][k]),
+            lanes(|k| x[2][k] * a[0][k] - x[0][k] * a[2][k]),
+            lanes(|k| x[0][k] * a[1][k] - x[1][k] * a[0][k]),
+        ];
+        // A·u and the facing h·w − A·u.
+        let au = lanes(|k| madd::<FMA>(a[2][k], u[2][k], madd::<FMA>(a[1][k], u[1][k], a[0][k] * u[0][k])));
+        let f = lanes(|k| {
+            let mut f = h[0][k] * w[0];
+            for j in 1..6 {
+                f = madd::<FMA>(h[j][k], w[j], f);
+            }
+            f - au[k]
+        });
+        let mut s = lanes(|k| p.kq * f[k].max(0.0));
+        let mut wl = [0.0; LANES];
+        if p.lin > 0.0 {
+            let area = lanes(|k| {
+                madd::<FMA>(a[2][k], a[2][k], madd::<FMA>(a[1][k], a[1][k], a[0][k] * a[0][k])).sqrt()
+            });
+            for k in 0..LANES {
+                let some = area[k] > 0.0;
+                s[k] += if some { p.lin * area[k] } else { 0.0 };
+                wl[k] = if some { p.lin / area[k] } else { 0.0 };
+            }
+        }
+        let sr = [
+            lanes(|k| s[k] * x[0][k]),
+            lanes(|k| s[k] * x[1][k]),
+            lanes(|k| s[k] * x[2][k]),
+        ];
+        let iso = &mut sums.iso;
+        for k in 0..LANES {
+            iso[0][k] += s[k];
+            iso[1][k] += sr[0][k];
+            iso[2][k] += sr[1][k];
+            iso[3][k] += sr[2][k];
+            iso[4][k] = madd::<FMA>(sr[0][k], x[0][k], iso[4][k]);
+            iso[5][k] = madd::<FMA>(sr[1][k], x[1][k], iso[5][k]);
+            iso[6][k] = madd::<FMA>(sr[2][k], x[2][k], iso[6][k]);
+            iso[7][k] = madd::<FMA>(sr[0][k], x[1][k], iso[7][k]);
+            iso[8][k] = madd::<FMA>(sr[1][k], x[2][k], iso[8][k]);
+            iso[9][k] = madd::<FMA>(sr[2][k], x[0][k], iso[9][k]);
+        }
+        // s u and s x × u.
+        let su = [
+            lanes(|k| s[k] * u[0][k]),
+            lanes(|k| s[k] * u[1][k]),
+            lanes(|k| s[k] * u[2][k]),
+        ];
+        let b = &mut sums.su;
+        for k in 0..LANES {
+            b[0][k] += su[0][k];
+            b[1][k] += su[1][k];
+            b[2][k] += su[2][k];
+            b[3][k] += x[1][k] * su[2][k] - x[2][k] * su[1][k];
+            b[4][k] += x[2][k] * su[0][k] - x[0][k] * su[2][k];
+            b[5][k] += x[0][k] * su[1][k] - x[1][k] * su[0][k];
+        }
+        if p.lin > 0.0 {
+            let mut m = 0;
+            for i in 0..6 {
+                let wh = lanes(|k| wl[k] * h[i][k]);
+                for hj in &h[i..] {
+                    for k in 0..LANES {
+                        sums.gg[m][k] = madd::<FMA>(wh[k], hj[k], sums.gg[m][k]);
+                    }
+                    m += 1;
+                }
+            }
+            let wau = lanes(|k| wl[k] * au[k]);
+            for (j, hj) in h.iter().enumerate() {
+                for k in 0..LANES {
+                    sums.wh[j][k] = madd::<FMA>(wau[k], hj[k], sums.wh[j][k]);
+                }
+            }
+        }
+    }
+}
