@@ -9,15 +9,16 @@ use soak_bake::{Atlas, BakeOptions, builtin};
 
 use super::body_state::BodyState;
 use super::drag_kernel::{Added, DragMoments, HBox, LocalDrag, add_drag_texels};
-use super::evaluation::{drag_sums, evaluate};
+use super::evaluation::{drag_sums, evaluate, sampled_water};
+use super::forces::Wrench;
 use super::frame::{Frame, texel};
 use super::implicit_drag::implicit_drag;
 use super::options::{Drag, HydroOptions};
-use super::sea_drag::{SeaDragBlock, SeaDragParams};
+use super::sea_drag::{SeaDragParams, sea_drag_texels};
 use super::sums::{DragAcc, DragSums, TexelDrag};
 use crate::mass::{MassModel, MassProperties};
 use crate::tiled::TiledAtlas;
-use crate::water::{Plane, Unbounded, Water};
+use crate::water::{Gerstner, GerstnerWave, Plane, Unbounded, Water};
 
 /// The reference: a submerged texel's drag as `Jᵀ K_i J` and `Jᵀ K_i u`
 /// with `K_i = k_q I + λ a (I − n nᵀ)` and `J = [I, −[r]×]`, in generic
@@ -195,17 +196,17 @@ proptest! {
             .to_rotation_matrix()
             .into_inner();
         let p = SeaDragParams::new(&drag, 1000.0, &rot, &c, &v, &omega);
-        let mut block = SeaDragBlock::new(&p);
         let mut want = DragSums::default();
+        let mut local = Vec::new();
         for (k, (x, a, u)) in texels.iter().enumerate() {
             // Every seventh texel without area, as the atlas has some.
             let a = if k % 7 == 3 { Vector3::zeros() } else { *a };
             let rc = rot * (x - c);
             let vrel = v + omega.cross(&rc) - u;
             reference_texel(&mut want, &drag, 1000.0, &rc, &(rot * a), &vrel, u);
-            block.push(x, &a, &(rot.transpose() * u));
+            local.push([*x, a, rot.transpose() * u]);
         }
-        let got = block.finish().system(&rot, &c);
+        let got = sea_drag_texels(&p, &local).system(&rot, &c);
         let (dk, db) = differences(&got, &want);
         prop_assert!(dk <= 1e-11 && db <= 1e-11, "K {dk:e}, b {db:e}");
         prop_assert_eq!(got.k, got.k.transpose());
@@ -249,6 +250,109 @@ fn body(mesh: &soak_bake::Mesh, n: u32) -> (Atlas, MassProperties, TiledAtlas) {
 /// drag coefficients including none of either kind: the per-texel and the
 /// tiled sums against the reference, and the drag both evaluations report
 /// against the reference's.
+/// The difference of two wrenches against the expected one's size, or
+/// where it is zero (no motion relative to the fluid) against what one m/s
+/// would make through the reference's system `want`.
+fn wrench_difference(got: &Wrench, expected: &Wrench, want: &DragSums) -> f64 {
+    let six = |w: &Wrench| {
+        Vector6::new(
+            w.force.x, w.force.y, w.force.z, w.torque.x, w.torque.y, w.torque.z,
+        )
+    };
+    let (g, w) = (six(got), six(expected));
+    let scale = max_abs(&w).max(1e-6 * max_abs(&want.k));
+    if scale > 0.0 {
+        max_abs(&(g - w)) / scale
+    } else {
+        max_abs(&g)
+    }
+}
+
+/// On a sampled sea, the per-texel evaluation (the sea kernel's depths and
+/// the sea's drag kernel, each texel in the fluid's velocity where it is)
+/// gives the reference's system over the same sampled surface, for bodies
+/// cut by the swell, moving and spinning.
+#[test]
+fn sampled_sea_drag_matches_the_reference() {
+    let swell = Water::new(
+        Gerstner::new(
+            0.0,
+            vec![
+                GerstnerWave {
+                    amplitude: 0.25,
+                    wavelength: 9.0,
+                    direction_deg: 0.0,
+                    steepness: 0.6,
+                    phase: 0.0,
+                },
+                GerstnerWave {
+                    amplitude: 0.1,
+                    wavelength: 4.0,
+                    direction_deg: 35.0,
+                    steepness: 0.4,
+                    phase: 1.0,
+                },
+            ],
+            9.81,
+        )
+        .unwrap(),
+    );
+    let drag = Drag {
+        coefficient: 0.8,
+        linear: 20.0,
+    };
+    let options = HydroOptions {
+        drag: Some(drag),
+        ..HydroOptions::default()
+    };
+    let mut worst = 0.0f64;
+    for (name, (atlas, mass, _)) in [
+        ("sphere", body(&builtin::sphere(0.5, 32, 16), 128)),
+        ("boat", body(&builtin::boat(4.0, 1.2, 0.6), 128)),
+    ] {
+        for (y, angles, v, omega) in [
+            (
+                0.0,
+                (0.2, 0.4, 0.1),
+                Vector3::new(0.7, -0.3, 0.2),
+                Vector3::new(0.2, 0.5, -0.1),
+            ),
+            (
+                -0.2,
+                (-0.3, 1.2, 0.0),
+                Vector3::new(-1.5, 0.4, 0.9),
+                Vector3::zeros(),
+            ),
+            (
+                0.1,
+                (0.0, 0.0, 0.3),
+                Vector3::zeros(),
+                Vector3::new(-1.0, 0.3, 2.0),
+            ),
+        ] {
+            let pose = Isometry3::from_parts(
+                Vector3::new(0.4, y, -0.7).into(),
+                UnitQuaternion::from_euler_angles(angles.0, angles.1, angles.2),
+            );
+            let state = BodyState {
+                linear_velocity: v,
+                angular_velocity: omega,
+                ..BodyState::at_rest(pose)
+            };
+            let sampled = sampled_water(&atlas, &swell, &state, 1.3, &options)
+                .unwrap()
+                .expect("the swell is sampled by default");
+            let want = reference_sums(&atlas, &sampled, &state, &mass, &drag);
+            let (_, explicit) = implicit_drag(&want, &state, &mass, options.dt);
+            let f = evaluate(&atlas, &sampled, &state, &mass, 0.0, &options).unwrap();
+            let d = wrench_difference(&f.drag_explicit, &explicit, &want);
+            assert!(d <= 1e-10, "{name} at y = {y}: {d:e}");
+            worst = worst.max(d);
+        }
+    }
+    eprintln!("sampled sea drag against the reference: worst wrench {worst:.1e}");
+}
+
 #[test]
 fn whole_bodies_match_the_reference() {
     let bodies = [
@@ -346,31 +450,7 @@ fn whole_bodies_match_the_reference() {
                             .unwrap();
                         for (path, f) in [("per texel", &f), ("tiled", &ft)] {
                             for (got, expected) in [(&f.drag, &applied), (&f.drag_explicit, &explicit)] {
-                                let g = Vector6::new(
-                                    got.force.x,
-                                    got.force.y,
-                                    got.force.z,
-                                    got.torque.x,
-                                    got.torque.y,
-                                    got.torque.z,
-                                );
-                                let w = Vector6::new(
-                                    expected.force.x,
-                                    expected.force.y,
-                                    expected.force.z,
-                                    expected.torque.x,
-                                    expected.torque.y,
-                                    expected.torque.z,
-                                );
-                                // Against the wrench's size, or where it is
-                                // zero (no motion relative to the fluid)
-                                // against what one m/s would make.
-                                let scale = max_abs(&w).max(1e-6 * max_abs(&want.k));
-                                let d = if scale > 0.0 {
-                                    max_abs(&(g - w)) / scale
-                                } else {
-                                    max_abs(&g)
-                                };
+                                let d = wrench_difference(got, expected, &want);
                                 assert!(d <= 1e-10, "{what} {path} wrench: {d:e}");
                                 worst_wrench = worst_wrench.max(d);
                             }

@@ -11,7 +11,7 @@ use super::forces::HydroForces;
 use super::frame::{Frame, texel};
 use super::options::{BuoyancyMode, Drag, HydroOptions, SeaSampling};
 use super::planar_kernel::{PlanarTexels, add_planar_ranges};
-use super::sea_drag::{SeaDragBlock, SeaDragParams, SeaDragSums, push_submerged};
+use super::sea_drag::{SeaDragFrame, SeaDragParams, SeaDragSums, sea_drag_range};
 use super::sea_kernel::{self, SeaFrame, add_sea_range};
 use super::sums::{BuoyancySums, DragAcc, DragSums, TexelDrag};
 use crate::error::{HydroError, WaterError};
@@ -313,24 +313,27 @@ fn patch_sums(
         return (sums, None);
     };
     let c = frame.rot.transpose() * (frame.com - frame.ow);
-    let params = SeaDragParams::new(
-        drag,
-        water.density,
-        &frame.rot,
-        &c,
-        &state.linear_velocity,
-        &state.angular_velocity,
-    );
+    let drag_frame = SeaDragFrame {
+        params: SeaDragParams::new(
+            drag,
+            water.density,
+            &frame.rot,
+            &c,
+            &state.linear_velocity,
+            &state.angular_velocity,
+        ),
+        rot: frame.rot,
+        ow: frame.ow,
+        patch,
+    };
     let both = chunked_sum(atlas.len(), SeaBoth::default(), |range| {
         let mut s = BuoyancySums::default();
         let mut depths = [0.0; CHUNK];
         let depths = &mut depths[..range.len()];
         add_sea_range(&mut s, atlas, range.clone(), &sea, Some(depths));
-        let mut block = SeaDragBlock::new(&params);
-        push_submerged(&mut block, atlas, range, depths, &frame.rot, &frame.ow, patch);
         SeaBoth {
             b: s,
-            d: block.finish(),
+            d: sea_drag_range(atlas, range, depths, &drag_frame),
         }
     });
     (both.b, Some(both.d.system(&frame.rot, &c)))

@@ -1,8 +1,8 @@
 //! Drag under a sampled sea, where the fluid's velocity differs from texel
-//! to texel: the submerged texels of a chunk are gathered a block at a
-//! time with the fluid's velocity where each is, and summed four side by
-//! side in object axes about the atlas origin (AVX2 and FMA where the
-//! processor has them).
+//! to texel: the texels of a chunk are taken four side by side, each
+//! submerged one with the fluid's velocity where it is, and summed in
+//! object axes about the atlas origin (AVX2 and FMA where the processor
+//! has them).
 //!
 //! A texel at `x` (object axes, from the atlas origin) with area vector
 //! `A` in fluid moving at `u` moves through it at `W + ω × x − u`, so its
@@ -17,16 +17,12 @@ use std::ops::Range;
 use nalgebra::{Matrix3, Vector3, Vector6};
 use soak_bake::Atlas;
 
-use super::frame::texel;
 use super::options::Drag;
 use super::sums::{DragAcc, DragSums};
 use crate::water::SurfacePatch;
 
 /// Texels taken side by side.
 const LANES: usize = 4;
-
-/// Texels gathered before they are summed (a multiple of [`LANES`]).
-const BLOCK: usize = 64;
 
 type Lanes = [f64; LANES];
 
@@ -127,178 +123,137 @@ impl Default for SumLanes {
     }
 }
 
-/// Submerged texels gathered a block at a time: [`SeaDragBlock::push`]
-/// each, [`SeaDragBlock::finish`] once.
-pub(crate) struct SeaDragBlock<'a> {
-    p: &'a SeaDragParams,
-    n: usize,
-    /// Position, area vector and fluid velocity, object axes, per texel.
-    x: [[f64; BLOCK]; 3],
-    a: [[f64; BLOCK]; 3],
-    u: [[f64; BLOCK]; 3],
-    sums: SumLanes,
-}
-
-impl<'a> SeaDragBlock<'a> {
-    pub(crate) fn new(p: &'a SeaDragParams) -> Self {
-        Self {
-            p,
-            n: 0,
-            x: [[0.0; BLOCK]; 3],
-            a: [[0.0; BLOCK]; 3],
-            u: [[0.0; BLOCK]; 3],
-            sums: SumLanes::default(),
-        }
-    }
-
-    /// Adds a submerged texel at `x` with area vector `a` in fluid moving
-    /// at `u` (object axes).
-    #[inline]
-    pub(crate) fn push(&mut self, x: &Vector3<f64>, a: &Vector3<f64>, u: &Vector3<f64>) {
-        let n = self.n;
-        for c in 0..3 {
-            self.x[c][n] = x[c];
-            self.a[c][n] = a[c];
-            self.u[c][n] = u[c];
-        }
-        self.n += 1;
-        if self.n == BLOCK {
-            self.flush();
-        }
-    }
-
-    /// Sums the gathered texels, the last group padded with texels of no
-    /// area (which add zeros).
-    fn flush(&mut self) {
-        let n = self.n;
-        let whole = n.next_multiple_of(LANES);
-        for c in 0..3 {
-            self.x[c][n..whole].fill(0.0);
-            self.a[c][n..whole].fill(0.0);
-            self.u[c][n..whole].fill(0.0);
-        }
-        sum_block(&mut self.sums, self.p, &self.x, &self.a, &self.u, whole);
-        self.n = 0;
-    }
-
-    /// The sums of every texel pushed, the lanes added in a fixed order.
-    pub(crate) fn finish(mut self) -> SeaDragSums {
-        if self.n > 0 {
-            self.flush();
-        }
+impl SumLanes {
+    /// The sums of the lanes, added in a fixed order.
+    fn finish(&self) -> SeaDragSums {
         let sum = |v: &Lanes| (v[0] + v[1]) + (v[2] + v[3]);
         let mut out = SeaDragSums::default();
-        for (s, v) in out.acc.iso.iter_mut().zip(&self.sums.iso) {
+        for (s, v) in out.acc.iso.iter_mut().zip(&self.iso) {
             *s = sum(v);
         }
-        for (s, v) in out.acc.gg.iter_mut().zip(&self.sums.gg) {
+        for (s, v) in out.acc.gg.iter_mut().zip(&self.gg) {
             *s = sum(v);
         }
         for (j, b) in out.b.iter_mut().enumerate() {
-            *b = sum(&self.sums.su[j]) - sum(&self.sums.wh[j]);
+            *b = sum(&self.su[j]) - sum(&self.wh[j]);
         }
         out
     }
 }
 
-/// Pushes the texels of `range` whose depth (`depths`, one per texel of
-/// the range) is positive into `block`, each with the fluid's velocity
-/// where it is (read from `patch`), for a body whose object axes `rot`
-/// turns into the world's with its atlas origin at `ow` (world, m).
-pub(crate) fn push_submerged(
-    block: &mut SeaDragBlock,
+/// What the texels of one evaluation under a sampled sea share.
+pub(crate) struct SeaDragFrame<'a> {
+    pub params: SeaDragParams,
+    /// Object axes into the world's.
+    pub rot: Matrix3<f64>,
+    /// The atlas origin, world, m.
+    pub ow: Vector3<f64>,
+    /// The sampled sea, with its velocities.
+    pub patch: &'a SurfacePatch,
+}
+
+/// The drag sums of the texels of `range` whose depth (`depths`, one per
+/// texel of the range) is positive, each in the fluid's velocity where it
+/// is (read from the patch).
+pub(crate) fn sea_drag_range(
     atlas: &Atlas,
     range: Range<usize>,
     depths: &[f64],
-    rot: &Matrix3<f64>,
-    ow: &Vector3<f64>,
-    patch: &SurfacePatch,
-) {
+    frame: &SeaDragFrame,
+) -> SeaDragSums {
+    let mut sums = SumLanes::default();
     #[cfg(target_arch = "x86_64")]
     {
         if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
             // SAFETY: the processor has AVX2 and FMA, checked just above.
             #[allow(unsafe_code)]
             unsafe {
-                push_submerged_avx2(block, atlas, range, depths, rot, ow, patch)
+                sea_drag_avx2(&mut sums, atlas, range, depths, frame)
             };
-            return;
+            return sums.finish();
         }
     }
-    push_texels::<false>(block, atlas, range, depths, rot, ow, patch);
+    sea_drag_lanes::<false>(&mut sums, atlas, range, depths, frame);
+    sums.finish()
 }
 
-/// [`push_texels`] compiled for AVX2, multiply-adds fused.
+/// [`sea_drag_lanes`] compiled for AVX2, multiply-adds fused.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-fn push_submerged_avx2(
-    block: &mut SeaDragBlock,
+fn sea_drag_avx2(
+    sums: &mut SumLanes,
     atlas: &Atlas,
     range: Range<usize>,
     depths: &[f64],
-    rot: &Matrix3<f64>,
-    ow: &Vector3<f64>,
-    patch: &SurfacePatch,
+    frame: &SeaDragFrame,
 ) {
-    push_texels::<true>(block, atlas, range, depths, rot, ow, patch);
+    sea_drag_lanes::<true>(sums, atlas, range, depths, frame);
 }
 
+/// The texels of `range`, [`LANES`] at a time (the last group padded with
+/// texels of no area); a group none of whose texels is submerged is
+/// skipped, a dry texel of a group adds zeros.
 #[inline(always)]
-fn push_texels<const FMA: bool>(
-    block: &mut SeaDragBlock,
+fn sea_drag_lanes<const FMA: bool>(
+    sums: &mut SumLanes,
     atlas: &Atlas,
     range: Range<usize>,
     depths: &[f64],
-    rot: &Matrix3<f64>,
-    ow: &Vector3<f64>,
-    patch: &SurfacePatch,
+    frame: &SeaDragFrame,
 ) {
-    let rot_t = rot.transpose();
-    for (i, &d) in range.zip(depths) {
-        if d > 0.0 {
-            let (x, a) = texel(atlas, i);
-            let [ux, uy, uz, _] = patch.velocity_lanes::<FMA>(&(ow + rot * x));
-            block.push(&x, &a, &(rot_t * Vector3::new(ux, uy, uz)));
+    let n = atlas.len();
+    let xs = atlas.local_positions().columns(0..n);
+    let avs = atlas.area_vectors().columns(0..n);
+    let (rot, ow) = (&frame.rot, &frame.ow);
+    for g in range.clone().step_by(LANES) {
+        let wet: [bool; LANES] =
+            std::array::from_fn(|k| g + k < range.end && depths[g + k - range.start] > 0.0);
+        if !wet.iter().any(|&w| w) {
+            continue;
         }
+        let at = |v: &[f32], k: usize| if wet[k] { f64::from(v[g + k]) } else { 0.0 };
+        let x: [Lanes; 3] = std::array::from_fn(|c| lanes(|k| at(xs[c], k)));
+        let a: [Lanes; 3] = std::array::from_fn(|c| lanes(|k| at(avs[c], k)));
+        // The fluid's velocity at each texel's place (world), then in
+        // object axes.
+        let mut uw = [[0.0; LANES]; 3];
+        for k in 0..LANES {
+            if wet[k] {
+                let p = Vector3::from_fn(|c, _| {
+                    let v = madd::<FMA>(rot[(c, 0)], x[0][k], ow[c]);
+                    let v = madd::<FMA>(rot[(c, 1)], x[1][k], v);
+                    madd::<FMA>(rot[(c, 2)], x[2][k], v)
+                });
+                let v = frame.patch.velocity_lanes::<FMA>(&p);
+                for c in 0..3 {
+                    uw[c][k] = v[c];
+                }
+            }
+        }
+        let u: [Lanes; 3] = std::array::from_fn(|c| {
+            lanes(|k| {
+                let v = rot[(0, c)] * uw[0][k];
+                let v = madd::<FMA>(rot[(1, c)], uw[1][k], v);
+                madd::<FMA>(rot[(2, c)], uw[2][k], v)
+            })
+        });
+        add_group::<FMA>(sums, &frame.params, &x, &a, &u);
     }
 }
 
-/// The first `n` texels of a block (a multiple of [`LANES`]), with AVX2
-/// and FMA where the processor has them.
-fn sum_block(
-    sums: &mut SumLanes,
-    p: &SeaDragParams,
-    x: &[[f64; BLOCK]; 3],
-    a: &[[f64; BLOCK]; 3],
-    u: &[[f64; BLOCK]; 3],
-    n: usize,
-) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
-            // SAFETY: the processor has AVX2 and FMA, checked just above.
-            #[allow(unsafe_code)]
-            unsafe {
-                sum_block_avx2(sums, p, x, a, u, n)
-            };
-            return;
-        }
+/// The sums of texels given one by one (position, area vector and fluid
+/// velocity, object axes), with the kernel's own arithmetic: for the
+/// tests.
+#[cfg(test)]
+pub(crate) fn sea_drag_texels(p: &SeaDragParams, texels: &[[Vector3<f64>; 3]]) -> SeaDragSums {
+    let mut sums = SumLanes::default();
+    for group in texels.chunks(LANES) {
+        let lane = |m: usize| -> [Lanes; 3] {
+            std::array::from_fn(|c| lanes(|k| group.get(k).map_or(0.0, |t| t[m][c])))
+        };
+        add_group::<false>(&mut sums, p, &lane(0), &lane(1), &lane(2));
     }
-    sum_lanes::<false>(sums, p, x, a, u, n);
-}
-
-/// [`sum_lanes`] compiled for AVX2, multiply-adds fused.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-fn sum_block_avx2(
-    sums: &mut SumLanes,
-    p: &SeaDragParams,
-    x: &[[f64; BLOCK]; 3],
-    a: &[[f64; BLOCK]; 3],
-    u: &[[f64; BLOCK]; 3],
-    n: usize,
-) {
-    sum_lanes::<true>(sums, p, x, a, u, n);
+    sums.finish()
 }
 
 /// `a b + c`, fused where `FMA`.
@@ -313,24 +268,18 @@ fn lanes(f: impl FnMut(usize) -> f64) -> Lanes {
     std::array::from_fn(f)
 }
 
-/// The texels `0..n` of a block, [`LANES`] at a time.
+/// Adds one group of texels side by side (position, area vector, fluid
+/// velocity, object axes; a texel of no area adds zeros).
 #[inline(always)]
-fn sum_lanes<const FMA: bool>(
+fn add_group<const FMA: bool>(
     sums: &mut SumLanes,
     p: &SeaDragParams,
-    x: &[[f64; BLOCK]; 3],
-    a: &[[f64; BLOCK]; 3],
-    u: &[[f64; BLOCK]; 3],
-    n: usize,
+    x: &[Lanes; 3],
+    a: &[Lanes; 3],
+    u: &[Lanes; 3],
 ) {
     let w = &p.w;
-    for g in (0..n).step_by(LANES) {
-        let get = |v: &[f64; BLOCK]| -> Lanes { std::array::from_fn(|k| v[g + k]) };
-        let (x, a, u) = (
-            x.each_ref().map(get),
-            a.each_ref().map(get),
-            u.each_ref().map(get),
-        );
+    {
         let h = [
             a[0],
             a[1],
