@@ -36,5 +36,7 @@ pub use self::validate::{
 
 /// The types most users need.
 pub mod prelude {
-    pub use crate::{Atlas, BakeError, BakeOptions, LoadError, Mesh, MeshError, load_mesh, unwrap};
+    pub use crate::{
+        Atlas, BakeError, BakeOptions, LoadError, Mesh, MeshError, UnwrapOptions, builtin, load_mesh,
+    };
 }

@@ -384,3 +384,57 @@ fn colliders_with_mass_are_refused_and_effects_off_cost_nothing() {
     assert_eq!(soak.body(id).unwrap().forces().submerged_texels, 0);
     let _ = Point3::<f64>::origin();
 }
+
+#[test]
+fn draft_and_submerged_fraction_read_the_pose_and_the_last_step() {
+    // The boat's keel is at y = 0 of its mesh and its deck at 0.6 m; its
+    // atlas origin is elsewhere (the centroid).
+    let boat = builtin::boat(4.0, 1.2, 0.6);
+    let effects = Effects::buoyancy();
+    let mut s = sim(
+        &boat,
+        128,
+        MassModel::Solid { density: 400.0 },
+        effects,
+        at(-0.25),
+        1.0 / 60.0,
+    );
+    let draft = s.soak.draft(s.id, &s.world.bodies).unwrap();
+    // The hull's lowest texel lies within a texel of the keel.
+    assert!((draft - 0.25).abs() < 5e-3, "upright at −0.25 m: draft {draft}");
+    // Upside down at +0.3 m: the deck (0.6 m above the keel) is lowest.
+    s.world.bodies[s.handle].set_position(
+        Pose::from_parts(
+            Vector::new(0.0, 0.3, 0.0),
+            Rotation::from_rotation_x(std::f32::consts::PI),
+        ),
+        true,
+    );
+    let draft = s.soak.draft(s.id, &s.world.bodies).unwrap();
+    assert!((draft - 0.3).abs() < 1e-4, "upside down: draft {draft}");
+    // Clear of the water: minus the height of the lowest point above it.
+    s.world.bodies[s.handle].set_position(at(2.0), true);
+    let draft = s.soak.draft(s.id, &s.world.bodies).unwrap();
+    assert!((draft + 2.0).abs() < 5e-3, "in the air: draft {draft}");
+    // Nothing has been stepped yet; after a step at rest half under water
+    // the fraction is the displaced volume over the enclosed one.
+    let b = s.soak.body(s.id).unwrap();
+    assert_eq!(b.submerged_fraction(), 0.0);
+    let mut sphere = sim(
+        &builtin::sphere(0.5, 48, 24),
+        128,
+        MassModel::Solid { density: 500.0 },
+        Effects::buoyancy(),
+        at(0.0),
+        1.0 / 60.0,
+    );
+    sphere.run(1.0 / 60.0, |_| {});
+    let b = sphere.soak.body(sphere.id).unwrap();
+    assert!(
+        (b.submerged_fraction() - 0.5).abs() < 0.02,
+        "{}",
+        b.submerged_fraction()
+    );
+    assert!((b.submerged_volume() - 0.5 * b.volume()).abs() < 0.02 * b.volume());
+    assert!(b.center_of_buoyancy().y < 0.0);
+}

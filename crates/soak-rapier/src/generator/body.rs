@@ -4,6 +4,7 @@
 
 use std::sync::Arc;
 
+use nalgebra::Point3;
 use rapier3d::prelude::RigidBodyHandle;
 use soak_bake::Atlas;
 use soak_graph::Flooding;
@@ -90,6 +91,29 @@ impl SoakBody {
     /// The force and torque handed to Rapier at the last step, world frame.
     pub fn applied(&self) -> &Wrench {
         &self.applied
+    }
+    /// Its volume under water at the last step, m³ (0 when dry or skipped
+    /// above the crests).
+    pub fn submerged_volume(&self) -> f64 {
+        self.forces.submerged_volume
+    }
+    /// The fraction of its enclosed volume under water at the last step,
+    /// from 0 (dry) to 1 (wholly submerged).
+    pub fn submerged_fraction(&self) -> f64 {
+        if self.shape.volume > 0.0 {
+            (self.forces.submerged_volume / self.shape.volume).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    }
+    /// Its enclosed volume, m³.
+    pub fn volume(&self) -> f64 {
+        self.shape.volume
+    }
+    /// Its centre of buoyancy at the last step, world, m (its centre of
+    /// mass when dry).
+    pub fn center_of_buoyancy(&self) -> Point3<f64> {
+        self.forces.center_of_buoyancy
     }
     /// Steps at which the body was above the highest crest and skipped.
     pub fn dry_skips(&self) -> u64 {

@@ -5,7 +5,7 @@
 
 use std::sync::Arc;
 
-use nalgebra::Point3;
+use nalgebra::{Point3, Vector3};
 use rapier3d::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
 use soak_graph::Flooding;
 use soak_hydro::{HydroForces, MassModel, MassProperties, SeaSampling, TiledAtlas, Water, Wrench};
@@ -351,6 +351,30 @@ impl ForceGenerator {
     /// One body.
     pub fn body(&self, id: SoakId) -> Option<&SoakBody> {
         self.bodies.get(id.0)
+    }
+
+    /// The draft of body `id` at its current pose in `bodies`, m: how deep
+    /// its lowest texel lies below the water's surface above it (for a
+    /// flat bottom, the bottom itself; otherwise within a texel of the
+    /// lowest point of the mesh). Negative when the body is clear of the
+    /// water: minus its height above it. `None` for an unknown id or a
+    /// body no longer in `bodies`; `Some(f64::INFINITY)` under water with
+    /// no free surface ([`soak_hydro::Unbounded`]).
+    ///
+    /// Reads every texel (a pass over the atlas): for a report, not for
+    /// every step of a large scene.
+    pub fn draft(&self, id: SoakId, bodies: &RigidBodySet) -> Option<f64> {
+        let b = self.bodies.get(id.0)?;
+        let pose = crate::convert::pose(bodies.get(b.handle)?.position());
+        // Texel positions are stored from the atlas origin.
+        let (origin, positions) = (b.atlas.origin(), b.atlas.local_positions());
+        let lowest = (0..b.atlas.len())
+            .map(|i| {
+                let x = positions.get(i);
+                pose * (origin + Vector3::new(f64::from(x[0]), f64::from(x[1]), f64::from(x[2])))
+            })
+            .min_by(|p, q| p.y.total_cmp(&q.y))?;
+        Some(self.water.surface.depth(&lowest, self.time))
     }
 
     /// Rejected quantities so far.

@@ -1,0 +1,16 @@
+//! The README's Rapier program is `examples/readme.rs`, word for word, so
+//! that what the README shows is built and run (as the example, and as a
+//! doctest of the crate's front page).
+
+#[test]
+fn the_readme_program_is_the_example() {
+    let readme = include_str!("../README.md");
+    let example = include_str!("../examples/readme.rs");
+    let start = readme.find("```rust\n").expect("the README has a Rust block") + "```rust\n".len();
+    let block = &readme[start..start + readme[start..].find("```").expect("the block ends")];
+    let program = &example[example.find("use rapier3d").expect("the example's program")..];
+    assert_eq!(
+        block, program,
+        "the README's program and examples/readme.rs differ"
+    );
+}
