@@ -221,11 +221,17 @@ fn the_patch_passes_through_the_surface_at_its_nodes_and_near_it_between() {
                 let node = Point3::new(x, y, z);
                 let v = patch.velocity(&node, t);
                 let ve = water.surface.velocity(&node, t);
-                assert!((v - ve).norm() < 1e-12 * ve.norm().max(1.0), "node {node}: {v} vs {ve}");
+                assert!(
+                    (v - ve).norm() < 1e-12 * ve.norm().max(1.0),
+                    "node {node}: {v} vs {ve}"
+                );
                 let above = Point3::new(x, y + 0.25, z);
                 let mid = patch.velocity(&Point3::new(x, y + 0.125, z), t);
                 let mean = (v + patch.velocity(&above, t)) / 2.0;
-                assert!((mid - mean).norm() < 1e-12 * mean.norm().max(1.0), "{mid} vs {mean}");
+                assert!(
+                    (mid - mean).norm() < 1e-12 * mean.norm().max(1.0),
+                    "{mid} vs {mean}"
+                );
             }
         }
     }
