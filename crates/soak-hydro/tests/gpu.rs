@@ -506,7 +506,6 @@ fn parity(
                     drag,
                     dt: 1.0 / 60.0,
                     sea,
-                    ..HydroOptions::default()
                 };
                 (water, state, options)
             })
@@ -682,7 +681,6 @@ fn a_batch_of_100_equals_100_single_evaluations() {
             } else {
                 SeaSampling::Exact
             },
-            ..HydroOptions::default()
         };
         bodies.push((b, GpuBody::from((id, water, state, b.mass, options))));
     }
