@@ -3,6 +3,11 @@
 //! batch of 100 bodies in one submission. The CPU `evaluate` of the same
 //! body is measured beside each for scale.
 //!
+//! The two-wave swell of `buoy_on_waves.toml` at 512² and 1024², with drag,
+//! read both ways: sampled once per evaluation on the CPU and read as a
+//! patch by the kernel (the default), and the Gerstner map inverted at every
+//! texel on the device (`SeaSampling::Exact`).
+//!
 //! The adapter is named in the group names and printed first: on a software
 //! adapter (llvmpipe, lavapipe) these are CPU timings of the kernels, not
 //! GPU timings. `WGPU_BACKEND=vulkan|gl` picks the backend.
@@ -13,7 +18,30 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, builtin};
 use soak_hydro::gpu::{GpuBody, GpuHydro, adapter_label, headless_device, is_software};
-use soak_hydro::{BodyState, Drag, HydroOptions, MassModel, Water, evaluate};
+use soak_hydro::{
+    BodyState, Drag, Gerstner, GerstnerWave, HydroOptions, MassModel, SeaSampling, Water, evaluate,
+};
+
+/// The two-wave swell of `data/scenes/buoy_on_waves.toml`.
+fn swell() -> Water {
+    let waves = vec![
+        GerstnerWave {
+            amplitude: 0.25,
+            wavelength: 9.0,
+            direction_deg: 0.0,
+            steepness: 0.6,
+            phase: 0.0,
+        },
+        GerstnerWave {
+            amplitude: 0.10,
+            wavelength: 4.0,
+            direction_deg: 35.0,
+            steepness: 0.4,
+            phase: 1.0,
+        },
+    ];
+    Water::new(Gerstner::new(0.0, waves, 9.80665).expect("valid waves"))
+}
 
 fn state(k: usize) -> BodyState {
     let a = k as f64;
@@ -79,6 +107,35 @@ fn gpu(c: &mut Criterion) {
         });
         g.bench_with_input(BenchmarkId::new("cpu_buoyancy_drag", n), &n, |b, _| {
             b.iter(|| evaluate(&atlas, &water, &s, &mass, 0.0, &with_drag).unwrap())
+        });
+    }
+    g.finish();
+
+    let sea = swell();
+    let exact = HydroOptions {
+        sea: SeaSampling::Exact,
+        ..with_drag
+    };
+    let mut g = c.benchmark_group(format!("gpu_{tag}_swell"));
+    g.sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3));
+    for n in [512u32, 1024] {
+        let atlas = Atlas::bake(&mesh, BakeOptions::square(n)).unwrap();
+        let mass = MassModel::Solid { density: 500.0 }
+            .mass_properties(&atlas)
+            .unwrap();
+        let id = hydro.upload(&atlas).unwrap();
+        let s = state(1);
+        g.throughput(Throughput::Elements(atlas.len() as u64));
+        g.bench_with_input(BenchmarkId::new("gpu_swell_sampled_drag", n), &n, |b, _| {
+            b.iter(|| hydro.evaluate(id, &sea, &s, &mass, 0.0, &with_drag).unwrap())
+        });
+        g.bench_with_input(BenchmarkId::new("gpu_swell_exact_drag", n), &n, |b, _| {
+            b.iter(|| hydro.evaluate(id, &sea, &s, &mass, 0.0, &exact).unwrap())
+        });
+        g.bench_with_input(BenchmarkId::new("cpu_swell_sampled_drag", n), &n, |b, _| {
+            b.iter(|| evaluate(&atlas, &sea, &s, &mass, 0.0, &with_drag).unwrap())
         });
     }
     g.finish();

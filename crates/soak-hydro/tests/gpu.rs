@@ -19,7 +19,7 @@ use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuError, GpuHydro, GpuHydroError, GpuOptions, adapter_label};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HeightField, HydroForces, HydroOptions, MassModel,
-    MassProperties, Plane, SeaSampling, Surface, Unbounded, Water, evaluate,
+    MassProperties, Plane, SeaSampling, Surface, SurfacePatch, Unbounded, Water, evaluate,
 };
 
 const MESHES: [&str; 7] = [
@@ -40,13 +40,11 @@ const TOL: f64 = 1e-4;
 
 type Device = (wgpu::Device, wgpu::Queue, wgpu::AdapterInfo);
 
-/// A headless device of its own for each test (on wgpu's GL backend a
-/// device serialises all work behind one context lock, which wgpu gives up
-/// on after 6 s: tests running in parallel on one GL device could trip it).
-/// `None` (with a notice) when there is no adapter, a failure under `CI=true`.
-/// The CPU reference's options: the GPU inverts the Gerstner map at every
-/// texel, so the CPU reads the sea exactly too (the sampled read is held
-/// to the exact one in `sea_sampling.rs`).
+/// Options that read a sea exactly: the GPU inverts the Gerstner map at
+/// every texel, the CPU too (the sampled read is held to the exact one in
+/// `sea_sampling.rs`). The parity tests of the sampled read use the default
+/// options, under which both sides sample the sea once per evaluation and
+/// read that patch.
 fn exact_options() -> HydroOptions {
     HydroOptions {
         sea: SeaSampling::Exact,
@@ -54,6 +52,10 @@ fn exact_options() -> HydroOptions {
     }
 }
 
+/// A headless device of its own for each test (on wgpu's GL backend a
+/// device serialises all work behind one context lock, which wgpu gives up
+/// on after 6 s: tests running in parallel on one GL device could trip it).
+/// `None` (with a notice) when there is no adapter, a failure under `CI=true`.
 fn device() -> Option<Device> {
     soak_hydro::gpu::test_device()
 }
@@ -197,6 +199,31 @@ fn sea() -> Water {
         },
     ];
     Water::new(Gerstner::new(0.1, waves, 9.80665).unwrap())
+}
+
+/// The two-wave swell of `data/scenes/buoy_on_waves.toml` (as in
+/// `sea_sampling.rs`).
+fn swell() -> Water {
+    Water::new(Gerstner::new(0.0, swell_waves(), 9.80665).unwrap())
+}
+
+fn swell_waves() -> Vec<GerstnerWave> {
+    vec![
+        GerstnerWave {
+            amplitude: 0.25,
+            wavelength: 9.0,
+            direction_deg: 0.0,
+            steepness: 0.6,
+            phase: 0.0,
+        },
+        GerstnerWave {
+            amplitude: 0.10,
+            wavelength: 4.0,
+            direction_deg: 35.0,
+            steepness: 0.4,
+            phase: 1.0,
+        },
+    ]
 }
 
 fn height_field() -> Water {
@@ -448,7 +475,9 @@ fn compare(b: &Baked, water: &Water, state: &BodyState, cpu: &HydroForces, gpu: 
 }
 
 /// The shared test body: `poses` random states of every mesh in `water`,
-/// through both backends, each result checked on its own, then compared.
+/// through both backends, each result checked on its own, then compared;
+/// a sea read as `sea` says.
+#[allow(clippy::too_many_arguments)]
 fn parity(
     cpu: &mut dyn Backend,
     gpu: &mut dyn Backend,
@@ -457,6 +486,7 @@ fn parity(
     poses: usize,
     drag: Option<Drag>,
     seed: u64,
+    sea: SeaSampling,
 ) -> Errors {
     let mut rng = Lcg(seed);
     let mut all = Errors::default();
@@ -475,7 +505,7 @@ fn parity(
                     buoyancy,
                     drag,
                     dt: 1.0 / 60.0,
-                    ..exact_options()
+                    sea,
                 };
                 (water, state, options)
             })
@@ -496,12 +526,25 @@ fn parity(
 }
 
 fn run_parity(n: u32, water: fn() -> Water, poses: usize, drag: Option<Drag>, seed: u64, what: &str) {
+    run_parity_read(n, water, poses, drag, seed, what, SeaSampling::Exact);
+}
+
+/// [`run_parity`] with a sea read as `sea` says, on both sides.
+fn run_parity_read(
+    n: u32,
+    water: fn() -> Water,
+    poses: usize,
+    drag: Option<Drag>,
+    seed: u64,
+    what: &str,
+    sea: SeaSampling,
+) {
     let Some(d) = device() else { return };
     let d = &d;
     let set = baked(n);
     let mut gpu = Gpu::new(d);
     eprintln!("{what} at {n}², {poses} poses per mesh, {}", gpu.name());
-    let errors = parity(&mut Cpu, &mut gpu, set, &water(), poses, drag, seed);
+    let errors = parity(&mut Cpu, &mut gpu, set, &water(), poses, drag, seed, sea);
     errors.report(what);
 }
 
@@ -542,6 +585,28 @@ fn drag_parity_plane_with_current() {
 #[test]
 fn drag_parity_gerstner() {
     run_parity(256, sea, 20, Some(DRAG), 6, "drag, Gerstner orbital velocity");
+}
+
+/// The default read: the sea sampled once per evaluation on both sides,
+/// the GPU reading the patch's polynomials in f32.
+#[test]
+fn sampled_swell_parity_256() {
+    let sampled = HydroOptions::default().sea;
+    assert!(matches!(sampled, SeaSampling::PerWavelength(_)));
+    run_parity_read(256, swell, 30, None, 11, "swell, sampled", sampled);
+    run_parity_read(256, sea, 20, None, 12, "Gerstner sea, sampled", sampled);
+}
+
+#[test]
+fn sampled_swell_drag_parity() {
+    let sampled = HydroOptions::default().sea;
+    run_parity_read(256, swell, 20, Some(DRAG), 13, "drag, swell, sampled", sampled);
+}
+
+/// The exact read of the swell, for the sampled tests beside it.
+#[test]
+fn exact_swell_parity_256() {
+    run_parity(256, swell, 20, Some(DRAG), 14, "drag, swell, exact");
 }
 
 #[test]
@@ -610,7 +675,12 @@ fn a_batch_of_100_equals_100_single_evaluations() {
             buoyancy: BuoyancyMode::Pressure,
             drag: (k % 3 != 0).then_some(DRAG),
             dt: 1.0 / 120.0,
-            ..exact_options()
+            // A sea sampled once for a quarter of the bodies.
+            sea: if k % 4 == 1 {
+                HydroOptions::default().sea
+            } else {
+                SeaSampling::Exact
+            },
         };
         bodies.push((b, GpuBody::from((id, water, state, b.mass, options))));
     }
@@ -633,6 +703,90 @@ fn a_batch_of_100_equals_100_single_evaluations() {
         all.merge(&compare(b, body.water, &body.state, &cpu, f));
     }
     all.report("a batch of 100 bodies, 5 waters, 7 meshes, against the CPU");
+}
+
+// ---------------------------------------------------------------- sampled surfaces
+
+/// A water whose surface already is a [`SurfacePatch`] reads alike on both
+/// sides: sampled with and without velocities, 50 m above the world's zero
+/// and kilometres from its origin (f32 holds there: the kernel reads the
+/// patch relative to the body), and where a body reaches past the patch's
+/// rectangle (both sides clamp to it).
+#[test]
+fn a_surface_patch_reads_alike_on_both() {
+    let Some(d) = device() else { return };
+    let d = &d;
+    let mut gpu = Gpu::new(d);
+    let set = baked(256);
+    let (level, t) = (50.0, 2.7);
+    let at = Vector3::new(3000.0, 0.0, -2000.0);
+    let sea = Gerstner::new(level, swell_waves(), 9.80665).unwrap();
+    // 2.2 m a side: the larger meshes reach past it.
+    let (min, max) = ([at.x - 1.1, at.z - 1.1], [at.x + 1.1, at.z + 1.1]);
+    let spacing = 4.0 / 16.0;
+    let with_velocity =
+        SurfacePatch::sample(&sea, t, min, max, spacing, Some((level - 1.5, level + 1.5))).unwrap();
+    let heights_only = SurfacePatch::sample(&sea, t, min, max, spacing, None).unwrap();
+    assert!(with_velocity.has_velocity() && !heights_only.has_velocity());
+    let mut all = Errors::default();
+    for (patch, what) in [(with_velocity, "with velocities"), (heights_only, "heights only")] {
+        let water = Water::new(patch);
+        let mut rng = Lcg(21);
+        for b in set {
+            let bodies: Vec<(&Water, BodyState, HydroOptions)> = (0..12)
+                .map(|k| {
+                    let mut state = rng.state(b, level, 0.6, 2.0);
+                    state.pose.translation.vector += at;
+                    let options = HydroOptions {
+                        buoyancy: if k % 2 == 0 {
+                            BuoyancyMode::Archimedes
+                        } else {
+                            BuoyancyMode::Pressure
+                        },
+                        drag: (k % 3 != 2).then_some(DRAG),
+                        dt: 1.0 / 60.0,
+                        ..HydroOptions::default()
+                    };
+                    (&water, state, options)
+                })
+                .collect();
+            let expected = Cpu.forces(b, &bodies, t);
+            let got = gpu.forces(b, &bodies, t);
+            let mut errors = Errors::default();
+            for ((body, c), g) in bodies.iter().zip(&expected).zip(&got) {
+                check_forces(&Cpu, b, &water, &body.1, body.2.buoyancy, c);
+                check_forces(&gpu, b, &water, &body.1, body.2.buoyancy, g);
+                errors.merge(&compare(b, &water, &body.1, c, g));
+            }
+            eprintln!("  {what}, {}: {errors:?}", b.name);
+            all.merge(&errors);
+        }
+    }
+    all.report(&format!("a SurfacePatch on both sides, {}", gpu.name()));
+}
+
+/// Sampling the sea for the GPU fails as it does on the CPU, as a value.
+#[test]
+fn a_bad_sampling_length_is_a_typed_error() {
+    let Some(d) = device() else { return };
+    let d = &d;
+    let mut gpu = Gpu::new(d);
+    let b = &baked(256)[0];
+    let id = gpu.id(b);
+    let water = swell();
+    let state = BodyState::at_rest(Isometry3::identity());
+    let bad = HydroOptions {
+        sea: SeaSampling::PerWavelength(f64::NAN),
+        ..HydroOptions::default()
+    };
+    assert!(evaluate(&b.atlas, &water, &state, &b.mass, 0.0, &bad).is_err());
+    let calm = plane();
+    let batch: Vec<GpuBody> = (0..3)
+        .map(|k| GpuBody::from((id, if k == 2 { &water } else { &calm }, state, b.mass, bad)))
+        .collect();
+    let e = gpu.hydro.evaluate_batch(&batch, 0.0).unwrap_err();
+    assert!(matches!(e, GpuHydroError::Water { body: 2, .. }), "{e:?}");
+    eprintln!("{e}");
 }
 
 // ---------------------------------------------------------------- deformation

@@ -17,9 +17,10 @@ fn world(
     gpu: Option<&(wgpu::Device, wgpu::Queue)>,
 ) -> (PhysicsWorld, ForceGenerator, Vec<RigidBodyHandle>) {
     let mut world = PhysicsWorld::new();
-    // The GPU inverts the Gerstner map at every texel: the CPU does the same
-    // here (the sampled read, the default, is checked against the exact one
-    // in soak-hydro's `sea_sampling` tests).
+    // Both paths read the sea exactly here (the GPU inverts the Gerstner map
+    // at every texel, the CPU too); the sampled read, the default, is held
+    // to the exact one in soak-hydro's `sea_sampling` tests, and the GPU's
+    // sampled read to the CPU's in its `gpu` tests.
     let mut soak = ForceGenerator::new(water).with_sea_sampling(SeaSampling::Exact);
     if let Some((d, q)) = gpu {
         soak = soak.with_gpu(d, q).unwrap();

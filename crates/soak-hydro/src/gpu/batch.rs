@@ -8,6 +8,7 @@ use super::layout::{Body, Dispatch, HYDRO_SLOTS, ITEM_TEXELS, Item, dispatch_byt
 use super::surface::{HeightFields, encode_surface};
 use crate::error::HydroError;
 use crate::hydrostatics::body_state::BodyState;
+use crate::hydrostatics::evaluation::sample_patch_around;
 use crate::hydrostatics::finish::finish;
 use crate::hydrostatics::forces::HydroForces;
 use crate::hydrostatics::frame::Frame;
@@ -85,6 +86,29 @@ fn check(index: usize, b: &GpuBody<'_>) -> Result<(), GpuHydroError> {
     Ok(())
 }
 
+/// The body's water with its surface sampled once over the body's
+/// footprint, when its options and its surface ask for it (a sea with
+/// [`crate::SeaSampling::PerWavelength`]), as [`crate::evaluate`] does;
+/// `None` to read the water as it is.
+fn sampled(
+    index: usize,
+    b: &GpuBody<'_>,
+    origin: nalgebra::Point3<f64>,
+    radius: f64,
+    t: f64,
+) -> Result<Option<Water>, GpuHydroError> {
+    let patch =
+        sample_patch_around(origin, radius, b.water, &b.state, t, &b.options).map_err(|e| match e {
+            HydroError::Water(source) => GpuHydroError::Water { body: index, source },
+            other => GpuHydroError::Mass(other),
+        })?;
+    Ok(patch.map(|patch| Water {
+        surface: Box::new(patch),
+        density: b.water.density,
+        gravity: b.water.gravity,
+    }))
+}
+
 impl GpuHydro {
     /// Buoyancy and drag on one body: [`crate::evaluate`] on the device.
     pub fn evaluate(
@@ -110,7 +134,15 @@ impl GpuHydro {
     /// atlas, water, pose and options: one submission (one dispatch per page
     /// of texels, one for the reduction) and one readback of 192 bytes per
     /// body. Results are in the order of `bodies`.
+    ///
+    /// A sea is read as [`HydroOptions::sea`] asks, as on the CPU: sampled
+    /// once per body over its footprint (on the CPU, the bodies in
+    /// parallel) and read by the kernels as that [`crate::SurfacePatch`], or
+    /// with [`crate::SeaSampling::Exact`] inverted at every texel on the
+    /// device. A water whose surface is a [`crate::SurfacePatch`] already
+    /// is read as it is.
     pub fn evaluate_batch(&self, bodies: &[GpuBody<'_>], t: f64) -> Result<Vec<HydroForces>, GpuHydroError> {
+        use rayon::prelude::*;
         if bodies.is_empty() {
             return Ok(Vec::new());
         }
@@ -118,6 +150,22 @@ impl GpuHydro {
             return Err(GpuHydroError::NonFiniteState { body: 0, field: "t" });
         }
         let n = bodies.len();
+        let mut footprints = Vec::with_capacity(n);
+        for (i, b) in bodies.iter().enumerate() {
+            let entry = self.entry(b.atlas)?;
+            check(i, b)?;
+            footprints.push((entry.origin, entry.radius));
+        }
+        // Kept until the encoding is done: the encoder stores a patch once
+        // per address.
+        let sampled_waters: Vec<Option<Water>> = bodies
+            .par_iter()
+            .zip(&footprints)
+            .enumerate()
+            .map(|(i, (b, &(origin, radius)))| sampled(i, b, origin, radius, t))
+            .collect::<Vec<_>>()
+            .into_iter()
+            .collect::<Result<_, _>>()?;
         let mut gpu_bodies = Vec::with_capacity(n);
         let mut frames = Vec::with_capacity(n);
         let mut waves = Vec::new();
@@ -127,7 +175,6 @@ impl GpuHydro {
         let mut partials = 0u64;
         for (i, b) in bodies.iter().enumerate() {
             let entry = self.entry(b.atlas)?;
-            check(i, b)?;
             let rot = b.state.pose.rotation.to_rotation_matrix().into_inner();
             let ow = (b.state.pose * entry.origin).coords;
             let com = (b.state.pose * b.mass.center_of_mass).coords;
@@ -152,7 +199,8 @@ impl GpuHydro {
                 slot: [b.atlas.0, 0, 0, 0],
                 ..Body::default()
             };
-            encode_surface(i, b.water, &ow, t, &mut body, &mut waves, &mut heights)?;
+            let water = sampled_waters[i].as_ref().unwrap_or(b.water);
+            encode_surface(i, water, &ow, t, &mut body, &mut waves, &mut heights)?;
             gpu_bodies.push(body);
             // `finish` reads the reference point, the centre of mass, the
             // plane (for Archimedes' slope terms) and the texel count.
@@ -202,7 +250,7 @@ impl GpuHydro {
         )?;
         too_large("the Gerstner waves of this batch", (waves.len() * 32) as u64)?;
         too_large(
-            "the height fields of this batch",
+            "the height fields and sampled surfaces of this batch",
             (heights.samples.len() * 4) as u64,
         )?;
 

@@ -9,6 +9,7 @@ const SURFACE_PLANE: u32 = 0u;
 const SURFACE_GERSTNER: u32 = 1u;
 const SURFACE_HEIGHT_FIELD: u32 = 2u;
 const SURFACE_UNBOUNDED: u32 = 3u;
+const SURFACE_PATCH: u32 = 4u;
 
 // Invocations per workgroup and texels per invocation of the per-texel
 // kernels: one work item is WG * PER_THREAD consecutive texels.
@@ -24,11 +25,13 @@ struct Body {
     rot1: vec4<f32>,
     rot2: vec4<f32>,
     // Plane / unbounded: unit normal xyz, w = offset - n.o_w (m).
-    // Gerstner: x = mean level - o_w.y (m). Height field: x, z = grid
-    // coordinates of o_w, z, w = 1/spacing (1/m).
+    // Gerstner: x = mean level - o_w.y (m). Height field and sampled
+    // surface (patch): x, y = grid coordinates (x, z) of o_w, z, w =
+    // 1/spacing (1/m).
     surface: vec4<f32>,
     // Gerstner: x, y = world x, z of o_w (m, for the convergence test).
-    // Height field: x = reference height - o_w.y (m).
+    // Height field and patch: x = reference height - o_w.y (m); patch: y =
+    // the velocity grid's coordinate along y of o_w.
     surface2: vec4<f32>,
     // Uniform fluid velocity (plane, height field, unbounded), m/s.
     current: vec4<f32>,
@@ -41,10 +44,12 @@ struct Body {
     // x: linear skin friction (N s/m per m^2); y: 1 when drag is wanted;
     // z: 1 when Archimedes' slope sum is wanted (a surface that is not a plane).
     drag: vec4<f32>,
-    // x: surface kind; y: first wave / first height sample; z: wave count /
-    // samples along x; w: samples along z.
+    // x: surface kind; y: first wave / first height sample / first patch
+    // coefficient; z: wave count / samples along x / patch cells along x;
+    // w: samples / patch cells along z.
     info: vec4<u32>,
-    // x: atlas slot (bounding radius for the unbounded medium).
+    // x: atlas slot (bounding radius for the unbounded medium). Patch: y =
+    // first velocity coefficient, z = velocity nodes along y (0: none).
     slot: vec4<u32>,
 }
 

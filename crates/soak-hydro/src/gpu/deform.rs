@@ -41,6 +41,9 @@ impl GpuHydro {
             return Err(GpuHydroError::NonFiniteVertex { vertex });
         }
         let o = entry.origin;
+        // Texels lie on the triangles, so a sphere that holds every vertex
+        // holds them: the footprint a sampled sea is read over.
+        let radius = positions.iter().map(|p| (p - o).norm()).fold(0.0, f64::max);
         let vertices: Vec<[f32; 4]> = positions
             .iter()
             .map(|p| {
@@ -119,7 +122,12 @@ impl GpuHydro {
             }
             queue.submit([encoder.finish()]);
             Ok(())
-        })
+        })?;
+        drop(scratch);
+        if let Some(entry) = self.atlases.get_mut(id.0 as usize) {
+            entry.radius = radius;
+        }
+        Ok(())
     }
 
     /// Reads an atlas's texels back from the device (for tests and tools:

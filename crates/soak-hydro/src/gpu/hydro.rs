@@ -62,6 +62,9 @@ pub(crate) struct Deformable {
 
 pub(crate) struct Entry {
     pub origin: Point3<f64>,
+    /// Radius of a sphere about the origin that holds every texel, m: the
+    /// atlas's, or after a deformation one that holds every vertex.
+    pub radius: f64,
     pub len: usize,
     pub segments: Vec<Segment>,
     pub deformable: Option<Deformable>,
@@ -373,6 +376,7 @@ impl GpuHydro {
             let deformable = triangles.map(|tris| self.deformable(atlas, tris));
             self.atlases.push(Entry {
                 origin: atlas.origin(),
+                radius: atlas.bounding_radius(),
                 len: n,
                 segments,
                 deformable,

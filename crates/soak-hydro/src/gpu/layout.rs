@@ -27,6 +27,11 @@ pub(crate) const SURFACE_PLANE: u32 = 0;
 pub(crate) const SURFACE_GERSTNER: u32 = 1;
 pub(crate) const SURFACE_HEIGHT_FIELD: u32 = 2;
 pub(crate) const SURFACE_UNBOUNDED: u32 = 3;
+pub(crate) const SURFACE_PATCH: u32 = 4;
+/// Floats per cell of a patch's bicubic coefficients in the `heights` binding.
+pub(crate) const PATCH_CELL_FLOATS: usize = 16;
+/// Floats per cell of a patch's velocity coefficients in the `heights` binding.
+pub(crate) const PATCH_VELOCITY_CELL_FLOATS: usize = 24;
 
 /// One body of a batch (WGSL `Body`): its pose and its water surface, seen
 /// from the body's atlas origin `o_w` in world axes, so f32 keeps its
@@ -41,11 +46,13 @@ pub struct Body {
     /// Third row of the rotation object → world (w unused).
     pub rot2: [f32; 4],
     /// Plane or unbounded medium: unit normal xyz, w = offset − n·o_w (m).
-    /// Gerstner: x = mean level − o_w.y (m). Height field: x, y = grid
-    /// coordinates of o_w, z, w = 1/spacing (1/m).
+    /// Gerstner: x = mean level − o_w.y (m). Height field and sampled
+    /// surface (patch): x, y = grid coordinates (x, z) of o_w, z, w =
+    /// 1/spacing (1/m).
     pub surface: [f32; 4],
-    /// Gerstner: x, y = world x, z of o_w (m). Height field: x = reference
-    /// height − o_w.y (m).
+    /// Gerstner: x, y = world x, z of o_w (m). Height field and patch: x =
+    /// reference height − o_w.y (m); patch: y = the velocity grid's
+    /// coordinate along y of o_w.
     pub surface2: [f32; 4],
     /// Uniform fluid velocity (plane, height field, unbounded), m/s.
     pub current: [f32; 4],
@@ -58,10 +65,13 @@ pub struct Body {
     /// x: linear skin friction (N s/m per m²); y: 1 when drag is wanted;
     /// z: 1 when Archimedes' slope sum is wanted.
     pub drag: [f32; 4],
-    /// x: surface kind (`SURFACE_*`); y: first wave or first height sample;
-    /// z: wave count or samples along x; w: samples along z.
+    /// x: surface kind (`SURFACE_*`); y: first wave, first height sample
+    /// or first patch coefficient; z: wave count, samples along x or patch
+    /// cells along x; w: samples or patch cells along z.
     pub info: [u32; 4],
-    /// x: atlas slot (bounding radius for the unbounded medium).
+    /// x: atlas slot (bounding radius for the unbounded medium). Patch:
+    /// y = first velocity coefficient, z = velocity nodes along y (0 when
+    /// the patch has no velocities).
     pub slot: [u32; 4],
 }
 

@@ -4,13 +4,21 @@
 //! [`GpuHydro`] keeps atlases on a device the caller provides and evaluates
 //! the per-texel sums of [`crate::evaluate`] there: one kernel transforms
 //! each texel, finds its depth under the water surface (plane, Gerstner sea,
-//! height field or unbounded medium, in [`wgsl::WATER_SURFACE`]) and
+//! height field, sampled surface or unbounded medium, in
+//! [`wgsl::WATER_SURFACE`]) and
 //! sums buoyancy and drag terms per workgroup; a second reduces the partials
 //! per body. The sums come back (192 bytes per body) and the CPU turns them
 //! into [`crate::HydroForces`] with the code [`crate::evaluate`] uses, the
 //! implicit drag solve included. Many bodies, each with its own atlas, pose
 //! and water, go in one submission and one readback
 //! ([`GpuHydro::evaluate_batch`]).
+//!
+//! A Gerstner sea is read as [`crate::HydroOptions::sea`] asks, as on the
+//! CPU: by default sampled once per body and evaluation on the CPU
+//! ([`crate::SurfacePatch`], heights and slopes at a few dozen nodes, with
+//! drag the fluid's velocity too) and read by the kernel as per-cell
+//! polynomials; with [`crate::SeaSampling::Exact`] the kernel inverts the
+//! Gerstner map at every texel in f32.
 //!
 //! Precision: texel positions are relative to the atlas origin and water
 //! parameters relative to the body's world position, computed in f64 and

@@ -1,8 +1,14 @@
-// soak: water surfaces on the GPU, mirroring crates/soak-hydro/src/water.rs.
+// soak: water surfaces on the GPU, mirroring crates/soak-hydro/src/water.
 //
 // Needs bindings.wgsl and, in the including module, the bindings
 // `waves: array<Wave>`, `heights: array<f32>` and `radii: array<u32>`.
 // Points are `r = p - o_w` (world axes, relative to the body's atlas origin).
+//
+// A Gerstner sea comes in two forms: its waves (SURFACE_GERSTNER), whose
+// map is inverted here at every point, or sampled once on the CPU
+// (SURFACE_PATCH, `SurfacePatch` of water/patch.rs): per cell the bicubic
+// coefficients of its height and, with drag, the trilinear coefficients of
+// the fluid's velocity, read from `heights`.
 
 // Fixed-point inversion of the Gerstner displacement: the CPU's iteration
 // count, and its relative tolerance scaled to f32 (the CPU uses 1e-10 in f64).
@@ -15,6 +21,8 @@ struct SurfacePoint {
     // Gerstner: rest position (x0, z0) of the surface particle above the
     // point, relative to o_w; unused otherwise.
     rest: vec2<f32>,
+    // Patch: slope (dh/dx, dh/dz) read with the height; unused otherwise.
+    slope: vec2<f32>,
 }
 
 // Horizontal displacement (x, z) and height (y) of the particle at rest
@@ -54,8 +62,80 @@ fn height_sample(b: Body, i: u32, j: u32) -> f32 {
     return heights[b.info.y + j * b.info.z + i];
 }
 
+// A row of a patch cell's coefficients at `at`, in v: the value
+// sum_q a_pq v^q and its derivative in v.
+fn patch_row(at: u32, v: f32) -> vec2<f32> {
+    let a0 = heights[at];
+    let a1 = heights[at + 1u];
+    let a2 = heights[at + 2u];
+    let a3 = heights[at + 3u];
+    return vec2<f32>(((a3 * v + a2) * v + a1) * v + a0, (3.0 * a3 * v + 2.0 * a2) * v + a1);
+}
+
+// Height (relative to the patch's reference, m) and slope (dh/dx, dh/dz)
+// of the patch above r, `SurfacePatch::height_slope`: the cell's bicubic
+// at the fractions (u, v) across it, clamped to the patch's rectangle.
+fn patch_height_slope(b: Body, r: vec3<f32>) -> vec3<f32> {
+    let cx = b.info.z;
+    let cz = b.info.w;
+    let gx = clamp(b.surface.x + r.x * b.surface.z, 0.0, f32(cx));
+    let gz = clamp(b.surface.y + r.z * b.surface.w, 0.0, f32(cz));
+    let i = min(u32(gx), cx - 1u);
+    let j = min(u32(gz), cz - 1u);
+    let u = gx - f32(i);
+    let v = gz - f32(j);
+    let at = b.info.y + 16u * (j * cx + i);
+    let c0 = patch_row(at, v);
+    let c1 = patch_row(at + 4u, v);
+    let c2 = patch_row(at + 8u, v);
+    let c3 = patch_row(at + 12u, v);
+    let h = ((c3.x * u + c2.x) * u + c1.x) * u + c0.x;
+    let hu = (3.0 * c3.x * u + 2.0 * c2.x) * u + c1.x;
+    let hv = ((c3.y * u + c2.y) * u + c1.y) * u + c0.y;
+    return vec3<f32>(h, hu * b.surface.z, hv * b.surface.z);
+}
+
+// The cell along one axis of a patch's velocity grid and the fraction
+// across it, clamped to the grid.
+struct PatchAxis {
+    cell: u32,
+    f: f32,
+}
+
+fn patch_axis(q: f32, nodes: u32, cells: u32) -> PatchAxis {
+    let f = clamp(q, 0.0, f32(nodes - 1u));
+    let i = min(u32(f), cells - 1u);
+    return PatchAxis(i, f - f32(i));
+}
+
+fn patch_coefficient(at: u32, k: u32) -> vec3<f32> {
+    let m = at + 3u * k;
+    return vec3<f32>(heights[m], heights[m + 1u], heights[m + 2u]);
+}
+
+// Fluid velocity at r (m/s) from a patch's velocity grid, its
+// `velocity_at`: trilinear in the cell's coefficients, clamped to the
+// grid; zero when the patch has no velocities.
+fn patch_velocity(b: Body, r: vec3<f32>) -> vec3<f32> {
+    let ny = b.slot.z;
+    if (ny == 0u) {
+        return vec3<f32>(0.0);
+    }
+    let cx = b.info.z;
+    let cz = b.info.w;
+    let x = patch_axis(b.surface.x + r.x * b.surface.z, cx + 1u, cx);
+    let y = patch_axis(b.surface2.y + r.y * b.surface.z, ny, max(ny, 2u) - 1u);
+    let z = patch_axis(b.surface.y + r.z * b.surface.w, cz + 1u, cz);
+    let at = b.slot.y + 24u * ((y.cell * cz + z.cell) * cx + x.cell);
+    let a = patch_coefficient(at, 0u) + x.f * patch_coefficient(at, 1u);
+    let bb = patch_coefficient(at, 2u) + x.f * patch_coefficient(at, 4u);
+    let e = patch_coefficient(at, 3u) + x.f * patch_coefficient(at, 5u);
+    let d = patch_coefficient(at, 6u) + x.f * patch_coefficient(at, 7u);
+    return y.f * (z.f * d + e) + (z.f * bb + a);
+}
+
 fn surface_at(b: Body, r: vec3<f32>) -> SurfacePoint {
-    var out = SurfacePoint(0.0, vec2<f32>(0.0));
+    var out = SurfacePoint(0.0, vec2<f32>(0.0), vec2<f32>(0.0));
     switch b.info.x {
         case SURFACE_GERSTNER: {
             let x0 = gerstner_rest(b, r.xz);
@@ -75,6 +155,11 @@ fn surface_at(b: Body, r: vec3<f32>) -> SurfacePoint {
                 + v * ((1.0 - u) * height_sample(b, ix, iz + 1u) + u * height_sample(b, ix + 1u, iz + 1u));
             out.depth = b.surface2.x + h - r.y;
         }
+        case SURFACE_PATCH: {
+            let hs = patch_height_slope(b, r);
+            out.slope = hs.yz;
+            out.depth = b.surface2.x + hs.x - r.y;
+        }
         case SURFACE_UNBOUNDED: {
             // The CPU's trick: a horizontal plane 1 m above the bounding sphere.
             let radius = sqrt(bitcast<f32>(radii[b.slot.x]));
@@ -90,10 +175,14 @@ fn surface_at(b: Body, r: vec3<f32>) -> SurfacePoint {
 // Slope (dh/dx, dh/dz) of the surface above r, the CPU's `Surface::slope`:
 // for Gerstner waves J^-1 grad(y) at the particle's rest position (J the
 // Jacobian of its horizontal position), for a height field the bilinear
-// interpolant's (zero across an axis outside the grid), for a plane
-// -(n.x, n.z)/n.y, and none for an unbounded medium.
+// interpolant's (zero across an axis outside the grid), for a patch the
+// one `surface_at` read, for a plane -(n.x, n.z)/n.y, and none for an
+// unbounded medium.
 fn surface_slope(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec2<f32> {
     switch b.info.x {
+        case SURFACE_PATCH: {
+            return sp.slope;
+        }
         case SURFACE_GERSTNER: {
             var j = vec3<f32>(1.0, 0.0, 1.0); // xx, xz, zz
             var g = vec2<f32>(0.0);
@@ -144,8 +233,12 @@ fn surface_slope(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec2<f32> {
 }
 
 // Fluid velocity at r (m/s): the orbital velocity of the Gerstner particle
-// above it, decaying below the mean level, or the uniform current.
+// above it, decaying below the mean level, the patch's sampled velocity,
+// or the uniform current.
 fn fluid_velocity(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec3<f32> {
+    if (b.info.x == SURFACE_PATCH) {
+        return patch_velocity(b, r);
+    }
     if (b.info.x != SURFACE_GERSTNER) {
         return b.current.xyz;
     }

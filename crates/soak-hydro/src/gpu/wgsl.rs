@@ -2,7 +2,8 @@
 //! its Rust side: the buffer layouts (`Body`, `Wave`, `SURFACE_*`, the texels
 //! as [`texel_vec4s`] packs them) and the
 //! water surfaces (`surface_at`: depth under a plane, a Gerstner sea, a
-//! height field or an unbounded medium), with the encoder that fills a
+//! height field, a sampled surface or an unbounded medium), with the
+//! encoder that fills a
 //! [`Body`]'s surface fields from a [`crate::Water`].
 //!
 //! soak-wet's absorption kernel composes `BINDINGS`, `WATER_SURFACE` and its

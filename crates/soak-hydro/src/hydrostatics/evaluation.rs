@@ -357,6 +357,20 @@ fn sample_patch(
     t: f64,
     options: &HydroOptions,
 ) -> Result<Option<SurfacePatch>, HydroError> {
+    sample_patch_around(atlas.origin(), atlas.bounding_radius(), water, state, t, options)
+}
+
+/// [`sample_patch`] for a body known by its atlas origin (object frame, m)
+/// and the radius of a sphere about it that holds every texel (m), for
+/// callers without the [`Atlas`] at hand (the GPU path).
+pub(crate) fn sample_patch_around(
+    origin: Point3<f64>,
+    radius: f64,
+    water: &Water,
+    state: &BodyState,
+    t: f64,
+    options: &HydroOptions,
+) -> Result<Option<SurfacePatch>, HydroError> {
     let SeaSampling::PerWavelength(per) = options.sea else {
         return Ok(None);
     };
@@ -374,8 +388,8 @@ fn sample_patch(
         .into());
     }
     let spacing = length / per;
-    let centre = state.pose * atlas.origin();
-    let reach = atlas.bounding_radius() + spacing;
+    let centre = state.pose * origin;
+    let reach = radius + spacing;
     // A body so large against the waves that its patch would need more
     // nodes than a patch holds is read exactly rather than more coarsely.
     if 2.0 * reach / spacing > (MAX_PATCH_NODES - 1) as f64 {
@@ -383,7 +397,7 @@ fn sample_patch(
     }
     let min = [centre.x - reach, centre.z - reach];
     let max = [centre.x + reach, centre.z + reach];
-    let r = atlas.bounding_radius();
+    let r = radius;
     let velocity = options.drag.map(|_| (centre.y - r, centre.y + r));
     Ok(Some(SurfacePatch::sample(
         &*water.surface,

@@ -63,6 +63,21 @@ pub(crate) struct PatchGrid<'a> {
     pub coefficients: &'a [[[f64; 4]; 4]],
 }
 
+/// A patch's velocity grid as a kernel reads it (see
+/// [`SurfacePatch::velocity_grid`]); its x and z run over the patch's
+/// nodes, from the patch's origin.
+pub(crate) struct PatchVelocityGrid<'a> {
+    /// Lowest height of the grid, m.
+    pub y0: f64,
+    /// Nodes along x, y and z.
+    pub nodes: [usize; 3],
+    /// Cells along x, y and z (at least one each).
+    pub cells: [usize; 3],
+    /// Per cell, x fastest, then z, then y: the trilinear coefficients
+    /// `c0..c7` (m/s, the fourth lane zero; see `VelocityGrid::at`).
+    pub coefficients: &'a [[[f64; 4]; 8]],
+}
+
 /// Fluid velocities on a grid over the patch's rectangle and a height
 /// range, kept per cell as the coefficients of the trilinear interpolant.
 #[derive(Clone, Debug)]
@@ -391,6 +406,17 @@ impl SurfacePatch {
             cells: self.cells,
             coefficients: &self.coefficients,
         }
+    }
+
+    /// What a kernel needs to read the velocities itself, when they were
+    /// sampled; the grid's spacing is the patch's.
+    pub(crate) fn velocity_grid(&self) -> Option<PatchVelocityGrid<'_>> {
+        self.velocity.as_ref().map(|g| PatchVelocityGrid {
+            y0: g.y0,
+            nodes: g.nodes,
+            cells: g.cells,
+            coefficients: &g.coefficients,
+        })
     }
 
     #[inline]
