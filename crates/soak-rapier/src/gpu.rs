@@ -44,19 +44,22 @@ impl GpuBackend {
         Ok(self.hydro.deform(id, positions)?)
     }
 
-    /// One batch for the bodies in `work` (index, state, options).
+    /// One batch for the bodies in `work` (index, state, options), each on
+    /// its sampled sea where `seas` has one (else on `water`).
     pub(crate) fn evaluate(
         &self,
         bodies: &[SoakBody],
         water: &Water,
+        seas: &[Option<Water>],
         work: &[(usize, BodyState, HydroOptions)],
         t: f64,
     ) -> Result<Vec<HydroForces>, soak_hydro::gpu::GpuHydroError> {
         let batch: Vec<GpuBody<'_>> = work
             .iter()
-            .map(|(k, state, options)| GpuBody {
+            .zip(seas)
+            .map(|((k, state, options), sea)| GpuBody {
                 atlas: self.atlases[*k],
-                water,
+                water: sea.as_ref().unwrap_or(water),
                 state: *state,
                 mass: *bodies[*k].mass_properties(),
                 options: *options,

@@ -161,7 +161,7 @@ impl ForceGenerator {
         let mut results: Vec<Result<HydroForces, String>> = Vec::with_capacity(work.len());
         #[cfg(feature = "gpu")]
         if let Some(gpu) = &self.gpu {
-            match gpu.evaluate(&self.bodies, &self.water, &work, t) {
+            match gpu.evaluate(&self.bodies, &self.water, &seas, &work, t) {
                 Ok(forces) => results.extend(forces.into_iter().map(Ok)),
                 Err(e) => {
                     // Keep going on the CPU for this step; say so once per failure.
