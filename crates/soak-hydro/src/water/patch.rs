@@ -354,14 +354,22 @@ impl SurfacePatch {
         let dy = spacing;
         let ny = (((y_max - y_min).max(0.0) / dy).ceil() as usize + 1).min(MAX_PATCH_NODES);
         let mut values = Vec::with_capacity(nodes[0] * nodes[1] * ny);
+        // Above the surface the velocity is the surface's own: read once
+        // per column, for every node of the column above it.
+        let mut at_surface: Vec<Option<[f64; 3]>> = vec![None; nodes[0] * nodes[1]];
         for l in 0..ny {
             let y = y_min + l as f64 * dy;
             for j in 0..nodes[1] {
                 for i in 0..nodes[0] {
+                    let column = j * nodes[0] + i;
+                    let above = y >= heights[column];
+                    if above && let Some(v) = at_surface[column] {
+                        values.push(v);
+                        continue;
+                    }
                     let (x, z) = (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
-                    // Above the surface the velocity is the surface's own.
-                    let y = y.min(heights[j * nodes[0] + i]);
-                    let mut hint = hints[j * nodes[0] + i];
+                    let y = y.min(heights[column]);
+                    let mut hint = hints[column];
                     let (_, v) = surface.probe(&Point3::new(x, y, z), t, true, &mut hint);
                     if let Some(c) = v.iter().find(|c| !c.is_finite()) {
                         return Err(WaterError::Parameter {
@@ -369,7 +377,11 @@ impl SurfacePatch {
                             value: *c,
                         });
                     }
-                    values.push([v.x, v.y, v.z]);
+                    let v = [v.x, v.y, v.z];
+                    if above {
+                        at_surface[column] = Some(v);
+                    }
+                    values.push(v);
                 }
             }
         }
