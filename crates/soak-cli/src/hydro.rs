@@ -25,9 +25,10 @@ pub struct Args {
     /// Height of the (calm, fresh) water surface, m.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     water_level: f64,
-    /// Position of the mesh origin, m: X,Y,Z.
-    #[arg(long, value_parser = common::triple, default_value = "0,0,0", allow_hyphen_values = true)]
-    position: [f64; 3],
+    /// Position of the mesh origin, m: X,Y,Z (by default the body is
+    /// placed with its centre of mass at the water level).
+    #[arg(long, value_parser = common::triple, allow_hyphen_values = true)]
+    position: Option<[f64; 3]>,
     /// Rotation, degrees about x, then y, then z: RX,RY,RZ.
     #[arg(long, value_parser = common::triple, default_value = "0,0,0", allow_hyphen_values = true)]
     rotation: [f64; 3],
@@ -88,6 +89,15 @@ struct Report {
     resolution: u32,
     texels: usize,
     water_level: f64,
+    /// How the body is made: `solid, 500 kg/m³` or `shell, 2 kg/m²`.
+    mass_model: String,
+    /// Position of the mesh origin, m.
+    position: [f64; 3],
+    /// Degrees about x, then y, then z.
+    rotation_deg: [f64; 3],
+    /// Whether the position was given (else the centre of mass is at the
+    /// water level).
+    position_given: bool,
     #[serde(flatten)]
     texel: Props,
     exact: Props,
@@ -113,7 +123,13 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         }
     };
     let mass = model.mass_properties(&atlas)?;
-    let pose = common::pose(args.position, args.rotation);
+    // Without a position the centre of mass goes to the water level
+    // (x = z = 0): a pose with something under water and something above.
+    let position = args.position.unwrap_or_else(|| {
+        let c = common::pose([0.0; 3], args.rotation) * mass.center_of_mass;
+        [-c.x, args.water_level - c.y, -c.z]
+    });
+    let pose = common::pose(position, args.rotation);
     let state = BodyState::at_rest(pose);
     let water = Water::calm(args.water_level);
     let opts = HydroOptions::default();
@@ -152,6 +168,14 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         resolution: args.resolution,
         texels: atlas.len(),
         water_level: args.water_level,
+        mass_model: match model {
+            MassModel::Shell { areal_density } => format!("shell, {areal_density} kg/m²"),
+            MassModel::Solid { density } => format!("solid, {density} kg/m³"),
+            _ => format!("{model:?}"),
+        },
+        position,
+        rotation_deg: args.rotation,
+        position_given: args.position.is_some(),
         texel: Props {
             volume: atlas.volume(),
             mass: texel_mass.mass,
@@ -179,8 +203,18 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     }
     let (t, e) = (&report.texel, &report.exact);
     println!(
-        "{} at {}² ({} texels), water at y = {} m",
-        report.mesh, report.resolution, report.texels, report.water_level
+        "{} at {}² ({} texels), {}, water at y = {} m",
+        report.mesh, report.resolution, report.texels, report.mass_model, report.water_level
+    );
+    let [x, y, z] = report.position;
+    let [rx, ry, rz] = report.rotation_deg;
+    println!(
+        "origin at ({x:.4}, {y:.4}, {z:.4}) m, turned ({rx}, {ry}, {rz})°{}",
+        if report.position_given {
+            ""
+        } else {
+            " (no --position: the centre of mass at the water level)"
+        }
     );
     if let Some(a) = &report.adapter {
         println!("texel sums on the GPU: {a}");
@@ -205,12 +239,19 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
             e.inertia[k][k],
         );
     }
-    row("submerged volume (m³)", t.submerged_volume, e.submerged_volume);
-    for k in 0..3 {
-        let name = format!("buoyancy centre {} (m)", ["x", "y", "z"][k]);
-        scaled(&name, t.center_of_buoyancy[k], e.center_of_buoyancy[k], diameter);
+    if e.submerged_volume > 0.0 {
+        row("submerged volume (m³)", t.submerged_volume, e.submerged_volume);
+        for k in 0..3 {
+            let name = format!("buoyancy centre {} (m)", ["x", "y", "z"][k]);
+            scaled(&name, t.center_of_buoyancy[k], e.center_of_buoyancy[k], diameter);
+        }
+        row("buoyancy force y (N)", t.buoyancy_force[1], e.buoyancy_force[1]);
+    } else {
+        println!(
+            "nothing is under water at this pose (texel sums: {:.3e} m³); no buoyancy to compare",
+            t.submerged_volume
+        );
     }
-    row("buoyancy force y (N)", t.buoyancy_force[1], e.buoyancy_force[1]);
     println!("(positions: error as a fraction of the bounding-box diagonal; others: relative)");
     println!(
         "per-triangle baseline volume {:.6} m³",
