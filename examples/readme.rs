@@ -1,8 +1,3 @@
-//! The program of the README's "Using it from Rapier", word for word (a
-//! test holds the two together).
-//!
-//! `cargo run --release --example readme`
-
 use rapier3d::prelude::*;
 use soak::prelude::*;
 

@@ -21,6 +21,8 @@ cargo clippy --workspace --all-targets --all-features --locked -- -D warnings
 cargo fmt --manifest-path fuzz/Cargo.toml -- --check
 cargo clippy --manifest-path fuzz/Cargo.toml --all-targets --locked -- -D warnings
 cargo test --workspace --all-features --locked
+# The API documentation builds without a warning (intra-doc links resolve).
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --all-features --locked
 # Every crate packed as it would be published builds on its own, the GPU
 # kernels of the packed crates included.
 bash scripts/package.sh

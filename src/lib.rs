@@ -1,10 +1,51 @@
-#![doc = include_str!("../README.md")]
+//! Textured meshes that float, drift, take on water, sink, get wet and dry,
+//! in real time, inside [Rapier](https://rapier.rs) simulations.
+//!
+//! soak turns surface integrals into sums over texels: once per mesh it
+//! bakes, from the mesh's UV map, where every covered texel sits on the
+//! surface and how much oriented area it carries ([`bake`]). Mass
+//! properties, submerged volume, centre of buoyancy, pressure forces and
+//! drag then become data-parallel loops over texels ([`hydro`]), on the CPU
+//! or the GPU, with the texture resolution as the one accuracy and cost
+//! knob. [`rapier`] drives rapier3d bodies with them; [`graph`] lets water
+//! into hulls through their permeable parts; [`wet`] soaks liquid into
+//! surfaces and dries them; [`shade`] renders wet surfaces. Every quantity
+//! is in SI units (m, kg, s, N) and every number has an exact or analytic
+//! reference in the tests.
+//!
+//! # Using it from Rapier
+//!
+//! Register a Rapier body with a baked atlas and the effects it should
+//! feel, then step the world through the [`ForceGenerator`](rapier::ForceGenerator):
+//!
+//! ```rust
+#![doc = include_str!("../examples/readme.rs")]
+//! ```
+//!
+//! Build with `--release`, or give the dependencies optimisations in debug
+//! builds (`[profile.dev.package."*"] opt-level = 2` in your `Cargo.toml`):
+//! the per-texel loops are some hundreds of times slower unoptimised.
+//!
+//! A body's [`Effects`](rapier::Effects) name everything soak does to it,
+//! each off unless asked for: buoyancy, drag, water entering its hull
+//! (`with_flooding`) and liquid soaking into its surface (`with_wetting`).
+//! [`ForceGenerator::draft`](rapier::ForceGenerator::draft) and
+//! [`SoakBody`](rapier::SoakBody)'s accessors read a body's draft,
+//! submerged volume and fraction, centre of buoyancy and applied forces.
+//! Scene files (TOML) describe whole simulations: see
+//! [`rapier::scene`] and the `soak` command.
 
+#[doc(inline)]
 pub use soak_bake as bake;
+#[doc(inline)]
 pub use soak_graph as graph;
+#[doc(inline)]
 pub use soak_hydro as hydro;
+#[doc(inline)]
 pub use soak_rapier as rapier;
+#[doc(inline)]
 pub use soak_shade as shade;
+#[doc(inline)]
 pub use soak_wet as wet;
 
 /// The types most users need, from every crate.

@@ -1,6 +1,7 @@
 //! The README's Rapier program is `examples/readme.rs`, word for word, so
-//! that what the README shows is built and run (as the example, and as a
-//! doctest of the crate's front page).
+//! that what the README shows is built and run (as the example,
+//! `cargo run --release --example readme`, and as the doctest of the
+//! crate's front page, which includes the file).
 
 #[test]
 fn the_readme_program_is_the_example() {
