@@ -1,7 +1,7 @@
 use rapier3d::prelude::*;
 use soak::prelude::*;
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() -> soak::Result<()> {
     let mut world = PhysicsWorld::new();
     let hull = world
         .bodies

@@ -48,6 +48,17 @@ pub use soak_shade as shade;
 #[doc(inline)]
 pub use soak_wet as wet;
 
+/// Any of soak's errors (and any other) for a program's `main` and the
+/// functions it calls: `?` turns each into one, and returned from `main`
+/// it prints its message and the chain of causes beneath it ("Error: …
+/// Caused by: …") where the errors' own `Debug` would print their
+/// structure. It is [`anyhow::Error`].
+pub use anyhow::Error;
+
+/// `Result<T, soak::Error>`: what a program's `main` returns (see
+/// [`Error`]).
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
 /// The types most users need, from every crate.
 pub mod prelude {
     pub use soak_bake::prelude::*;

@@ -23,8 +23,10 @@ mod unbounded;
 
 pub use self::gerstner::{Gerstner, GerstnerWave};
 pub use self::height_field::HeightField;
+pub(crate) use self::patch::PatchGrid;
+#[cfg(feature = "gpu")]
+pub(crate) use self::patch::PatchVelocityGrid;
 pub use self::patch::{MAX_PATCH_NODES, SurfacePatch};
-pub(crate) use self::patch::{PatchGrid, PatchVelocityGrid};
 pub use self::plane::Plane;
 pub use self::surface::{AIR_DENSITY, STANDARD_GRAVITY, Surface, SurfaceKind, WATER_DENSITY, Water};
 pub use self::unbounded::Unbounded;

@@ -66,6 +66,7 @@ pub(crate) struct PatchGrid<'a> {
 /// A patch's velocity grid as a kernel reads it (see
 /// [`SurfacePatch::velocity_grid`]); its x and z run over the patch's
 /// nodes, from the patch's origin.
+#[cfg(feature = "gpu")]
 pub(crate) struct PatchVelocityGrid<'a> {
     /// Lowest height of the grid, m.
     pub y0: f64,
@@ -422,6 +423,7 @@ impl SurfacePatch {
 
     /// What a kernel needs to read the velocities itself, when they were
     /// sampled; the grid's spacing is the patch's.
+    #[cfg(feature = "gpu")]
     pub(crate) fn velocity_grid(&self) -> Option<PatchVelocityGrid<'_>> {
         self.velocity.as_ref().map(|g| PatchVelocityGrid {
             y0: g.y0,
