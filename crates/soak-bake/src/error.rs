@@ -59,7 +59,7 @@ pub enum MeshProblem {
         uv: [f64; 2],
     },
     /// A triangle has (numerically) zero area in 3-D.
-    #[error("triangle {triangle} is degenerate: its area {area:e} m² is zero relative to the mesh size")]
+    #[error("triangle {triangle} is degenerate: its area {area:.3e} m² is zero relative to the mesh size")]
     DegenerateTriangle {
         /// Triangle index.
         triangle: usize,
@@ -67,7 +67,7 @@ pub enum MeshProblem {
         area: f64,
     },
     /// A triangle has zero area in UV space.
-    #[error("triangle {triangle} is degenerate in UV space (UV area {uv_area:e})")]
+    #[error("triangle {triangle} is degenerate in UV space (UV area {uv_area:.3e})")]
     DegenerateUvTriangle {
         /// Triangle index.
         triangle: usize,
@@ -107,7 +107,7 @@ pub enum MeshProblem {
         neighbour: usize,
     },
     /// The mesh is consistently wound but its normals point inwards.
-    #[error("is inside out: its signed volume is {volume:e} m³ (flip the winding)")]
+    #[error("is inside out: its signed volume is {volume:.3e} m³ (flip the winding)")]
     InsideOut {
         /// The signed volume in m³.
         volume: f64,
