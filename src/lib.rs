@@ -55,6 +55,11 @@ pub use soak_wet as wet;
 /// structure. It is [`anyhow::Error`].
 pub use anyhow::Error;
 
+/// `.context("…")` on a `Result` or an `Option`, for a program: the error
+/// (or the missing value) becomes a [`soak::Error`](Error) that says what
+/// was being done. It is [`anyhow::Context`].
+pub use anyhow::Context;
+
 /// `Result<T, soak::Error>`: what a program's `main` returns (see
 /// [`Error`]).
 pub type Result<T, E = Error> = std::result::Result<T, E>;
