@@ -7,7 +7,7 @@ use nalgebra::{Isometry3, Point3, Vector3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
-use soak_hydro::{SurfaceKind, Water};
+use soak_hydro::{Plane, Surface, SurfaceKind, Water};
 
 use crate::body_field::BodyField;
 use crate::diffusion::{self, Diffusion, DiffusionReport};
@@ -453,50 +453,26 @@ impl Wetting {
             .height_bounds(time)
             .filter(|(lo, hi)| lo.is_finite() && hi.is_finite())
             .unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
-        let hmax = rates.saturation;
-        let local = atlas.local_positions();
-        let area_vectors = atlas.area_vectors();
-        let areas = atlas.areas();
-        let map = self.permeability_map.as_deref();
-        let n = self.h.len();
+        let texels = Texels {
+            atlas,
+            map: self.permeability_map.as_deref(),
+            rot,
+            ow,
+            time,
+            dt,
+            wet_possible,
+            raining,
+            trough,
+            crest,
+        };
         self.cache.partials.clear();
-        self.cache.partials.resize(chunks(n), [0.0; 4]);
-        self.h
-            .par_chunks_mut(CHUNK)
-            .zip(self.cache.partials.par_iter_mut())
-            .enumerate()
-            .for_each(|(c, (hs, part))| {
-                let mut hint = [0.0; 2];
-                let mut acc = [0.0; 4];
-                for (k, h) in hs.iter_mut().enumerate() {
-                    let i = c * CHUNK + k;
-                    let x = local.get(i);
-                    let r = rot * Vector3::new(x[0] as f64, x[1] as f64, x[2] as f64);
-                    let p = Point3::from(ow + r);
-                    let depth = if !wet_possible || p.y > crest {
-                        -1.0
-                    } else if p.y < trough && *h >= hmax {
-                        trough - p.y
-                    } else {
-                        surface.probe(&p, time, false, &mut hint).0
-                    };
-                    let a = areas[i] as f64;
-                    let up = if raining && a > 0.0 {
-                        let av = area_vectors.get(i);
-                        (rot * Vector3::new(av[0] as f64, av[1] as f64, av[2] as f64)).y / a
-                    } else {
-                        0.0
-                    };
-                    let in_rain = raining && rates.region.contains(&p);
-                    let scale = map.map_or(1.0, |m| m[i] as f64);
-                    let x = exchange(h, &rates, depth, scale, up, in_rain, dt);
-                    acc[0] += x.absorbed * a;
-                    acc[1] += x.rained * a;
-                    acc[2] += x.evaporated * a;
-                    acc[3] += if depth > 0.0 { 1.0 } else { 0.0 };
-                }
-                *part = acc;
-            });
+        self.cache.partials.resize(chunks(self.h.len()), [0.0; 4]);
+        // A plane's depth is called directly (inlined), any other surface
+        // through the trait object: the same arithmetic either way.
+        match surface.as_any().and_then(|s| s.downcast_ref::<Plane>()) {
+            Some(plane) => texels.run(plane, &rates, &mut self.h, &mut self.cache.partials),
+            None => texels.run(surface, &rates, &mut self.h, &mut self.cache.partials),
+        }
         let mut sum = [0.0; 4];
         for p in &self.cache.partials {
             for k in 0..4 {
@@ -518,6 +494,72 @@ impl Wetting {
     /// Mutable access to the liquid texture and ledger for a shared field.
     pub(crate) fn parts_mut(&mut self) -> (&mut Vec<f64>, &mut Ledger) {
         (&mut self.h, &mut self.ledger)
+    }
+}
+
+/// What the per-texel exchange of one step reads besides the liquid.
+struct Texels<'a> {
+    atlas: &'a Atlas,
+    map: Option<&'a [f32]>,
+    /// Object → world rotation and the atlas origin in the world, m.
+    rot: nalgebra::Matrix3<f64>,
+    ow: Vector3<f64>,
+    time: f64,
+    dt: f64,
+    wet_possible: bool,
+    raining: bool,
+    /// Lowest and highest surface height, m (infinite when unknown).
+    trough: f64,
+    crest: f64,
+}
+
+impl Texels<'_> {
+    /// Exchanges every texel of `h` with `surface` in chunks of [`CHUNK`],
+    /// in parallel; `partials` receives each chunk's sums (absorbed, rained,
+    /// evaporated, m³, and submerged texels).
+    fn run<S: Surface + ?Sized>(&self, surface: &S, rates: &Rates, h: &mut [f64], partials: &mut [[f64; 4]]) {
+        let (rot, ow) = (&self.rot, &self.ow);
+        let hmax = rates.saturation;
+        let local = self.atlas.local_positions();
+        let area_vectors = self.atlas.area_vectors();
+        let areas = self.atlas.areas();
+        h.par_chunks_mut(CHUNK)
+            .zip(partials.par_iter_mut())
+            .enumerate()
+            .for_each(|(c, (hs, part))| {
+                let range = c * CHUNK..c * CHUNK + hs.len();
+                let [xs, ys, zs] = local.columns(range.clone());
+                let areas = &areas[range];
+                let mut hint = [0.0; 2];
+                let mut acc = [0.0; 4];
+                for (k, h) in hs.iter_mut().enumerate() {
+                    let i = c * CHUNK + k;
+                    let r = rot * Vector3::new(xs[k] as f64, ys[k] as f64, zs[k] as f64);
+                    let p = Point3::from(ow + r);
+                    let depth = if !self.wet_possible || p.y > self.crest {
+                        -1.0
+                    } else if p.y < self.trough && *h >= hmax {
+                        self.trough - p.y
+                    } else {
+                        surface.probe(&p, self.time, false, &mut hint).0
+                    };
+                    let a = areas[k] as f64;
+                    let up = if self.raining && a > 0.0 {
+                        let av = area_vectors.get(i);
+                        (rot * Vector3::new(av[0] as f64, av[1] as f64, av[2] as f64)).y / a
+                    } else {
+                        0.0
+                    };
+                    let in_rain = self.raining && rates.region.contains(&p);
+                    let scale = self.map.map_or(1.0, |m| m[i] as f64);
+                    let x = exchange(h, rates, depth, scale, up, in_rain, self.dt);
+                    acc[0] += x.absorbed * a;
+                    acc[1] += x.rained * a;
+                    acc[2] += x.evaporated * a;
+                    acc[3] += if depth > 0.0 { 1.0 } else { 0.0 };
+                }
+                *part = acc;
+            });
     }
 }
 
