@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{WetError, non_negative};
 use crate::grid::FieldResolution;
-use crate::layout::{Layout, NONE};
+use crate::layout::{Layout, NONE, octant};
 use crate::reduce::liquid_volume;
 
 /// Minimum Shepard distance, in voxels (the thesis' `Dist_min = S_V / 50`).
@@ -210,7 +210,7 @@ pub(crate) struct Scratch {
     value: Vec<f64>,
     next: Vec<f64>,
     aux: Vec<f64>,
-    delta: Vec<f64>,
+    phi: Vec<f64>,
     active: Vec<bool>,
     partials: Vec<f64>,
 }
@@ -221,7 +221,7 @@ impl Scratch {
             + self.value.capacity()
             + self.next.capacity()
             + self.aux.capacity()
-            + self.delta.capacity()
+            + self.phi.capacity()
             + self.partials.capacity())
             + self.active.capacity()
     }
@@ -265,6 +265,10 @@ fn resize(buffer: &mut Vec<f64>, n: usize) {
 /// as well: each cell's result is computed by one task in a fixed order,
 /// so the thread count changes nothing).
 const CELLS_PER_TASK: usize = 64;
+
+/// Cells per task of the passes that do little per cell (the kernel's
+/// substeps, the fill changes).
+const SUBSTEP_CELLS_PER_TASK: usize = 1024;
 
 /// A slice that several tasks write at distinct indices: each cell's task
 /// touches only its own texels (every binned texel is the member of
@@ -335,65 +339,83 @@ fn corner_values(layout: &Layout, values: &[f64], v: usize, value: &mut [f64; 64
 
 fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scratch) {
     let nv = layout.defined();
+    let cap = &layout.capacity;
     resize(&mut s.start, nv);
     resize(&mut s.next, nv);
     resize(&mut s.aux, nv);
-    s.start.par_iter_mut().enumerate().for_each(|(v, m)| {
-        let r = layout.slots(v);
-        *m = layout.members[r.clone()]
-            .iter()
-            .zip(&layout.slot_area[r])
-            .map(|(&i, &a)| a as f64 * h[i as usize])
-            .sum();
-    });
+    resize(&mut s.phi, nv);
+    // Each cell's liquid M_v and fill φ_v = M_v / C_v.
+    s.start
+        .par_iter_mut()
+        .zip(s.phi.par_iter_mut())
+        .enumerate()
+        .with_min_len(CELLS_PER_TASK)
+        .for_each(|(v, (m, p))| {
+            let r = layout.slots(v);
+            *m = layout.members[r.clone()]
+                .iter()
+                .zip(&layout.slot_area[r])
+                .map(|(&i, &a)| a as f64 * h[i as usize])
+                .sum();
+            *p = *m / cap[v];
+        });
     s.value.clear();
     s.value.extend_from_slice(&s.start);
-    let cap = &layout.capacity;
     let w = plan.weight;
     for _ in 0..plan.substeps {
-        let (value, phi) = (&s.value, &mut s.aux);
-        phi.par_iter_mut()
+        // The kernel, and the fill of its result for the next substep.
+        let (value, phi) = (&s.value, &s.phi);
+        s.next
+            .par_iter_mut()
+            .zip(s.aux.par_iter_mut())
             .enumerate()
-            .for_each(|(v, p)| *p = value[v] / cap[v]);
-        let phi = &s.aux;
-        s.next.par_iter_mut().enumerate().for_each(|(v, out)| {
-            let (pv, cv) = (phi[v], cap[v]);
-            let flux: f64 = neighbours(layout, v)
-                .iter()
-                .map(|&u| cv.min(cap[u as usize]) * (phi[u as usize] - pv))
-                .sum();
-            *out = value[v] + w * flux;
-        });
+            .with_min_len(SUBSTEP_CELLS_PER_TASK)
+            .for_each(|(v, (out, p))| {
+                let (pv, cv) = (phi[v], cap[v]);
+                let flux: f64 = neighbours(layout, v)
+                    .iter()
+                    .map(|&u| cv.min(cap[u as usize]) * (phi[u as usize] - pv))
+                    .sum();
+                *out = value[v] + w * flux;
+                *p = *out / cv;
+            });
         std::mem::swap(&mut s.value, &mut s.next);
+        std::mem::swap(&mut s.phi, &mut s.aux);
     }
     // Each cell's change of fill, Δφ = (M' − M) / C.
     let (start, value) = (&s.start, &s.value);
-    s.aux.par_iter_mut().enumerate().for_each(|(v, d)| {
-        *d = (value[v].clamp(0.0, cap[v]) - start[v]) / cap[v];
-    });
+    s.aux
+        .par_iter_mut()
+        .enumerate()
+        .with_min_len(SUBSTEP_CELLS_PER_TASK)
+        .for_each(|(v, d)| {
+            *d = (value[v].clamp(0.0, cap[v]) - start[v]) / cap[v];
+        });
     // Cells whose texels may change: some cell of the 3×3×3 block changed
     // (the others' texels keep their liquid exactly, so skip them).
     let dphi = &s.aux;
     s.active.clear();
     s.active.resize(nv, false);
-    s.active.par_iter_mut().enumerate().for_each(|(v, a)| {
-        *a = dphi[v] != 0.0 || neighbours(layout, v).iter().any(|&u| dphi[u as usize] != 0.0);
-    });
+    s.active
+        .par_iter_mut()
+        .enumerate()
+        .with_min_len(SUBSTEP_CELLS_PER_TASK)
+        .for_each(|(v, a)| {
+            *a = dphi[v] != 0.0 || neighbours(layout, v).iter().any(|&u| dphi[u as usize] != 0.0);
+        });
     // Per active cell, in one pass over its texels: each texel's smooth
     // share of the change (zero where nothing nearby changed), then what
     // the shares leave over of the cell's change, as a factor (f > 0 fills
     // that fraction of the room left, f < 0 takes that fraction of the
-    // liquid left), then the texels' new liquid.
+    // liquid left), then the texels' new liquid. The shares of a cell's
+    // texels are kept in a buffer of the task's own, small enough to stay
+    // in cache between the two loops.
     let active = &s.active;
-    // Every slot of an active cell is written before it is read: no need
-    // to clear.
-    s.delta.resize(layout.members.len(), 0.0);
-    let delta = Disjoint::new(&mut s.delta);
     let out = Disjoint::new(h);
     (0..nv)
         .into_par_iter()
         .with_min_len(CELLS_PER_TASK)
-        .for_each(|v| {
+        .for_each_init(Vec::new, |delta: &mut Vec<f64>, v| {
             if !active[v] {
                 return;
             }
@@ -401,24 +423,30 @@ fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scra
             let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
             corner_values(layout, dphi, v, &mut near, &mut defined);
             let r = layout.slots(v);
-            for k in r.clone() {
-                let i = layout.members[k] as usize;
-                // SAFETY: texel `i` and slot `k` belong to cell `v` alone.
-                #[allow(unsafe_code)]
-                let x = unsafe { out.get(i) };
-                let d = smooth_change(layout, &near, &defined, k, x, hmax);
-                // SAFETY: as above.
-                #[allow(unsafe_code)]
-                unsafe {
-                    delta.set(k, d)
-                };
+            let members = &layout.members[r.clone()];
+            let fracs = &layout.slot_frac[r.clone()];
+            delta.clear();
+            for (members, fracs) in members.chunks(LANES).zip(fracs.chunks(LANES)) {
+                // A short last group repeats its first texel in the unused
+                // lanes, whose results are dropped.
+                let (mut g, mut x) = ([fracs[0]; LANES], [0.0; LANES]);
+                for l in 0..LANES {
+                    let j = if l < members.len() { l } else { 0 };
+                    g[l] = fracs[j];
+                    // SAFETY: texel `members[j]` belongs to cell `v` alone.
+                    #[allow(unsafe_code)]
+                    let h = unsafe { out.get(members[j] as usize) };
+                    x[l] = h;
+                }
+                let d = smooth_changes(&g, &near, &defined, &x, hmax);
+                for &d in &d[..members.len()] {
+                    delta.push(d);
+                }
             }
-            // SAFETY: the slots of cell `v` are its own.
-            #[allow(unsafe_code)]
-            let spread: f64 = layout.slot_area[r.clone()]
+            let spread: f64 = layout.slot_area[r]
                 .iter()
-                .zip(r.clone())
-                .map(|(&a, k)| a as f64 * unsafe { delta.get(k) })
+                .zip(delta.iter())
+                .map(|(&a, &d)| a as f64 * d)
                 .sum();
             let (m0, c) = (start[v], cap[v]);
             let rest = (value[v].clamp(0.0, c) - m0) - spread;
@@ -430,12 +458,12 @@ fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scra
             } else {
                 0.0
             };
-            for k in r {
-                let i = layout.members[k] as usize;
-                // SAFETY: texel `i` and slot `k` belong to cell `v` alone.
+            for (&i, &d) in members.iter().zip(delta.iter()) {
+                let i = i as usize;
+                // SAFETY: texel `i` belongs to cell `v` alone.
                 #[allow(unsafe_code)]
                 unsafe {
-                    let x = out.get(i) + delta.get(k);
+                    let x = out.get(i) + d;
                     let x = if f < 0.0 {
                         x * (1.0 + f)
                     } else {
@@ -447,29 +475,74 @@ fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scra
         });
 }
 
-/// The smooth share of a texel's change in the conservative return (member
-/// slot `k`, liquid `h`): the cells' fill changes interpolated trilinearly
-/// at the texel over the defined cells of its body among the 8 nearest
-/// (`near`, `defined`: [`corner_values`] of the fill changes), times
-/// `h_max`, clamped so the texel stays in `[0, h_max]`.
+/// The trilinear weights of the 8 corners around a texel at `t` ∈ [0, 1]³
+/// (see [`Layout::octant`]): corner `c` has `w_x · w_y · w_z`, the axis
+/// weights `t_k` where bit k of `c` is set, `1 − t_k` where not, multiplied
+/// in that order.
 #[inline]
-fn smooth_change(layout: &Layout, near: &[f64; 64], defined: &[f64; 64], k: usize, h: f64, hmax: f64) -> f64 {
-    let (o, t) = layout.octant(k);
-    let (near, defined) = (&near[8 * o..8 * o + 8], &defined[8 * o..8 * o + 8]);
-    let (mut num, mut den) = (0.0, 0.0);
+fn trilinear(t: [f64; 3]) -> [f64; 8] {
+    let axis = [[1.0 - t[0], t[0]], [1.0 - t[1], t[1]], [1.0 - t[2], t[2]]];
+    let mut xy = [0.0; 4];
+    for (c, xy) in xy.iter_mut().enumerate() {
+        *xy = axis[0][c & 1] * axis[1][c >> 1];
+    }
+    let mut w = [0.0; 8];
+    for (c, w) in w.iter_mut().enumerate() {
+        *w = xy[c & 3] * axis[2][c >> 2];
+    }
+    w
+}
+
+/// Texels interpolated together (one per lane) by the field → texel
+/// passes: independent lanes doing the same operations, which the compiler
+/// packs into vector instructions; each lane computes the bits a texel
+/// alone would.
+const LANES: usize = 4;
+
+/// `x` clamped to `[lo, hi]` like [`f64::clamp`] (NaN stays NaN), without
+/// its check that `lo <= hi` (which holds for every caller): a select the
+/// compiler can vectorize.
+#[inline]
+fn clamp(x: f64, lo: f64, hi: f64) -> f64 {
+    let x = if x < lo { lo } else { x };
+    if x > hi { hi } else { x }
+}
+
+/// The smooth shares of texels' changes in the conservative return (their
+/// positions in their cell `g`, see [`Layout::slot_frac`], and liquid
+/// `h`): the cells' fill changes interpolated trilinearly at each texel
+/// over the defined cells of its body among the 8 nearest (`near`,
+/// `defined`: [`corner_values`] of the fill changes), times `h_max`,
+/// clamped so the texel stays in `[0, h_max]`.
+#[inline]
+fn smooth_changes(
+    g: &[[f32; 3]; LANES],
+    near: &[f64; 64],
+    defined: &[f64; 64],
+    h: &[f64; LANES],
+    hmax: f64,
+) -> [f64; LANES] {
+    let (mut base, mut w) = ([0; LANES], [[0.0; 8]; LANES]);
+    for l in 0..LANES {
+        let (o, t) = octant(&g[l]);
+        base[l] = 8 * o;
+        w[l] = trilinear(t);
+    }
+    let (mut num, mut den) = ([0.0; LANES], [0.0; LANES]);
     for corner in 0..8 {
-        let w = |k: usize| if (corner >> k) & 1 == 1 { t[k] } else { 1.0 - t[k] };
-        let w = w(0) * w(1) * w(2);
-        // Undefined corners add +0 to both sums: the same bits as
-        // leaving them out (neither sum can be −0).
-        num += w * near[corner];
-        den += w * defined[corner];
+        for l in 0..LANES {
+            // Undefined corners add +0 to both sums: the same bits as
+            // leaving them out (neither sum can be −0).
+            num[l] += w[l][corner] * near[base[l] + corner];
+            den[l] += w[l][corner] * defined[base[l] + corner];
+        }
     }
-    if den > 0.0 {
-        (num / den * hmax).clamp(-h, hmax - h)
-    } else {
-        0.0
+    let mut d = [0.0; LANES];
+    for l in 0..LANES {
+        let share = clamp(num[l] / den[l] * hmax, -h[l], hmax - h[l]);
+        d[l] = if den[l] > 0.0 { share } else { 0.0 };
     }
+    d
 }
 
 /// Shepard weight `1 / max(d, d_min)` (p = 1) for a distance `d` in voxels.
