@@ -325,7 +325,7 @@ impl<'a> Disjoint<'a> {
 /// Writes the values of cell `v`'s 8 nearest cells for each octant
 /// (`corners` layout) into `value`, zero where a corner is not defined, and
 /// a mask into `mask`, 1 where it is.
-#[inline]
+#[inline(always)]
 fn corner_values(layout: &Layout, values: &[f64], v: usize, value: &mut [f64; 64], mask: &mut [f64; 64]) {
     let ids = &layout.corners[64 * v..64 * v + 64];
     for (j, &id) in ids.iter().enumerate() {
@@ -403,83 +403,146 @@ fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scra
         .for_each(|(v, a)| {
             *a = dphi[v] != 0.0 || neighbours(layout, v).iter().any(|&u| dphi[u as usize] != 0.0);
         });
-    // Per active cell, in one pass over its texels: each texel's smooth
-    // share of the change (zero where nothing nearby changed), then what
-    // the shares leave over of the cell's change, as a factor (f > 0 fills
-    // that fraction of the room left, f < 0 takes that fraction of the
-    // liquid left), then the texels' new liquid. The shares of a cell's
-    // texels are kept in a buffer of the task's own, small enough to stay
-    // in cache between the two loops.
     let active = &s.active;
-    let out = Disjoint::new(h);
+    let back = Return {
+        layout,
+        dphi,
+        start,
+        value,
+        out: Disjoint::new(h),
+    };
+    let wide = wide_vectors();
     (0..nv)
         .into_par_iter()
         .with_min_len(CELLS_PER_TASK)
         .for_each_init(Vec::new, |delta: &mut Vec<f64>, v| {
-            if !active[v] {
-                return;
-            }
-            let hmax = layout.segments[layout.cell_segment[v] as usize].saturation;
-            let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
-            corner_values(layout, dphi, v, &mut near, &mut defined);
-            let r = layout.slots(v);
-            let members = &layout.members[r.clone()];
-            let fracs = &layout.slot_frac[r.clone()];
-            delta.clear();
-            for (members, fracs) in members.chunks(LANES).zip(fracs.chunks(LANES)) {
-                // A short last group repeats its first texel in the unused
-                // lanes, whose results are dropped.
-                let (mut g, mut x) = ([fracs[0]; LANES], [0.0; LANES]);
-                for l in 0..LANES {
-                    let j = if l < members.len() { l } else { 0 };
-                    g[l] = fracs[j];
-                    // SAFETY: texel `members[j]` belongs to cell `v` alone.
-                    #[allow(unsafe_code)]
-                    let h = unsafe { out.get(members[j] as usize) };
-                    x[l] = h;
-                }
-                let d = smooth_changes(&g, &near, &defined, &x, hmax);
-                for &d in &d[..members.len()] {
-                    delta.push(d);
-                }
-            }
-            let spread: f64 = layout.slot_area[r]
-                .iter()
-                .zip(delta.iter())
-                .map(|(&a, &d)| a as f64 * d)
-                .sum();
-            let (m0, c) = (start[v], cap[v]);
-            let rest = (value[v].clamp(0.0, c) - m0) - spread;
-            let (room, content) = (c - m0 - spread, m0 + spread);
-            let f = if rest > 0.0 && room > 0.0 {
-                (rest / room).min(1.0)
-            } else if rest < 0.0 && content > 0.0 {
-                (rest / content).max(-1.0)
-            } else {
-                0.0
-            };
-            for (&i, &d) in members.iter().zip(delta.iter()) {
-                let i = i as usize;
-                // SAFETY: texel `i` belongs to cell `v` alone.
-                #[allow(unsafe_code)]
-                unsafe {
-                    let x = out.get(i) + d;
-                    let x = if f < 0.0 {
-                        x * (1.0 + f)
-                    } else {
-                        x + f * (hmax - x)
-                    };
-                    out.set(i, x.clamp(0.0, hmax));
-                }
+            if active[v] {
+                back.cell(v, delta, wide);
             }
         });
+}
+
+/// Whether the processor has 256-bit vectors (AVX2), for the field ↔
+/// texel passes: they then run a copy of the same code compiled for them
+/// (the same operations in the same order, so the same bits; no fused
+/// multiply-adds).
+fn wide_vectors() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// The conservative return of the cells' changes to their texels.
+struct Return<'a> {
+    layout: &'a Layout,
+    /// Per cell: its change of fill Δφ, its liquid before and after the
+    /// kernel.
+    dphi: &'a [f64],
+    start: &'a [f64],
+    value: &'a [f64],
+    out: Disjoint<'a>,
+}
+
+impl Return<'_> {
+    /// Returns cell `v`'s change to its texels (`delta`: scratch).
+    #[inline]
+    fn cell(&self, v: usize, delta: &mut Vec<f64>, wide: bool) {
+        #[cfg(target_arch = "x86_64")]
+        if wide {
+            // SAFETY: the processor has AVX2 (`wide_vectors`).
+            #[allow(unsafe_code)]
+            unsafe {
+                self.cell_avx2(v, delta)
+            };
+            return;
+        }
+        let _ = wide;
+        self.cell_body(v, delta);
+    }
+
+    /// [`Return::cell_body`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn cell_avx2(&self, v: usize, delta: &mut Vec<f64>) {
+        self.cell_body(v, delta);
+    }
+
+    /// Per active cell, in one pass over its texels: each texel's smooth
+    /// share of the change (zero where nothing nearby changed), then what
+    /// the shares leave over of the cell's change, as a factor (f > 0
+    /// fills that fraction of the room left, f < 0 takes that fraction of
+    /// the liquid left), then the texels' new liquid. The shares of the
+    /// cell's texels are kept in `delta`, small enough to stay in cache
+    /// between the two loops.
+    #[inline(always)]
+    fn cell_body(&self, v: usize, delta: &mut Vec<f64>) {
+        let (layout, out) = (self.layout, &self.out);
+        let hmax = layout.segments[layout.cell_segment[v] as usize].saturation;
+        let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
+        corner_values(layout, self.dphi, v, &mut near, &mut defined);
+        let r = layout.slots(v);
+        let members = &layout.members[r.clone()];
+        let fracs = &layout.slot_frac[r.clone()];
+        delta.clear();
+        for (members, fracs) in members.chunks(LANES).zip(fracs.chunks(LANES)) {
+            // A short last group repeats its first texel in the unused
+            // lanes, whose results are dropped.
+            let (mut g, mut x) = ([fracs[0]; LANES], [0.0; LANES]);
+            for l in 0..LANES {
+                let j = if l < members.len() { l } else { 0 };
+                g[l] = fracs[j];
+                // SAFETY: texel `members[j]` belongs to cell `v` alone.
+                #[allow(unsafe_code)]
+                let h = unsafe { out.get(members[j] as usize) };
+                x[l] = h;
+            }
+            let d = smooth_changes(&g, &near, &defined, &x, hmax);
+            for &d in &d[..members.len()] {
+                delta.push(d);
+            }
+        }
+        let spread: f64 = layout.slot_area[r]
+            .iter()
+            .zip(delta.iter())
+            .map(|(&a, &d)| a as f64 * d)
+            .sum();
+        let (m0, c) = (self.start[v], layout.capacity[v]);
+        let rest = (self.value[v].clamp(0.0, c) - m0) - spread;
+        let (room, content) = (c - m0 - spread, m0 + spread);
+        let f = if rest > 0.0 && room > 0.0 {
+            (rest / room).min(1.0)
+        } else if rest < 0.0 && content > 0.0 {
+            (rest / content).max(-1.0)
+        } else {
+            0.0
+        };
+        for (&i, &d) in members.iter().zip(delta.iter()) {
+            let i = i as usize;
+            // SAFETY: texel `i` belongs to cell `v` alone.
+            #[allow(unsafe_code)]
+            unsafe {
+                let x = out.get(i) + d;
+                let x = if f < 0.0 {
+                    x * (1.0 + f)
+                } else {
+                    x + f * (hmax - x)
+                };
+                out.set(i, x.clamp(0.0, hmax));
+            }
+        }
+    }
 }
 
 /// The trilinear weights of the 8 corners around a texel at `t` ∈ [0, 1]³
 /// (see [`Layout::octant`]): corner `c` has `w_x · w_y · w_z`, the axis
 /// weights `t_k` where bit k of `c` is set, `1 − t_k` where not, multiplied
 /// in that order.
-#[inline]
+#[inline(always)]
 fn trilinear(t: [f64; 3]) -> [f64; 8] {
     let axis = [[1.0 - t[0], t[0]], [1.0 - t[1], t[1]], [1.0 - t[2], t[2]]];
     let mut xy = [0.0; 4];
@@ -502,7 +565,7 @@ const LANES: usize = 4;
 /// `x` clamped to `[lo, hi]` like [`f64::clamp`] (NaN stays NaN), without
 /// its check that `lo <= hi` (which holds for every caller): a select the
 /// compiler can vectorize.
-#[inline]
+#[inline(always)]
 fn clamp(x: f64, lo: f64, hi: f64) -> f64 {
     let x = if x < lo { lo } else { x };
     if x > hi { hi } else { x }
@@ -514,7 +577,7 @@ fn clamp(x: f64, lo: f64, hi: f64) -> f64 {
 /// over the defined cells of its body among the 8 nearest (`near`,
 /// `defined`: [`corner_values`] of the fill changes), times `h_max`,
 /// clamped so the texel stays in `[0, h_max]`.
-#[inline]
+#[inline(always)]
 fn smooth_changes(
     g: &[[f32; 3]; LANES],
     near: &[f64; 64],

@@ -88,7 +88,7 @@ pub(crate) struct Layout {
 /// lies in (index of its 8 nearest cells in `corners[64 v + 8 o..]`) and its
 /// trilinear coordinates `t` ∈ [0, 1]³ from the lower of those 8 centres:
 /// corner `c` has the weight `Π_k (t_k if bit k of c else 1 − t_k)`.
-#[inline]
+#[inline(always)]
 pub(crate) fn octant(g: &[f32; 3]) -> (usize, [f64; 3]) {
     let mut o = 0;
     let mut t = [0.0; 3];
