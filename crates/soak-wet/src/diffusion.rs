@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{WetError, non_negative};
 use crate::grid::FieldResolution;
 use crate::layout::{Layout, NONE, octant};
-use crate::reduce::liquid_volume;
+use crate::reduce::{liquid_volume, wide_vectors};
 
 /// Minimum Shepard distance, in voxels (the thesis' `Dist_min = S_V / 50`).
 pub const SHEPARD_MIN_DISTANCE: f64 = 1.0 / 50.0;
@@ -420,21 +420,6 @@ fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scra
                 back.cell(v, delta, wide);
             }
         });
-}
-
-/// Whether the processor has 256-bit vectors (AVX2), for the field ↔
-/// texel passes: they then run a copy of the same code compiled for them
-/// (the same operations in the same order, so the same bits; no fused
-/// multiply-adds).
-fn wide_vectors() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx2")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
 }
 
 /// The conservative return of the cells' changes to their texels.
