@@ -211,7 +211,6 @@ pub(crate) struct Scratch {
     next: Vec<f64>,
     aux: Vec<f64>,
     phi: Vec<f64>,
-    active: Vec<bool>,
     partials: Vec<f64>,
 }
 
@@ -223,7 +222,6 @@ impl Scratch {
             + self.aux.capacity()
             + self.phi.capacity()
             + self.partials.capacity())
-            + self.active.capacity()
     }
 }
 
@@ -362,8 +360,12 @@ fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scra
     s.value.clear();
     s.value.extend_from_slice(&s.start);
     let w = plan.weight;
-    for _ in 0..plan.substeps {
-        // The kernel, and the fill of its result for the next substep.
+    let start = &s.start;
+    for substep in 0..plan.substeps {
+        // The kernel, and the fill of its result for the next substep;
+        // after the last one, each cell's change of fill instead,
+        // Δφ = (M' − M) / C.
+        let last = substep + 1 == plan.substeps;
         let (value, phi) = (&s.value, &s.phi);
         s.next
             .par_iter_mut()
@@ -377,33 +379,16 @@ fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scra
                     .map(|&u| cv.min(cap[u as usize]) * (phi[u as usize] - pv))
                     .sum();
                 *out = value[v] + w * flux;
-                *p = *out / cv;
+                *p = if last {
+                    (out.clamp(0.0, cv) - start[v]) / cv
+                } else {
+                    *out / cv
+                };
             });
         std::mem::swap(&mut s.value, &mut s.next);
         std::mem::swap(&mut s.phi, &mut s.aux);
     }
-    // Each cell's change of fill, Δφ = (M' − M) / C.
-    let (start, value) = (&s.start, &s.value);
-    s.aux
-        .par_iter_mut()
-        .enumerate()
-        .with_min_len(SUBSTEP_CELLS_PER_TASK)
-        .for_each(|(v, d)| {
-            *d = (value[v].clamp(0.0, cap[v]) - start[v]) / cap[v];
-        });
-    // Cells whose texels may change: some cell of the 3×3×3 block changed
-    // (the others' texels keep their liquid exactly, so skip them).
-    let dphi = &s.aux;
-    s.active.clear();
-    s.active.resize(nv, false);
-    s.active
-        .par_iter_mut()
-        .enumerate()
-        .with_min_len(SUBSTEP_CELLS_PER_TASK)
-        .for_each(|(v, a)| {
-            *a = dphi[v] != 0.0 || neighbours(layout, v).iter().any(|&u| dphi[u as usize] != 0.0);
-        });
-    let active = &s.active;
+    let (dphi, value) = (&s.phi, &s.value);
     let back = Return {
         layout,
         dphi,
@@ -416,7 +401,10 @@ fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scra
         .into_par_iter()
         .with_min_len(CELLS_PER_TASK)
         .for_each_init(Vec::new, |delta: &mut Vec<f64>, v| {
-            if active[v] {
+            // Only cells some cell of whose 3×3×3 block changed: the
+            // others' texels keep their liquid exactly.
+            let dphi = back.dphi;
+            if dphi[v] != 0.0 || neighbours(layout, v).iter().any(|&u| dphi[u as usize] != 0.0) {
                 back.cell(v, delta, wide);
             }
         });
