@@ -582,7 +582,7 @@ fn smooth_changes(
 }
 
 /// Shepard weight `1 / max(d, d_min)` (p = 1) for a distance `d` in voxels.
-#[inline]
+#[inline(always)]
 fn shepard(d2: f64) -> f64 {
     1.0 / d2.sqrt().max(SHEPARD_MIN_DISTANCE)
 }
@@ -591,59 +591,145 @@ fn thesis(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scratch) {
     let nv = layout.defined();
     resize(&mut s.value, nv);
     resize(&mut s.next, nv);
-    s.value.par_iter_mut().enumerate().for_each(|(v, out)| {
-        let (mut num, mut den) = (0.0, 0.0);
-        for k in layout.slots(v) {
-            // Offsets from the cell's centre (exact: see `slot_frac`).
-            let g = layout.slot_frac[k];
-            let d2 = (0..3).map(|a| (g[a] as f64 - 0.5).powi(2)).sum::<f64>();
-            let wgt = shepard(d2);
-            num += wgt * h[layout.members[k] as usize];
-            den += wgt;
-        }
-        *out = num / den;
-    });
+    s.value
+        .par_iter_mut()
+        .enumerate()
+        .with_min_len(CELLS_PER_TASK)
+        .for_each(|(v, out)| {
+            let (mut num, mut den) = (0.0, 0.0);
+            for k in layout.slots(v) {
+                // Offsets from the cell's centre (exact: see `slot_frac`).
+                let g = layout.slot_frac[k];
+                let d2 = (0..3).map(|a| (g[a] as f64 - 0.5).powi(2)).sum::<f64>();
+                let wgt = shepard(d2);
+                num += wgt * h[layout.members[k] as usize];
+                den += wgt;
+            }
+            *out = num / den;
+        });
     let w = plan.weight;
     for _ in 0..plan.substeps {
         let value = &s.value;
-        s.next.par_iter_mut().enumerate().for_each(|(v, out)| {
-            let x = value[v];
-            let nb = neighbours(layout, v);
-            let sum: f64 = nb.iter().map(|&u| value[u as usize]).sum();
-            *out = (1.0 - w * nb.len() as f64) * x + w * sum;
-        });
+        s.next
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(SUBSTEP_CELLS_PER_TASK)
+            .for_each(|(v, out)| {
+                let x = value[v];
+                let nb = neighbours(layout, v);
+                let sum: f64 = nb.iter().map(|&u| value[u as usize]).sum();
+                *out = (1.0 - w * nb.len() as f64) * x + w * sum;
+            });
         std::mem::swap(&mut s.value, &mut s.next);
     }
-    let value = &s.value;
-    let out = Disjoint::new(h);
+    let back = ThesisReturn {
+        layout,
+        value: &s.value,
+        out: Disjoint::new(h),
+    };
+    let wide = wide_vectors();
     (0..nv)
         .into_par_iter()
         .with_min_len(CELLS_PER_TASK)
-        .for_each(|v| {
-            let hmax = layout.segments[layout.cell_segment[v] as usize].saturation;
-            let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
-            corner_values(layout, value, v, &mut near, &mut defined);
-            for k in layout.slots(v) {
-                let (o, t) = layout.octant(k);
-                let (near, defined) = (&near[8 * o..8 * o + 8], &defined[8 * o..8 * o + 8]);
-                let (mut num, mut den) = (0.0, 0.0);
-                for corner in 0..8 {
-                    let d2: f64 = (0..3).map(|a| (t[a] - ((corner >> a) & 1) as f64).powi(2)).sum();
-                    let wgt = shepard(d2);
-                    // Undefined corners add +0 to both sums (the weight is
-                    // positive and finite): the same bits as leaving them out.
-                    num += wgt * near[corner];
-                    den += wgt * defined[corner];
-                }
-                if den > 0.0 {
-                    // SAFETY: texel `members[k]` belongs to cell `v` alone.
+        .for_each(|v| back.cell(v, wide));
+}
+
+/// The thesis' return of the cells' values to their texels.
+struct ThesisReturn<'a> {
+    layout: &'a Layout,
+    /// Per cell: its value after the kernel.
+    value: &'a [f64],
+    out: Disjoint<'a>,
+}
+
+impl ThesisReturn<'_> {
+    /// Sets cell `v`'s texels.
+    #[inline]
+    fn cell(&self, v: usize, wide: bool) {
+        #[cfg(target_arch = "x86_64")]
+        if wide {
+            // SAFETY: the processor has AVX2 (`wide_vectors`).
+            #[allow(unsafe_code)]
+            unsafe {
+                self.cell_avx2(v)
+            };
+            return;
+        }
+        let _ = wide;
+        self.cell_body(v);
+    }
+
+    /// [`ThesisReturn::cell_body`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn cell_avx2(&self, v: usize) {
+        self.cell_body(v);
+    }
+
+    /// Each texel of cell `v` takes the Shepard average of the defined
+    /// cells among its 8 nearest, clamped to `[0, h_max]`; [`LANES`]
+    /// texels at a time.
+    #[inline(always)]
+    fn cell_body(&self, v: usize) {
+        let layout = self.layout;
+        let hmax = layout.segments[layout.cell_segment[v] as usize].saturation;
+        let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
+        corner_values(layout, self.value, v, &mut near, &mut defined);
+        let r = layout.slots(v);
+        let members = &layout.members[r.clone()];
+        let fracs = &layout.slot_frac[r];
+        for (members, fracs) in members.chunks(LANES).zip(fracs.chunks(LANES)) {
+            // A short last group repeats its first texel in the unused
+            // lanes, whose results are dropped.
+            let mut g = [fracs[0]; LANES];
+            for l in 0..LANES {
+                g[l] = fracs[if l < fracs.len() { l } else { 0 }];
+            }
+            let (num, den) = shepard_averages(&g, &near, &defined);
+            for (l, &i) in members.iter().enumerate() {
+                if den[l] > 0.0 {
+                    // SAFETY: texel `i` belongs to cell `v` alone.
                     #[allow(unsafe_code)]
                     unsafe {
-                        out.set(layout.members[k] as usize, (num / den).clamp(0.0, hmax))
+                        self.out.set(i as usize, clamp(num[l] / den[l], 0.0, hmax))
                     };
                 }
             }
-        });
+        }
+    }
+}
+
+/// The sums of the thesis' Shepard interpolation at texels (their
+/// positions in their cell `g`, see [`Layout::slot_frac`]) over the defined
+/// cells among their 8 nearest (`near`, `defined`: [`corner_values`] of the
+/// cells' values): `Σ w_c V_c` and `Σ w_c` over defined corners `c`, with
+/// `w_c` the [`shepard`] weight of the distance to corner `c`'s centre.
+#[inline(always)]
+fn shepard_averages(
+    g: &[[f32; 3]; LANES],
+    near: &[f64; 64],
+    defined: &[f64; 64],
+) -> ([f64; LANES], [f64; LANES]) {
+    let (mut base, mut t) = ([0; LANES], [[0.0; 3]; LANES]);
+    for l in 0..LANES {
+        let (o, tl) = octant(&g[l]);
+        base[l] = 8 * o;
+        t[l] = tl;
+    }
+    let (mut num, mut den) = ([0.0; LANES], [0.0; LANES]);
+    for corner in 0..8 {
+        for l in 0..LANES {
+            let d2: f64 = (0..3)
+                .map(|a| (t[l][a] - ((corner >> a) & 1) as f64).powi(2))
+                .sum();
+            let wgt = shepard(d2);
+            // Undefined corners add +0 to both sums (the weight is
+            // positive and finite): the same bits as leaving them out.
+            num[l] += wgt * near[base[l] + corner];
+            den[l] += wgt * defined[base[l] + corner];
+        }
+    }
+    (num, den)
 }
 
 #[cfg(test)]

@@ -104,13 +104,6 @@ pub(crate) fn octant(g: &[f32; 3]) -> (usize, [f64; 3]) {
 }
 
 impl Layout {
-    /// The octant of member slot `k` and its trilinear coordinates: see
-    /// [`octant`].
-    #[inline]
-    pub fn octant(&self, k: usize) -> (usize, [f64; 3]) {
-        octant(&self.slot_frac[k])
-    }
-
     /// Member slots of cell `v`.
     #[inline]
     pub fn slots(&self, v: usize) -> std::ops::Range<usize> {
