@@ -400,14 +400,21 @@ fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scra
     (0..nv)
         .into_par_iter()
         .with_min_len(CELLS_PER_TASK)
-        .for_each_init(Vec::new, |delta: &mut Vec<f64>, v| {
+        .for_each(|v| {
             // Only cells some cell of whose 3×3×3 block changed: the
             // others' texels keep their liquid exactly.
             let dphi = back.dphi;
             if dphi[v] != 0.0 || neighbours(layout, v).iter().any(|&u| dphi[u as usize] != 0.0) {
-                back.cell(v, delta, wide);
+                SHARES.with_borrow_mut(|delta| back.cell(v, delta, wide));
             }
         });
+}
+
+thread_local! {
+    /// The smooth shares of the texels of the cell a thread is returning
+    /// to (see [`Return::cell_body`]): kept per thread so that, once grown
+    /// to the largest cell, steps allocate nothing.
+    static SHARES: std::cell::RefCell<Vec<f64>> = const { std::cell::RefCell::new(Vec::new()) };
 }
 
 /// The conservative return of the cells' changes to their texels.
