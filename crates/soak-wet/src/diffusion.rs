@@ -7,8 +7,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{WetError, non_negative};
 use crate::grid::FieldResolution;
-use crate::layout::{Layout, NONE};
-use crate::reduce::liquid_volume;
+use crate::layout::{Layout, NONE, octant};
+use crate::reduce::{liquid_volume, wide_vectors};
 
 /// Minimum Shepard distance, in voxels (the thesis' `Dist_min = S_V / 50`).
 pub const SHEPARD_MIN_DISTANCE: f64 = 1.0 / 50.0;
@@ -210,8 +210,7 @@ pub(crate) struct Scratch {
     value: Vec<f64>,
     next: Vec<f64>,
     aux: Vec<f64>,
-    delta: Vec<f64>,
-    active: Vec<bool>,
+    phi: Vec<f64>,
     partials: Vec<f64>,
 }
 
@@ -221,9 +220,8 @@ impl Scratch {
             + self.value.capacity()
             + self.next.capacity()
             + self.aux.capacity()
-            + self.delta.capacity()
+            + self.phi.capacity()
             + self.partials.capacity())
-            + self.active.capacity()
     }
 }
 
@@ -265,6 +263,10 @@ fn resize(buffer: &mut Vec<f64>, n: usize) {
 /// as well: each cell's result is computed by one task in a fixed order,
 /// so the thread count changes nothing).
 const CELLS_PER_TASK: usize = 64;
+
+/// Cells per task of the passes that do little per cell (the kernel's
+/// substeps, the fill changes).
+const SUBSTEP_CELLS_PER_TASK: usize = 1024;
 
 /// A slice that several tasks write at distinct indices: each cell's task
 /// touches only its own texels (every binned texel is the member of
@@ -321,7 +323,7 @@ impl<'a> Disjoint<'a> {
 /// Writes the values of cell `v`'s 8 nearest cells for each octant
 /// (`corners` layout) into `value`, zero where a corner is not defined, and
 /// a mask into `mask`, 1 where it is.
-#[inline]
+#[inline(always)]
 fn corner_values(layout: &Layout, values: &[f64], v: usize, value: &mut [f64; 64], mask: &mut [f64; 64]) {
     let ids = &layout.corners[64 * v..64 * v + 64];
     for (j, &id) in ids.iter().enumerate() {
@@ -335,145 +337,259 @@ fn corner_values(layout: &Layout, values: &[f64], v: usize, value: &mut [f64; 64
 
 fn conservative(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scratch) {
     let nv = layout.defined();
+    let cap = &layout.capacity;
     resize(&mut s.start, nv);
     resize(&mut s.next, nv);
     resize(&mut s.aux, nv);
-    s.start.par_iter_mut().enumerate().for_each(|(v, m)| {
-        let r = layout.slots(v);
-        *m = layout.members[r.clone()]
-            .iter()
-            .zip(&layout.slot_area[r])
-            .map(|(&i, &a)| a as f64 * h[i as usize])
-            .sum();
-    });
+    resize(&mut s.phi, nv);
+    // Each cell's liquid M_v and fill φ_v = M_v / C_v.
+    s.start
+        .par_iter_mut()
+        .zip(s.phi.par_iter_mut())
+        .enumerate()
+        .with_min_len(CELLS_PER_TASK)
+        .for_each(|(v, (m, p))| {
+            let r = layout.slots(v);
+            *m = layout.members[r.clone()]
+                .iter()
+                .zip(&layout.slot_area[r])
+                .map(|(&i, &a)| a as f64 * h[i as usize])
+                .sum();
+            *p = *m / cap[v];
+        });
     s.value.clear();
     s.value.extend_from_slice(&s.start);
-    let cap = &layout.capacity;
     let w = plan.weight;
-    for _ in 0..plan.substeps {
-        let (value, phi) = (&s.value, &mut s.aux);
-        phi.par_iter_mut()
+    let start = &s.start;
+    for substep in 0..plan.substeps {
+        // The kernel, and the fill of its result for the next substep;
+        // after the last one, each cell's change of fill instead,
+        // Δφ = (M' − M) / C.
+        let last = substep + 1 == plan.substeps;
+        let (value, phi) = (&s.value, &s.phi);
+        s.next
+            .par_iter_mut()
+            .zip(s.aux.par_iter_mut())
             .enumerate()
-            .for_each(|(v, p)| *p = value[v] / cap[v]);
-        let phi = &s.aux;
-        s.next.par_iter_mut().enumerate().for_each(|(v, out)| {
-            let (pv, cv) = (phi[v], cap[v]);
-            let flux: f64 = neighbours(layout, v)
-                .iter()
-                .map(|&u| cv.min(cap[u as usize]) * (phi[u as usize] - pv))
-                .sum();
-            *out = value[v] + w * flux;
-        });
+            .with_min_len(SUBSTEP_CELLS_PER_TASK)
+            .for_each(|(v, (out, p))| {
+                let (pv, cv) = (phi[v], cap[v]);
+                let flux: f64 = neighbours(layout, v)
+                    .iter()
+                    .map(|&u| cv.min(cap[u as usize]) * (phi[u as usize] - pv))
+                    .sum();
+                *out = value[v] + w * flux;
+                *p = if last {
+                    (out.clamp(0.0, cv) - start[v]) / cv
+                } else {
+                    *out / cv
+                };
+            });
         std::mem::swap(&mut s.value, &mut s.next);
+        std::mem::swap(&mut s.phi, &mut s.aux);
     }
-    // Each cell's change of fill, Δφ = (M' − M) / C.
-    let (start, value) = (&s.start, &s.value);
-    s.aux.par_iter_mut().enumerate().for_each(|(v, d)| {
-        *d = (value[v].clamp(0.0, cap[v]) - start[v]) / cap[v];
-    });
-    // Cells whose texels may change: some cell of the 3×3×3 block changed
-    // (the others' texels keep their liquid exactly, so skip them).
-    let dphi = &s.aux;
-    s.active.clear();
-    s.active.resize(nv, false);
-    s.active.par_iter_mut().enumerate().for_each(|(v, a)| {
-        *a = dphi[v] != 0.0 || neighbours(layout, v).iter().any(|&u| dphi[u as usize] != 0.0);
-    });
-    // Per active cell, in one pass over its texels: each texel's smooth
-    // share of the change (zero where nothing nearby changed), then what
-    // the shares leave over of the cell's change, as a factor (f > 0 fills
-    // that fraction of the room left, f < 0 takes that fraction of the
-    // liquid left), then the texels' new liquid.
-    let active = &s.active;
-    // Every slot of an active cell is written before it is read: no need
-    // to clear.
-    s.delta.resize(layout.members.len(), 0.0);
-    let delta = Disjoint::new(&mut s.delta);
-    let out = Disjoint::new(h);
+    let (dphi, value) = (&s.phi, &s.value);
+    let back = Return {
+        layout,
+        dphi,
+        start,
+        value,
+        out: Disjoint::new(h),
+    };
+    let wide = wide_vectors();
     (0..nv)
         .into_par_iter()
         .with_min_len(CELLS_PER_TASK)
         .for_each(|v| {
-            if !active[v] {
-                return;
-            }
-            let hmax = layout.segments[layout.cell_segment[v] as usize].saturation;
-            let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
-            corner_values(layout, dphi, v, &mut near, &mut defined);
-            let r = layout.slots(v);
-            for k in r.clone() {
-                let i = layout.members[k] as usize;
-                // SAFETY: texel `i` and slot `k` belong to cell `v` alone.
-                #[allow(unsafe_code)]
-                let x = unsafe { out.get(i) };
-                let d = smooth_change(layout, &near, &defined, k, x, hmax);
-                // SAFETY: as above.
-                #[allow(unsafe_code)]
-                unsafe {
-                    delta.set(k, d)
-                };
-            }
-            // SAFETY: the slots of cell `v` are its own.
-            #[allow(unsafe_code)]
-            let spread: f64 = layout.slot_area[r.clone()]
-                .iter()
-                .zip(r.clone())
-                .map(|(&a, k)| a as f64 * unsafe { delta.get(k) })
-                .sum();
-            let (m0, c) = (start[v], cap[v]);
-            let rest = (value[v].clamp(0.0, c) - m0) - spread;
-            let (room, content) = (c - m0 - spread, m0 + spread);
-            let f = if rest > 0.0 && room > 0.0 {
-                (rest / room).min(1.0)
-            } else if rest < 0.0 && content > 0.0 {
-                (rest / content).max(-1.0)
-            } else {
-                0.0
-            };
-            for k in r {
-                let i = layout.members[k] as usize;
-                // SAFETY: texel `i` and slot `k` belong to cell `v` alone.
-                #[allow(unsafe_code)]
-                unsafe {
-                    let x = out.get(i) + delta.get(k);
-                    let x = if f < 0.0 {
-                        x * (1.0 + f)
-                    } else {
-                        x + f * (hmax - x)
-                    };
-                    out.set(i, x.clamp(0.0, hmax));
-                }
+            // Only cells some cell of whose 3×3×3 block changed: the
+            // others' texels keep their liquid exactly.
+            let dphi = back.dphi;
+            if dphi[v] != 0.0 || neighbours(layout, v).iter().any(|&u| dphi[u as usize] != 0.0) {
+                SHARES.with_borrow_mut(|delta| back.cell(v, delta, wide));
             }
         });
 }
 
-/// The smooth share of a texel's change in the conservative return (member
-/// slot `k`, liquid `h`): the cells' fill changes interpolated trilinearly
-/// at the texel over the defined cells of its body among the 8 nearest
-/// (`near`, `defined`: [`corner_values`] of the fill changes), times
-/// `h_max`, clamped so the texel stays in `[0, h_max]`.
-#[inline]
-fn smooth_change(layout: &Layout, near: &[f64; 64], defined: &[f64; 64], k: usize, h: f64, hmax: f64) -> f64 {
-    let (o, t) = layout.octant(k);
-    let (near, defined) = (&near[8 * o..8 * o + 8], &defined[8 * o..8 * o + 8]);
-    let (mut num, mut den) = (0.0, 0.0);
-    for corner in 0..8 {
-        let w = |k: usize| if (corner >> k) & 1 == 1 { t[k] } else { 1.0 - t[k] };
-        let w = w(0) * w(1) * w(2);
-        // Undefined corners add +0 to both sums: the same bits as
-        // leaving them out (neither sum can be −0).
-        num += w * near[corner];
-        den += w * defined[corner];
+thread_local! {
+    /// The smooth shares of the texels of the cell a thread is returning
+    /// to (see [`Return::cell_body`]): kept per thread so that, once grown
+    /// to the largest cell, steps allocate nothing.
+    static SHARES: std::cell::RefCell<Vec<f64>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// The conservative return of the cells' changes to their texels.
+struct Return<'a> {
+    layout: &'a Layout,
+    /// Per cell: its change of fill Δφ, its liquid before and after the
+    /// kernel.
+    dphi: &'a [f64],
+    start: &'a [f64],
+    value: &'a [f64],
+    out: Disjoint<'a>,
+}
+
+impl Return<'_> {
+    /// Returns cell `v`'s change to its texels (`delta`: scratch).
+    #[inline]
+    fn cell(&self, v: usize, delta: &mut Vec<f64>, wide: bool) {
+        #[cfg(target_arch = "x86_64")]
+        if wide {
+            // SAFETY: the processor has AVX2 (`wide_vectors`).
+            #[allow(unsafe_code)]
+            unsafe {
+                self.cell_avx2(v, delta)
+            };
+            return;
+        }
+        let _ = wide;
+        self.cell_body(v, delta);
     }
-    if den > 0.0 {
-        (num / den * hmax).clamp(-h, hmax - h)
-    } else {
-        0.0
+
+    /// [`Return::cell_body`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn cell_avx2(&self, v: usize, delta: &mut Vec<f64>) {
+        self.cell_body(v, delta);
+    }
+
+    /// Per active cell, in one pass over its texels: each texel's smooth
+    /// share of the change (zero where nothing nearby changed), then what
+    /// the shares leave over of the cell's change, as a factor (f > 0
+    /// fills that fraction of the room left, f < 0 takes that fraction of
+    /// the liquid left), then the texels' new liquid. The shares of the
+    /// cell's texels are kept in `delta`, small enough to stay in cache
+    /// between the two loops.
+    #[inline(always)]
+    fn cell_body(&self, v: usize, delta: &mut Vec<f64>) {
+        let (layout, out) = (self.layout, &self.out);
+        let hmax = layout.segments[layout.cell_segment[v] as usize].saturation;
+        let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
+        corner_values(layout, self.dphi, v, &mut near, &mut defined);
+        let r = layout.slots(v);
+        let members = &layout.members[r.clone()];
+        let fracs = &layout.slot_frac[r.clone()];
+        delta.clear();
+        for (members, fracs) in members.chunks(LANES).zip(fracs.chunks(LANES)) {
+            // A short last group repeats its first texel in the unused
+            // lanes, whose results are dropped.
+            let (mut g, mut x) = ([fracs[0]; LANES], [0.0; LANES]);
+            for l in 0..LANES {
+                let j = if l < members.len() { l } else { 0 };
+                g[l] = fracs[j];
+                // SAFETY: texel `members[j]` belongs to cell `v` alone.
+                #[allow(unsafe_code)]
+                let h = unsafe { out.get(members[j] as usize) };
+                x[l] = h;
+            }
+            let d = smooth_changes(&g, &near, &defined, &x, hmax);
+            for &d in &d[..members.len()] {
+                delta.push(d);
+            }
+        }
+        let spread: f64 = layout.slot_area[r]
+            .iter()
+            .zip(delta.iter())
+            .map(|(&a, &d)| a as f64 * d)
+            .sum();
+        let (m0, c) = (self.start[v], layout.capacity[v]);
+        let rest = (self.value[v].clamp(0.0, c) - m0) - spread;
+        let (room, content) = (c - m0 - spread, m0 + spread);
+        let f = if rest > 0.0 && room > 0.0 {
+            (rest / room).min(1.0)
+        } else if rest < 0.0 && content > 0.0 {
+            (rest / content).max(-1.0)
+        } else {
+            0.0
+        };
+        for (&i, &d) in members.iter().zip(delta.iter()) {
+            let i = i as usize;
+            // SAFETY: texel `i` belongs to cell `v` alone.
+            #[allow(unsafe_code)]
+            unsafe {
+                let x = out.get(i) + d;
+                let x = if f < 0.0 {
+                    x * (1.0 + f)
+                } else {
+                    x + f * (hmax - x)
+                };
+                out.set(i, x.clamp(0.0, hmax));
+            }
+        }
     }
 }
 
+/// The trilinear weights of the 8 corners around a texel at `t` ∈ [0, 1]³
+/// (see [`Layout::octant`]): corner `c` has `w_x · w_y · w_z`, the axis
+/// weights `t_k` where bit k of `c` is set, `1 − t_k` where not, multiplied
+/// in that order.
+#[inline(always)]
+fn trilinear(t: [f64; 3]) -> [f64; 8] {
+    let axis = [[1.0 - t[0], t[0]], [1.0 - t[1], t[1]], [1.0 - t[2], t[2]]];
+    let mut xy = [0.0; 4];
+    for (c, xy) in xy.iter_mut().enumerate() {
+        *xy = axis[0][c & 1] * axis[1][c >> 1];
+    }
+    let mut w = [0.0; 8];
+    for (c, w) in w.iter_mut().enumerate() {
+        *w = xy[c & 3] * axis[2][c >> 2];
+    }
+    w
+}
+
+/// Texels interpolated together (one per lane) by the field → texel
+/// passes: independent lanes doing the same operations, which the compiler
+/// packs into vector instructions; each lane computes the bits a texel
+/// alone would.
+const LANES: usize = 4;
+
+/// `x` clamped to `[lo, hi]` like [`f64::clamp`] (NaN stays NaN), without
+/// its check that `lo <= hi` (which holds for every caller): a select the
+/// compiler can vectorize.
+#[inline(always)]
+fn clamp(x: f64, lo: f64, hi: f64) -> f64 {
+    let x = if x < lo { lo } else { x };
+    if x > hi { hi } else { x }
+}
+
+/// The smooth shares of texels' changes in the conservative return (their
+/// positions in their cell `g`, see [`Layout::slot_frac`], and liquid
+/// `h`): the cells' fill changes interpolated trilinearly at each texel
+/// over the defined cells of its body among the 8 nearest (`near`,
+/// `defined`: [`corner_values`] of the fill changes), times `h_max`,
+/// clamped so the texel stays in `[0, h_max]`.
+#[inline(always)]
+fn smooth_changes(
+    g: &[[f32; 3]; LANES],
+    near: &[f64; 64],
+    defined: &[f64; 64],
+    h: &[f64; LANES],
+    hmax: f64,
+) -> [f64; LANES] {
+    let (mut base, mut w) = ([0; LANES], [[0.0; 8]; LANES]);
+    for l in 0..LANES {
+        let (o, t) = octant(&g[l]);
+        base[l] = 8 * o;
+        w[l] = trilinear(t);
+    }
+    let (mut num, mut den) = ([0.0; LANES], [0.0; LANES]);
+    for corner in 0..8 {
+        for l in 0..LANES {
+            // Undefined corners add +0 to both sums: the same bits as
+            // leaving them out (neither sum can be −0).
+            num[l] += w[l][corner] * near[base[l] + corner];
+            den[l] += w[l][corner] * defined[base[l] + corner];
+        }
+    }
+    let mut d = [0.0; LANES];
+    for l in 0..LANES {
+        let share = clamp(num[l] / den[l] * hmax, -h[l], hmax - h[l]);
+        d[l] = if den[l] > 0.0 { share } else { 0.0 };
+    }
+    d
+}
+
 /// Shepard weight `1 / max(d, d_min)` (p = 1) for a distance `d` in voxels.
-#[inline]
+#[inline(always)]
 fn shepard(d2: f64) -> f64 {
     1.0 / d2.sqrt().max(SHEPARD_MIN_DISTANCE)
 }
@@ -482,59 +598,145 @@ fn thesis(layout: &Layout, h: &mut [f64], plan: &SubstepPlan, s: &mut Scratch) {
     let nv = layout.defined();
     resize(&mut s.value, nv);
     resize(&mut s.next, nv);
-    s.value.par_iter_mut().enumerate().for_each(|(v, out)| {
-        let (mut num, mut den) = (0.0, 0.0);
-        for k in layout.slots(v) {
-            // Offsets from the cell's centre (exact: see `slot_frac`).
-            let g = layout.slot_frac[k];
-            let d2 = (0..3).map(|a| (g[a] as f64 - 0.5).powi(2)).sum::<f64>();
-            let wgt = shepard(d2);
-            num += wgt * h[layout.members[k] as usize];
-            den += wgt;
-        }
-        *out = num / den;
-    });
+    s.value
+        .par_iter_mut()
+        .enumerate()
+        .with_min_len(CELLS_PER_TASK)
+        .for_each(|(v, out)| {
+            let (mut num, mut den) = (0.0, 0.0);
+            for k in layout.slots(v) {
+                // Offsets from the cell's centre (exact: see `slot_frac`).
+                let g = layout.slot_frac[k];
+                let d2 = (0..3).map(|a| (g[a] as f64 - 0.5).powi(2)).sum::<f64>();
+                let wgt = shepard(d2);
+                num += wgt * h[layout.members[k] as usize];
+                den += wgt;
+            }
+            *out = num / den;
+        });
     let w = plan.weight;
     for _ in 0..plan.substeps {
         let value = &s.value;
-        s.next.par_iter_mut().enumerate().for_each(|(v, out)| {
-            let x = value[v];
-            let nb = neighbours(layout, v);
-            let sum: f64 = nb.iter().map(|&u| value[u as usize]).sum();
-            *out = (1.0 - w * nb.len() as f64) * x + w * sum;
-        });
+        s.next
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(SUBSTEP_CELLS_PER_TASK)
+            .for_each(|(v, out)| {
+                let x = value[v];
+                let nb = neighbours(layout, v);
+                let sum: f64 = nb.iter().map(|&u| value[u as usize]).sum();
+                *out = (1.0 - w * nb.len() as f64) * x + w * sum;
+            });
         std::mem::swap(&mut s.value, &mut s.next);
     }
-    let value = &s.value;
-    let out = Disjoint::new(h);
+    let back = ThesisReturn {
+        layout,
+        value: &s.value,
+        out: Disjoint::new(h),
+    };
+    let wide = wide_vectors();
     (0..nv)
         .into_par_iter()
         .with_min_len(CELLS_PER_TASK)
-        .for_each(|v| {
-            let hmax = layout.segments[layout.cell_segment[v] as usize].saturation;
-            let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
-            corner_values(layout, value, v, &mut near, &mut defined);
-            for k in layout.slots(v) {
-                let (o, t) = layout.octant(k);
-                let (near, defined) = (&near[8 * o..8 * o + 8], &defined[8 * o..8 * o + 8]);
-                let (mut num, mut den) = (0.0, 0.0);
-                for corner in 0..8 {
-                    let d2: f64 = (0..3).map(|a| (t[a] - ((corner >> a) & 1) as f64).powi(2)).sum();
-                    let wgt = shepard(d2);
-                    // Undefined corners add +0 to both sums (the weight is
-                    // positive and finite): the same bits as leaving them out.
-                    num += wgt * near[corner];
-                    den += wgt * defined[corner];
-                }
-                if den > 0.0 {
-                    // SAFETY: texel `members[k]` belongs to cell `v` alone.
+        .for_each(|v| back.cell(v, wide));
+}
+
+/// The thesis' return of the cells' values to their texels.
+struct ThesisReturn<'a> {
+    layout: &'a Layout,
+    /// Per cell: its value after the kernel.
+    value: &'a [f64],
+    out: Disjoint<'a>,
+}
+
+impl ThesisReturn<'_> {
+    /// Sets cell `v`'s texels.
+    #[inline]
+    fn cell(&self, v: usize, wide: bool) {
+        #[cfg(target_arch = "x86_64")]
+        if wide {
+            // SAFETY: the processor has AVX2 (`wide_vectors`).
+            #[allow(unsafe_code)]
+            unsafe {
+                self.cell_avx2(v)
+            };
+            return;
+        }
+        let _ = wide;
+        self.cell_body(v);
+    }
+
+    /// [`ThesisReturn::cell_body`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn cell_avx2(&self, v: usize) {
+        self.cell_body(v);
+    }
+
+    /// Each texel of cell `v` takes the Shepard average of the defined
+    /// cells among its 8 nearest, clamped to `[0, h_max]`; [`LANES`]
+    /// texels at a time.
+    #[inline(always)]
+    fn cell_body(&self, v: usize) {
+        let layout = self.layout;
+        let hmax = layout.segments[layout.cell_segment[v] as usize].saturation;
+        let (mut near, mut defined) = ([0.0; 64], [0.0; 64]);
+        corner_values(layout, self.value, v, &mut near, &mut defined);
+        let r = layout.slots(v);
+        let members = &layout.members[r.clone()];
+        let fracs = &layout.slot_frac[r];
+        for (members, fracs) in members.chunks(LANES).zip(fracs.chunks(LANES)) {
+            // A short last group repeats its first texel in the unused
+            // lanes, whose results are dropped.
+            let mut g = [fracs[0]; LANES];
+            for l in 0..LANES {
+                g[l] = fracs[if l < fracs.len() { l } else { 0 }];
+            }
+            let (num, den) = shepard_averages(&g, &near, &defined);
+            for (l, &i) in members.iter().enumerate() {
+                if den[l] > 0.0 {
+                    // SAFETY: texel `i` belongs to cell `v` alone.
                     #[allow(unsafe_code)]
                     unsafe {
-                        out.set(layout.members[k] as usize, (num / den).clamp(0.0, hmax))
+                        self.out.set(i as usize, clamp(num[l] / den[l], 0.0, hmax))
                     };
                 }
             }
-        });
+        }
+    }
+}
+
+/// The sums of the thesis' Shepard interpolation at texels (their
+/// positions in their cell `g`, see [`Layout::slot_frac`]) over the defined
+/// cells among their 8 nearest (`near`, `defined`: [`corner_values`] of the
+/// cells' values): `Σ w_c V_c` and `Σ w_c` over defined corners `c`, with
+/// `w_c` the [`shepard`] weight of the distance to corner `c`'s centre.
+#[inline(always)]
+fn shepard_averages(
+    g: &[[f32; 3]; LANES],
+    near: &[f64; 64],
+    defined: &[f64; 64],
+) -> ([f64; LANES], [f64; LANES]) {
+    let (mut base, mut t) = ([0; LANES], [[0.0; 3]; LANES]);
+    for l in 0..LANES {
+        let (o, tl) = octant(&g[l]);
+        base[l] = 8 * o;
+        t[l] = tl;
+    }
+    let (mut num, mut den) = ([0.0; LANES], [0.0; LANES]);
+    for corner in 0..8 {
+        for l in 0..LANES {
+            let d2: f64 = (0..3)
+                .map(|a| (t[l][a] - ((corner >> a) & 1) as f64).powi(2))
+                .sum();
+            let wgt = shepard(d2);
+            // Undefined corners add +0 to both sums (the weight is
+            // positive and finite): the same bits as leaving them out.
+            num[l] += wgt * near[base[l] + corner];
+            den[l] += wgt * defined[base[l] + corner];
+        }
+    }
+    (num, den)
 }
 
 #[cfg(test)]

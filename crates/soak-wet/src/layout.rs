@@ -84,27 +84,26 @@ pub(crate) struct Layout {
     pub outside: usize,
 }
 
-impl Layout {
-    /// The octant `o` of its cell that member slot `k` lies in (index of
-    /// its 8 nearest cells in `corners[64 v + 8 o..]`) and its trilinear
-    /// coordinates `t` ∈ [0, 1]³ from the lower of those 8 centres: corner
-    /// `c` has the weight `Π_k (t_k if bit k of c else 1 − t_k)`.
-    #[inline]
-    pub fn octant(&self, k: usize) -> (usize, [f64; 3]) {
-        let g = self.slot_frac[k];
-        let mut o = 0;
-        let mut t = [0.0; 3];
-        for a in 0..3 {
-            let f = g[a] as f64;
-            let upper = f >= 0.5;
-            o |= usize::from(upper) << a;
-            // Lower corner at c - 1 + upper, centre 0.5 further.
-            let base = if upper { 0.5 } else { -0.5 };
-            t[a] = (f - base).clamp(0.0, 1.0);
-        }
-        (o, t)
+/// The octant `o` of its cell that a texel at `g` (its [`Layout::slot_frac`])
+/// lies in (index of its 8 nearest cells in `corners[64 v + 8 o..]`) and its
+/// trilinear coordinates `t` ∈ [0, 1]³ from the lower of those 8 centres:
+/// corner `c` has the weight `Π_k (t_k if bit k of c else 1 − t_k)`.
+#[inline(always)]
+pub(crate) fn octant(g: &[f32; 3]) -> (usize, [f64; 3]) {
+    let mut o = 0;
+    let mut t = [0.0; 3];
+    for a in 0..3 {
+        let f = g[a] as f64;
+        let upper = f >= 0.5;
+        o |= usize::from(upper) << a;
+        // Lower corner at c - 1 + upper, centre 0.5 further.
+        let base = if upper { 0.5 } else { -0.5 };
+        t[a] = (f - base).clamp(0.0, 1.0);
     }
+    (o, t)
+}
 
+impl Layout {
     /// Member slots of cell `v`.
     #[inline]
     pub fn slots(&self, v: usize) -> std::ops::Range<usize> {

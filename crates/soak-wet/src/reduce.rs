@@ -4,6 +4,21 @@
 
 use rayon::prelude::*;
 
+/// Whether the processor has 256-bit vectors (AVX2). The per-texel
+/// passes written in lanes then run a copy of their code compiled for them:
+/// the same operations in the same order (no fused multiply-adds), so the
+/// same bits.
+pub(crate) fn wide_vectors() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
 /// Texels per chunk of the per-texel loops.
 pub(crate) const CHUNK: usize = 4096;
 

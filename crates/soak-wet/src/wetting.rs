@@ -7,17 +7,17 @@ use nalgebra::{Isometry3, Point3, Vector3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
-use soak_hydro::{SurfaceKind, Water};
+use soak_hydro::{Plane, Surface, SurfaceKind, Water};
 
 use crate::body_field::BodyField;
 use crate::diffusion::{self, Diffusion, DiffusionReport};
 use crate::environment::{Environment, EnvironmentResponse};
 use crate::error::WetError;
-use crate::exchange::{Rates, exchange};
+use crate::exchange::{Rates, exchange, exchange_dry_sky};
 use crate::grid::VoxelGrid;
 use crate::ledger::{Ledger, StepReport};
 use crate::material::{Liquid, Material};
-use crate::reduce::{CHUNK, chunks, liquid_volume};
+use crate::reduce::{CHUNK, chunks, liquid_volume, wide_vectors};
 use crate::source::{LiquidImage, Splash};
 use crate::stats::LiquidStats;
 
@@ -453,50 +453,27 @@ impl Wetting {
             .height_bounds(time)
             .filter(|(lo, hi)| lo.is_finite() && hi.is_finite())
             .unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
-        let hmax = rates.saturation;
-        let local = atlas.local_positions();
-        let area_vectors = atlas.area_vectors();
-        let areas = atlas.areas();
-        let map = self.permeability_map.as_deref();
-        let n = self.h.len();
+        let texels = Texels {
+            atlas,
+            map: self.permeability_map.as_deref(),
+            rot,
+            ow,
+            time,
+            dt,
+            wet_possible,
+            raining,
+            trough,
+            crest,
+        };
         self.cache.partials.clear();
-        self.cache.partials.resize(chunks(n), [0.0; 4]);
-        self.h
-            .par_chunks_mut(CHUNK)
-            .zip(self.cache.partials.par_iter_mut())
-            .enumerate()
-            .for_each(|(c, (hs, part))| {
-                let mut hint = [0.0; 2];
-                let mut acc = [0.0; 4];
-                for (k, h) in hs.iter_mut().enumerate() {
-                    let i = c * CHUNK + k;
-                    let x = local.get(i);
-                    let r = rot * Vector3::new(x[0] as f64, x[1] as f64, x[2] as f64);
-                    let p = Point3::from(ow + r);
-                    let depth = if !wet_possible || p.y > crest {
-                        -1.0
-                    } else if p.y < trough && *h >= hmax {
-                        trough - p.y
-                    } else {
-                        surface.probe(&p, time, false, &mut hint).0
-                    };
-                    let a = areas[i] as f64;
-                    let up = if raining && a > 0.0 {
-                        let av = area_vectors.get(i);
-                        (rot * Vector3::new(av[0] as f64, av[1] as f64, av[2] as f64)).y / a
-                    } else {
-                        0.0
-                    };
-                    let in_rain = raining && rates.region.contains(&p);
-                    let scale = map.map_or(1.0, |m| m[i] as f64);
-                    let x = exchange(h, &rates, depth, scale, up, in_rain, dt);
-                    acc[0] += x.absorbed * a;
-                    acc[1] += x.rained * a;
-                    acc[2] += x.evaporated * a;
-                    acc[3] += if depth > 0.0 { 1.0 } else { 0.0 };
-                }
-                *part = acc;
-            });
+        self.cache.partials.resize(chunks(self.h.len()), [0.0; 4]);
+        // A plane's depth is called directly (inlined), any other surface
+        // through the trait object: the same arithmetic either way.
+        match surface.as_any().and_then(|s| s.downcast_ref::<Plane>()) {
+            Some(plane) if !raining => texels.run_plane(plane, &rates, &mut self.h, &mut self.cache.partials),
+            Some(plane) => texels.run(plane, &rates, &mut self.h, &mut self.cache.partials),
+            None => texels.run(surface, &rates, &mut self.h, &mut self.cache.partials),
+        }
         let mut sum = [0.0; 4];
         for p in &self.cache.partials {
             for k in 0..4 {
@@ -518,6 +495,157 @@ impl Wetting {
     /// Mutable access to the liquid texture and ledger for a shared field.
     pub(crate) fn parts_mut(&mut self) -> (&mut Vec<f64>, &mut Ledger) {
         (&mut self.h, &mut self.ledger)
+    }
+}
+
+/// Texels exchanged together (one per lane) by [`Texels::run_plane`].
+const LANES: usize = 4;
+
+/// What the per-texel exchange of one step reads besides the liquid.
+struct Texels<'a> {
+    atlas: &'a Atlas,
+    map: Option<&'a [f32]>,
+    /// Object → world rotation and the atlas origin in the world, m.
+    rot: nalgebra::Matrix3<f64>,
+    ow: Vector3<f64>,
+    time: f64,
+    dt: f64,
+    wet_possible: bool,
+    raining: bool,
+    /// Lowest and highest surface height, m (infinite when unknown).
+    trough: f64,
+    crest: f64,
+}
+
+impl Texels<'_> {
+    /// [`Texels::run`] for a plane and no rain, [`LANES`] texels at a time
+    /// (vectorized, and compiled for AVX2 where the processor has it): the
+    /// same operations per texel, and the chunk sums added texel by texel in
+    /// the same order, so the same bits.
+    fn run_plane(&self, plane: &Plane, rates: &Rates, h: &mut [f64], partials: &mut [[f64; 4]]) {
+        let wide = wide_vectors();
+        h.par_chunks_mut(CHUNK)
+            .zip(partials.par_iter_mut())
+            .enumerate()
+            .for_each(|(c, (hs, part))| {
+                #[cfg(target_arch = "x86_64")]
+                if wide {
+                    // SAFETY: the processor has AVX2 (`wide_vectors`).
+                    #[allow(unsafe_code)]
+                    unsafe {
+                        *part = self.plane_chunk_avx2(plane, rates, c, hs);
+                    }
+                    return;
+                }
+                let _ = wide;
+                *part = self.plane_chunk(plane, rates, c, hs);
+            });
+    }
+
+    /// [`Texels::plane_chunk`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn plane_chunk_avx2(&self, plane: &Plane, rates: &Rates, c: usize, hs: &mut [f64]) -> [f64; 4] {
+        self.plane_chunk(plane, rates, c, hs)
+    }
+
+    /// Chunk `c` (liquid `hs`) of [`Texels::run_plane`]; its sums.
+    #[inline(always)]
+    fn plane_chunk(&self, plane: &Plane, rates: &Rates, c: usize, hs: &mut [f64]) -> [f64; 4] {
+        let (rot, ow) = (&self.rot, &self.ow);
+        let hmax = rates.saturation;
+        let range = c * CHUNK..c * CHUNK + hs.len();
+        let [xs, ys, zs] = self.atlas.local_positions().columns(range.clone());
+        let areas = &self.atlas.areas()[range.clone()];
+        let map = self.map.map(|m| &m[range]);
+        let mut hint = [0.0; 2];
+        let mut acc = [0.0; 4];
+        for (k0, hs) in (0..hs.len()).step_by(LANES).zip(hs.chunks_mut(LANES)) {
+            // A short last group repeats its first texel in the unused
+            // lanes, whose results are dropped.
+            let lane = |l: usize| k0 + if l < hs.len() { l } else { 0 };
+            let (mut depth, mut h, mut a, mut scale) =
+                ([0.0; LANES], [0.0; LANES], [0.0; LANES], [1.0; LANES]);
+            for l in 0..LANES {
+                let k = lane(l);
+                h[l] = hs[k - k0];
+                let r = rot * Vector3::new(xs[k] as f64, ys[k] as f64, zs[k] as f64);
+                let p = Point3::from(ow + r);
+                let probed = plane.probe(&p, self.time, false, &mut hint).0;
+                depth[l] = if !self.wet_possible || p.y > self.crest {
+                    -1.0
+                } else if p.y < self.trough && h[l] >= hmax {
+                    self.trough - p.y
+                } else {
+                    probed
+                };
+                a[l] = areas[k] as f64;
+                if let Some(m) = map {
+                    scale[l] = m[k] as f64;
+                }
+            }
+            let mut x = [(0.0, 0.0, 0.0); LANES];
+            for l in 0..LANES {
+                x[l] = exchange_dry_sky(h[l], rates, depth[l], scale[l], self.dt);
+            }
+            for (l, h) in hs.iter_mut().enumerate() {
+                let (next, absorbed, evaporated) = x[l];
+                *h = next;
+                acc[0] += absorbed * a[l];
+                acc[1] += 0.0 * a[l];
+                acc[2] += evaporated * a[l];
+                acc[3] += if depth[l] > 0.0 { 1.0 } else { 0.0 };
+            }
+        }
+        acc
+    }
+
+    /// Exchanges every texel of `h` with `surface` in chunks of [`CHUNK`],
+    /// in parallel; `partials` receives each chunk's sums (absorbed, rained,
+    /// evaporated, m³, and submerged texels).
+    fn run<S: Surface + ?Sized>(&self, surface: &S, rates: &Rates, h: &mut [f64], partials: &mut [[f64; 4]]) {
+        let (rot, ow) = (&self.rot, &self.ow);
+        let hmax = rates.saturation;
+        let local = self.atlas.local_positions();
+        let area_vectors = self.atlas.area_vectors();
+        let areas = self.atlas.areas();
+        h.par_chunks_mut(CHUNK)
+            .zip(partials.par_iter_mut())
+            .enumerate()
+            .for_each(|(c, (hs, part))| {
+                let range = c * CHUNK..c * CHUNK + hs.len();
+                let [xs, ys, zs] = local.columns(range.clone());
+                let areas = &areas[range];
+                let mut hint = [0.0; 2];
+                let mut acc = [0.0; 4];
+                for (k, h) in hs.iter_mut().enumerate() {
+                    let i = c * CHUNK + k;
+                    let r = rot * Vector3::new(xs[k] as f64, ys[k] as f64, zs[k] as f64);
+                    let p = Point3::from(ow + r);
+                    let depth = if !self.wet_possible || p.y > self.crest {
+                        -1.0
+                    } else if p.y < self.trough && *h >= hmax {
+                        self.trough - p.y
+                    } else {
+                        surface.probe(&p, self.time, false, &mut hint).0
+                    };
+                    let a = areas[k] as f64;
+                    let up = if self.raining && a > 0.0 {
+                        let av = area_vectors.get(i);
+                        (rot * Vector3::new(av[0] as f64, av[1] as f64, av[2] as f64)).y / a
+                    } else {
+                        0.0
+                    };
+                    let in_rain = self.raining && rates.region.contains(&p);
+                    let scale = self.map.map_or(1.0, |m| m[i] as f64);
+                    let x = exchange(h, rates, depth, scale, up, in_rain, self.dt);
+                    acc[0] += x.absorbed * a;
+                    acc[1] += x.rained * a;
+                    acc[2] += x.evaporated * a;
+                    acc[3] += if depth > 0.0 { 1.0 } else { 0.0 };
+                }
+                *part = acc;
+            });
     }
 }
 
