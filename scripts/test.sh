@@ -23,6 +23,8 @@ cargo clippy --manifest-path fuzz/Cargo.toml --all-targets --locked -- -D warnin
 cargo test --workspace --all-features --locked
 # The API documentation builds without a warning (intra-doc links resolve).
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --all-features --locked
+# The README's program, pasted into a new project, builds and runs.
+bash scripts/paste_check.sh
 # Every crate packed as it would be published builds on its own, the GPU
 # kernels of the packed crates included.
 bash scripts/package.sh
