@@ -1,3 +1,5 @@
+//! A boat of solid pine floats on calm water; after 10 s it prints its draft.
+
 use rapier3d::prelude::*;
 use soak::prelude::*;
 
