@@ -30,29 +30,7 @@ fn baked(mesh: &Mesh, n: u32) -> (Atlas, MassProperties) {
 
 /// The two-wave swell of `buoy_on_waves.toml`.
 fn swell() -> Water {
-    Water::new(
-        Gerstner::new(
-            0.0,
-            vec![
-                GerstnerWave {
-                    amplitude: 0.25,
-                    wavelength: 9.0,
-                    direction_deg: 0.0,
-                    steepness: 0.6,
-                    phase: 0.0,
-                },
-                GerstnerWave {
-                    amplitude: 0.10,
-                    wavelength: 4.0,
-                    direction_deg: 35.0,
-                    steepness: 0.4,
-                    phase: 1.0,
-                },
-            ],
-            9.80665,
-        )
-        .unwrap(),
-    )
+    Water::new(Gerstner::new(0.0, GerstnerWave::SWELL.to_vec(), 9.80665).unwrap())
 }
 
 fn hydro(c: &mut Criterion) {

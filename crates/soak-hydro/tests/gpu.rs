@@ -208,22 +208,7 @@ fn swell() -> Water {
 }
 
 fn swell_waves() -> Vec<GerstnerWave> {
-    vec![
-        GerstnerWave {
-            amplitude: 0.25,
-            wavelength: 9.0,
-            direction_deg: 0.0,
-            steepness: 0.6,
-            phase: 0.0,
-        },
-        GerstnerWave {
-            amplitude: 0.10,
-            wavelength: 4.0,
-            direction_deg: 35.0,
-            steepness: 0.4,
-            phase: 1.0,
-        },
-    ]
+    GerstnerWave::SWELL.to_vec()
 }
 
 fn height_field() -> Water {

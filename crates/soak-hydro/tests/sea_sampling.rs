@@ -12,22 +12,7 @@ use soak_hydro::{
 
 /// The two-wave swell of `data/scenes/buoy_on_waves.toml`.
 fn swell() -> Water {
-    let waves = vec![
-        GerstnerWave {
-            amplitude: 0.25,
-            wavelength: 9.0,
-            direction_deg: 0.0,
-            steepness: 0.6,
-            phase: 0.0,
-        },
-        GerstnerWave {
-            amplitude: 0.10,
-            wavelength: 4.0,
-            direction_deg: 35.0,
-            steepness: 0.4,
-            phase: 1.0,
-        },
-    ];
+    let waves = GerstnerWave::SWELL.to_vec();
     Water::new(Gerstner::new(0.0, waves, 9.80665).unwrap())
 }
 

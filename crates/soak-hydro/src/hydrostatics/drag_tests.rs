@@ -274,29 +274,7 @@ fn wrench_difference(got: &Wrench, expected: &Wrench, want: &DragSums) -> f64 {
 /// cut by the swell, moving and spinning.
 #[test]
 fn sampled_sea_drag_matches_the_reference() {
-    let swell = Water::new(
-        Gerstner::new(
-            0.0,
-            vec![
-                GerstnerWave {
-                    amplitude: 0.25,
-                    wavelength: 9.0,
-                    direction_deg: 0.0,
-                    steepness: 0.6,
-                    phase: 0.0,
-                },
-                GerstnerWave {
-                    amplitude: 0.1,
-                    wavelength: 4.0,
-                    direction_deg: 35.0,
-                    steepness: 0.4,
-                    phase: 1.0,
-                },
-            ],
-            9.81,
-        )
-        .unwrap(),
-    );
+    let swell = Water::new(Gerstner::new(0.0, GerstnerWave::SWELL.to_vec(), 9.81).unwrap());
     let drag = Drag {
         coefficient: 0.8,
         linear: 20.0,

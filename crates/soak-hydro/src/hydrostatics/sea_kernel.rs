@@ -423,19 +423,7 @@ mod tests {
     use crate::water::{Gerstner, GerstnerWave, Surface};
 
     fn sea() -> Gerstner {
-        let wave = |amplitude, wavelength, direction_deg, steepness, phase| GerstnerWave {
-            amplitude,
-            wavelength,
-            direction_deg,
-            steepness,
-            phase,
-        };
-        Gerstner::new(
-            0.0,
-            vec![wave(0.25, 9.0, 0.0, 0.6, 0.0), wave(0.1, 4.0, 35.0, 0.4, 1.0)],
-            9.81,
-        )
-        .unwrap()
+        Gerstner::new(0.0, GerstnerWave::SWELL.to_vec(), 9.81).unwrap()
     }
 
     /// The plain per-texel sums the general path adds, over `range`.

@@ -25,6 +25,27 @@ pub struct GerstnerWave {
 }
 
 impl GerstnerWave {
+    /// A moderate two-wave swell: 0.25 m over 9 m along +x and 0.10 m over
+    /// 4 m at 35° to it, steepness 0.6 and 0.4. The sea of the
+    /// `buoy_on_waves` scene, and of soak's sea benches and tests:
+    /// `Gerstner::new(level, GerstnerWave::SWELL.to_vec(), gravity)`.
+    pub const SWELL: [GerstnerWave; 2] = [
+        GerstnerWave {
+            amplitude: 0.25,
+            wavelength: 9.0,
+            direction_deg: 0.0,
+            steepness: 0.6,
+            phase: 0.0,
+        },
+        GerstnerWave {
+            amplitude: 0.10,
+            wavelength: 4.0,
+            direction_deg: 35.0,
+            steepness: 0.4,
+            phase: 1.0,
+        },
+    ];
+
     /// Wavenumber `k = 2π/λ`, 1/m.
     pub fn wavenumber(&self) -> f64 {
         std::f64::consts::TAU / self.wavelength

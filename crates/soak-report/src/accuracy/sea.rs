@@ -47,22 +47,7 @@ pub struct SeaRow {
 
 /// The two-wave swell of `data/scenes/buoy_on_waves.toml`.
 pub fn swell() -> Result<Water, AccuracyError> {
-    let waves = vec![
-        GerstnerWave {
-            amplitude: 0.25,
-            wavelength: 9.0,
-            direction_deg: 0.0,
-            steepness: 0.6,
-            phase: 0.0,
-        },
-        GerstnerWave {
-            amplitude: 0.10,
-            wavelength: 4.0,
-            direction_deg: 35.0,
-            steepness: 0.4,
-            phase: 1.0,
-        },
-    ];
+    let waves = GerstnerWave::SWELL.to_vec();
     let sea =
         Gerstner::new(0.0, waves, soak_hydro::STANDARD_GRAVITY).map_err(soak_hydro::HydroError::from)?;
     Ok(Water::new(sea))
