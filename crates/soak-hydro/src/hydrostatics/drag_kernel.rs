@@ -157,10 +157,10 @@ pub(crate) fn add_drag_ranges(
 }
 
 /// Texels the drag kernel takes side by side.
-const LANES: usize = 4;
+pub(super) const LANES: usize = 4;
 
 /// Lanes of f64, one per texel of a group.
-type Lanes = [f64; LANES];
+pub(super) type Lanes = [f64; LANES];
 
 /// The positions and area vectors of the atlas' texels.
 struct DragColumns<'a> {
@@ -435,13 +435,13 @@ fn drag_lanes_generic<const FMA: bool, const LINEAR: bool, const QUADRATIC: bool
 
 /// Lanes from a function of the lane.
 #[inline(always)]
-fn lanes(f: impl FnMut(usize) -> f64) -> Lanes {
+pub(super) fn lanes(f: impl FnMut(usize) -> f64) -> Lanes {
     std::array::from_fn(f)
 }
 
 /// `a b + c`, fused where `FMA`.
 #[inline(always)]
-fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
+pub(super) fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
     if FMA { a.mul_add(b, c) } else { a * b + c }
 }
 
@@ -510,12 +510,21 @@ fn drag_group<const FMA: bool, const LINEAR: bool, const QUADRATIC: bool>(
     } else if !any {
         return;
     }
+    add_iso_lanes::<FMA>(&mut acc.iso, &s, x);
+    if LINEAR {
+        add_rank1_lanes::<FMA>(&mut acc.gg, &w, &h);
+    }
+}
+
+/// Adds `s (1, x, x xᵀ)` lane by lane to [`DragAcc::iso`]'s sums (in its
+/// order), multiply-adds fused where `FMA`.
+#[inline(always)]
+pub(super) fn add_iso_lanes<const FMA: bool>(iso: &mut [Lanes; 10], s: &Lanes, x: &[Lanes; 3]) {
     let sr = [
         lanes(|k| s[k] * x[0][k]),
         lanes(|k| s[k] * x[1][k]),
         lanes(|k| s[k] * x[2][k]),
     ];
-    let iso = &mut acc.iso;
     for k in 0..LANES {
         iso[0][k] += s[k];
         iso[1][k] += sr[0][k];
@@ -528,16 +537,20 @@ fn drag_group<const FMA: bool, const LINEAR: bool, const QUADRATIC: bool>(
         iso[8][k] = madd::<FMA>(sr[1][k], x[2][k], iso[8][k]);
         iso[9][k] = madd::<FMA>(sr[2][k], x[0][k], iso[9][k]);
     }
-    if LINEAR {
-        let mut m = 0;
-        for i in 0..6 {
-            let wh = lanes(|k| w[k] * h[i][k]);
-            for hj in &h[i..] {
-                for k in 0..LANES {
-                    acc.gg[m][k] = madd::<FMA>(wh[k], hj[k], acc.gg[m][k]);
-                }
-                m += 1;
+}
+
+/// Adds `w h hᵀ` lane by lane to [`DragAcc::gg`]'s upper triangle (row by
+/// row), multiply-adds fused where `FMA`.
+#[inline(always)]
+pub(super) fn add_rank1_lanes<const FMA: bool>(gg: &mut [Lanes; 21], w: &Lanes, h: &[Lanes; 6]) {
+    let mut m = 0;
+    for i in 0..6 {
+        let wh = lanes(|k| w[k] * h[i][k]);
+        for hj in &h[i..] {
+            for k in 0..LANES {
+                gg[m][k] = madd::<FMA>(wh[k], hj[k], gg[m][k]);
             }
+            m += 1;
         }
     }
 }

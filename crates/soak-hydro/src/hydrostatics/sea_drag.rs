@@ -17,14 +17,10 @@ use std::ops::Range;
 use nalgebra::{Matrix3, Vector3, Vector6};
 use soak_bake::Atlas;
 
+use super::drag_kernel::{LANES, Lanes, add_iso_lanes, add_rank1_lanes, lanes, madd};
 use super::options::Drag;
 use super::sums::{DragAcc, DragSums};
 use crate::water::SurfacePatch;
-
-/// Texels taken side by side.
-const LANES: usize = 4;
-
-type Lanes = [f64; LANES];
 
 /// What every texel of an evaluation shares.
 #[derive(Clone, Copy, Debug)]
@@ -256,18 +252,6 @@ pub(crate) fn sea_drag_texels(p: &SeaDragParams, texels: &[[Vector3<f64>; 3]]) -
     sums.finish()
 }
 
-/// `a b + c`, fused where `FMA`.
-#[inline(always)]
-fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
-    if FMA { a.mul_add(b, c) } else { a * b + c }
-}
-
-/// Lanes from a function of the lane.
-#[inline(always)]
-fn lanes(f: impl FnMut(usize) -> f64) -> Lanes {
-    std::array::from_fn(f)
-}
-
 /// Adds one group of texels side by side (position, area vector, fluid
 /// velocity, object axes; a texel of no area adds zeros).
 #[inline(always)]
@@ -309,24 +293,7 @@ fn add_group<const FMA: bool>(
                 wl[k] = if some { p.lin / area[k] } else { 0.0 };
             }
         }
-        let sr = [
-            lanes(|k| s[k] * x[0][k]),
-            lanes(|k| s[k] * x[1][k]),
-            lanes(|k| s[k] * x[2][k]),
-        ];
-        let iso = &mut sums.iso;
-        for k in 0..LANES {
-            iso[0][k] += s[k];
-            iso[1][k] += sr[0][k];
-            iso[2][k] += sr[1][k];
-            iso[3][k] += sr[2][k];
-            iso[4][k] = madd::<FMA>(sr[0][k], x[0][k], iso[4][k]);
-            iso[5][k] = madd::<FMA>(sr[1][k], x[1][k], iso[5][k]);
-            iso[6][k] = madd::<FMA>(sr[2][k], x[2][k], iso[6][k]);
-            iso[7][k] = madd::<FMA>(sr[0][k], x[1][k], iso[7][k]);
-            iso[8][k] = madd::<FMA>(sr[1][k], x[2][k], iso[8][k]);
-            iso[9][k] = madd::<FMA>(sr[2][k], x[0][k], iso[9][k]);
-        }
+        add_iso_lanes::<FMA>(&mut sums.iso, &s, x);
         // s u and s x × u.
         let su = [
             lanes(|k| s[k] * u[0][k]),
@@ -343,16 +310,7 @@ fn add_group<const FMA: bool>(
             b[5][k] += x[0][k] * su[1][k] - x[1][k] * su[0][k];
         }
         if p.lin > 0.0 {
-            let mut m = 0;
-            for i in 0..6 {
-                let wh = lanes(|k| wl[k] * h[i][k]);
-                for hj in &h[i..] {
-                    for k in 0..LANES {
-                        sums.gg[m][k] = madd::<FMA>(wh[k], hj[k], sums.gg[m][k]);
-                    }
-                    m += 1;
-                }
-            }
+            add_rank1_lanes::<FMA>(&mut sums.gg, &wl, &h);
             let wau = lanes(|k| wl[k] * au[k]);
             for (j, hj) in h.iter().enumerate() {
                 for k in 0..LANES {
