@@ -1,4 +1,22 @@
 //! `soak`: bake meshes, measure hydrostatics and accuracy, run scenes.
+//!
+//! The command a user runs from a terminal; every number it prints comes
+//! from the library crates (`soak_bake`, `soak_hydro`, `soak_rapier`,
+//! `soak_report`, …), which it only calls and formats. Its families:
+//!
+//! - `soak demo`: the thesis' Chapter 7 cases side by side, with plots,
+//!   CSV and rendered stills;
+//! - `soak bake MESH`, `soak hydro MESH`: a mesh's atlas and its
+//!   hydrostatics at a pose beside the exact references;
+//! - `soak accuracy`, `soak stress`, `soak bench`: the accuracy report
+//!   (the thesis' Fig. 7.10 extended), the stability matrix and the
+//!   scaling bench;
+//! - `soak simulate SCENE.toml`, `soak render SCENE.toml`: scene files run
+//!   headless, and rendered;
+//! - `soak segment MESH`, `soak sweep`: a hull's liquid graph, and the wet
+//!   shading's material sweep.
+//!
+//! `soak --help` lists every command; `soak COMMAND --help` its options.
 
 mod accuracy;
 mod bake;
