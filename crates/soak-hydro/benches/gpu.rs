@@ -16,10 +16,11 @@ use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
-use soak_bake::{Atlas, BakeOptions, builtin};
-use soak_hydro::gpu::{GpuBody, GpuHydro, adapter_label, headless_device, is_software};
+use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
+use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuHydro, adapter_label, headless_device, is_software};
 use soak_hydro::{
-    BodyState, Drag, Gerstner, GerstnerWave, HydroOptions, MassModel, SeaSampling, Water, evaluate,
+    BodyState, Drag, Gerstner, GerstnerWave, HydroOptions, MassModel, MassProperties, SeaSampling, Water,
+    evaluate,
 };
 
 /// The two-wave swell of `data/scenes/buoy_on_waves.toml`.
@@ -39,6 +40,16 @@ fn state(k: usize) -> BodyState {
         linear_velocity: Vector3::new(0.5, -0.2, 0.1),
         angular_velocity: Vector3::new(0.1, 0.3, -0.2),
     }
+}
+
+/// `mesh` baked at `n`², a solid of half the water's density, uploaded.
+fn uploaded(hydro: &mut GpuHydro, mesh: &Mesh, n: u32) -> (Atlas, MassProperties, GpuAtlasId) {
+    let atlas = Atlas::bake(mesh, BakeOptions::square(n)).unwrap();
+    let mass = MassModel::Solid { density: 500.0 }
+        .mass_properties(&atlas)
+        .unwrap();
+    let id = hydro.upload(&atlas).unwrap();
+    (atlas, mass, id)
 }
 
 fn gpu(c: &mut Criterion) {
@@ -77,11 +88,7 @@ fn gpu(c: &mut Criterion) {
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(3));
     for n in [512u32, 1024, 2048] {
-        let atlas = Atlas::bake(&mesh, BakeOptions::square(n)).unwrap();
-        let mass = MassModel::Solid { density: 500.0 }
-            .mass_properties(&atlas)
-            .unwrap();
-        let id = hydro.upload(&atlas).unwrap();
+        let (atlas, mass, id) = uploaded(&mut hydro, &mesh, n);
         let s = state(1);
         g.throughput(Throughput::Elements(atlas.len() as u64));
         g.bench_with_input(BenchmarkId::new("gpu_buoyancy", n), &n, |b, _| {
@@ -106,11 +113,7 @@ fn gpu(c: &mut Criterion) {
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(3));
     for n in [512u32, 1024] {
-        let atlas = Atlas::bake(&mesh, BakeOptions::square(n)).unwrap();
-        let mass = MassModel::Solid { density: 500.0 }
-            .mass_properties(&atlas)
-            .unwrap();
-        let id = hydro.upload(&atlas).unwrap();
+        let (atlas, mass, id) = uploaded(&mut hydro, &mesh, n);
         let s = state(1);
         g.throughput(Throughput::Elements(atlas.len() as u64));
         g.bench_with_input(BenchmarkId::new("gpu_swell_sampled_drag", n), &n, |b, _| {

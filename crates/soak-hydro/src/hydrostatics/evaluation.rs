@@ -18,31 +18,15 @@ use crate::error::{HydroError, WaterError};
 use crate::mass::{CHUNK, MassProperties, chunked_sum};
 use crate::water::{MAX_PATCH_NODES, Surface, SurfaceKind, SurfacePatch, Water};
 
-/// Buoyancy and drag sums of one pass.
+/// Buoyancy and drag sums of one pass: the drag's as [`TexelDrag`] (world
+/// axes, any surface) or [`SeaDragSums`] (object axes, a sampled sea).
 #[derive(Clone, Copy, Default)]
-struct Both {
+struct Both<D> {
     b: BuoyancySums,
-    d: TexelDrag,
+    d: D,
 }
 
-impl std::ops::Add for Both {
-    type Output = Self;
-    fn add(self, o: Self) -> Self {
-        Self {
-            b: self.b + o.b,
-            d: self.d + o.d,
-        }
-    }
-}
-
-/// Buoyancy and drag sums of one pass under a sampled sea.
-#[derive(Clone, Copy, Default)]
-struct SeaBoth {
-    b: BuoyancySums,
-    d: SeaDragSums,
-}
-
-impl std::ops::Add for SeaBoth {
+impl<D: std::ops::Add<Output = D>> std::ops::Add for Both<D> {
     type Output = Self;
     fn add(self, o: Self) -> Self {
         Self {
@@ -243,12 +227,12 @@ fn general_sums<S: TexelSurface>(
     t: f64,
     options: &HydroOptions,
     surface: &S,
-) -> Both {
+) -> Both<TexelDrag> {
     // A texel above the highest the surface reaches is dry without a read.
     let top = water.surface.height_bounds(t).map_or(f64::INFINITY, |(_, hi)| hi);
     let archimedes = options.buoyancy == BuoyancyMode::Archimedes;
-    chunked_sum(atlas.len(), Both::default(), |range| {
-        let mut s = Both::default();
+    chunked_sum(atlas.len(), Both::<TexelDrag>::default(), |range| {
+        let mut s = Both::<TexelDrag>::default();
         // Neighbouring texels warm-start each other.
         let mut hint = S::Hint::default();
         for i in range {
@@ -326,12 +310,12 @@ fn patch_sums(
         ow: frame.ow,
         patch,
     };
-    let both = chunked_sum(atlas.len(), SeaBoth::default(), |range| {
+    let both = chunked_sum(atlas.len(), Both::<SeaDragSums>::default(), |range| {
         let mut s = BuoyancySums::default();
         let mut depths = [0.0; CHUNK];
         let depths = &mut depths[..range.len()];
         add_sea_range(&mut s, atlas, range.clone(), &sea, Some(depths));
-        SeaBoth {
+        Both {
             b: s,
             d: sea_drag_range(atlas, range, depths, &drag_frame),
         }
