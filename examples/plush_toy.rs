@@ -22,8 +22,8 @@ use soak::bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak::graph::segment::{SegmentOptions, segment};
 use soak::graph::{Flooding, FlowOptions, LiquidGraph, Permeability, SegmentGraphOptions, TexelNodes};
 use soak::hydro::{Drag, MassModel, Water};
-use soak::rapier::hull::freeboard;
-use soak::rapier::{BodyDesc, Effects, ForceGenerator, convert};
+use soak::rapier::hull::highest_above_water;
+use soak::rapier::{BodyDesc, Effects, ForceGenerator};
 
 /// A teddy-like toy, star-shaped about its body centre: the smooth union
 /// (p-norm of radial functions) of a body sphere and offset spheres whose
@@ -160,21 +160,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("dropped from 0.5 m, dry mass {dry:.2} kg");
     println!(
         "{:>6}  {:>9}  {:>8}  {:>9}  {:>6}  segments (% full)",
-        "t (s)", "water l", "mass kg", "freeboard", "tilt°"
+        "t (s)", "water l", "mass kg", "top above", "tilt°"
     );
     let steps = (seconds * 30.0) as usize;
     for step in 0..=steps {
         if step % 300 == 0 {
             let t = soak.time();
-            let pose = convert::pose(world.bodies[handle].position());
+            let pose = *world.bodies[handle].position();
             let f = soak.flooding(id).ok_or("no flooding")?;
             println!(
                 "{t:>6.0}  {:>9.3}  {:>8.2}  {:>9.3}  {:>6.1}  {}",
                 1e3 * f.inside(),
                 soak.body(id).map_or(0.0, |b| b.mass_properties().mass),
-                freeboard(&atlas, &pose, soak.water(), t),
-                (pose.rotation * Vector3::y())
-                    .y
+                highest_above_water(&atlas, &pose, soak.water(), t),
+                f64::from((pose.rotation * Vector::Y).y)
                     .clamp(-1.0, 1.0)
                     .acos()
                     .to_degrees(),

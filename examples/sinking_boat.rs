@@ -15,28 +15,30 @@
 //! `soak_graph::Permeability`). Each step the liquid graph advances with the
 //! body's pose and its water becomes extra mass, while the buoyancy stays
 //! the hull's enclosed volume.
+//!
+//! The "top above" column is the height of the hull's highest point above
+//! the water ([`highest_above_water`]). It rises while the boat floods: the
+//! water runs to the holed end, the boat trims that way and lifts its other
+//! end. The boat has sunk when it falls below zero, the whole hull under
+//! water; `soak demo` reports its sinking boats' times by the same measure.
 
 use std::io::Write;
 
-use nalgebra::Point3;
 use rapier3d::prelude::*;
 use soak::bake::{Atlas, BakeOptions, builtin};
 use soak::graph::{Flooding, FlowOptions, Permeability, load_graph};
 use soak::hydro::{Drag, MassModel, Water};
-use soak::rapier::hull::{freeboard, heel_degrees, pitch_degrees};
-use soak::rapier::{BodyDesc, Effects, ForceGenerator, convert};
+use soak::rapier::hull::{heel_degrees, highest_above_water, pitch_degrees};
+use soak::rapier::{BodyDesc, Effects, ForceGenerator};
 
 /// Where the hull is holed: sphere centres (object space, m) and radius (m).
-fn holes(stern: bool) -> (Vec<Point3<f64>>, f64) {
+fn holes(stern: bool) -> (Vec<[f64; 3]>, f64) {
     if stern {
         // Both sides of the stern, below the waterline.
-        (
-            vec![Point3::new(-1.6, 0.1, 0.2), Point3::new(-1.6, 0.1, -0.2)],
-            0.12,
-        )
+        (vec![[-1.6, 0.1, 0.2], [-1.6, 0.1, -0.2]], 0.12)
     } else {
         // Forward, starboard (+z), below the waterline.
-        (vec![Point3::new(1.5, 0.15, 0.125)], 0.15)
+        (vec![[1.5, 0.15, 0.125]], 0.15)
     }
 }
 
@@ -142,7 +144,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
             writeln!(
                 f,
-                "t_s,inside_m3,mass_kg,pitch_deg,heel_deg,freeboard_m,stern,aft,midship,fore,bow"
+                "t_s,inside_m3,mass_kg,pitch_deg,heel_deg,top_above_water_m,stern,aft,midship,fore,bow"
             )?;
             Some(f)
         }
@@ -150,7 +152,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     println!(
         "{:>6}  {:>9}  {:>6}  {:>7}  {:>7}  {:>9}  compartments (% full: stern … bow)",
-        "t (s)", "water m³", "%", "mass kg", "pitch°", "freeboard"
+        "t (s)", "water m³", "%", "mass kg", "pitch°", "top above"
     );
     let dt = world.integration_parameters.dt as f64;
     let steps = (args.seconds / dt).round() as usize;
@@ -166,8 +168,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             println!("t = {t:.1} s: hole punched ({covered} texels)");
             punched = true;
         }
-        let pose = convert::pose(world.bodies[handle].position());
-        let board = freeboard(&atlas, &pose, soak.water(), t);
+        let pose = *world.bodies[handle].position();
+        let top = highest_above_water(&atlas, &pose, soak.water(), t);
         let flooding = soak.flooding(id).ok_or("no flooding")?;
         let inside = flooding.inside();
         let mass = soak.body(id).map_or(0.0, |b| b.mass_properties().mass);
@@ -175,7 +177,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         if let Some(f) = &mut csv {
             writeln!(
                 f,
-                "{t:.4},{inside:.6},{mass:.3},{:.4},{:.4},{board:.4},{}",
+                "{t:.4},{inside:.6},{mass:.3},{:.4},{:.4},{top:.4},{}",
                 pitch_degrees(&pose),
                 heel_degrees(&pose),
                 fills
@@ -185,9 +187,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     .join(",")
             )?;
         }
-        if step % 150 == 0 || (board < 0.0 && sunk_at.is_none()) {
+        if step % 150 == 0 || (top < 0.0 && sunk_at.is_none()) {
             println!(
-                "{t:>6.1}  {inside:>9.4}  {:>6.1}  {mass:>7.0}  {:>7.2}  {board:>9.3}  {}",
+                "{t:>6.1}  {inside:>9.4}  {:>6.1}  {mass:>7.0}  {:>7.2}  {top:>9.3}  {}",
                 100.0 * inside / capacity,
                 pitch_degrees(&pose),
                 fills
@@ -197,7 +199,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     .join(" ")
             );
         }
-        if board < 0.0 {
+        if top < 0.0 {
             sunk_at = Some(t);
             break;
         }

@@ -480,7 +480,7 @@ fn balloon(seconds: f64, out: &Path) -> anyhow::Result<String> {
 /// bow first and stern first.
 fn sinking_boats(seconds: f64, out: &Path) -> anyhow::Result<String> {
     use soak_graph::{Flooding, FlowOptions, Format, Permeability, parse_graph};
-    use soak_rapier::hull::pitch_degrees;
+    use soak_rapier::hull::{highest_above_water, pitch_degrees};
     let graph_text = include_str!("../graphs/boat.toml");
     let mesh = builtin::boat(4.0, 1.2, 0.6);
     let atlas = Atlas::bake(&mesh, BakeOptions::square(128))?;
@@ -546,7 +546,7 @@ fn sinking_boats(seconds: f64, out: &Path) -> anyhow::Result<String> {
         let mut row = vec![world.soak.time()];
         let pitch: Vec<f64> = handles
             .iter()
-            .map(|h| pitch_degrees(&convert::pose(world.world.bodies[*h].position())))
+            .map(|h| pitch_degrees(world.world.bodies[*h].position()))
             .collect();
         for &id in &boats {
             row.push(world.soak.flooding(id).map_or(0.0, |f| f.inside()));
@@ -556,9 +556,15 @@ fn sinking_boats(seconds: f64, out: &Path) -> anyhow::Result<String> {
         }
         row.extend(&pitch);
         for (k, h) in handles.iter().enumerate() {
-            // Sunk: the deck is under water.
-            let deck = world.world.bodies[*h].translation().y as f64 + 0.6 * 0.8;
-            if sunk[k].is_none() && deck < -0.5 {
+            // Sunk: the whole hull under water (as the `sinking_boat`
+            // example has it).
+            let top = highest_above_water(
+                &atlas,
+                world.world.bodies[*h].position(),
+                world.soak.water(),
+                world.soak.time(),
+            );
+            if sunk[k].is_none() && top < 0.0 {
                 sunk[k] = Some(world.soak.time() - punch);
             }
         }

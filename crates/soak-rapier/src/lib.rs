@@ -7,7 +7,8 @@ mod generator;
 mod gpu;
 mod simulation;
 
-// Public: free functions between nalgebra and Rapier's types, named as `convert::pose(..)`.
+// Public: free functions between nalgebra and Rapier's types, named as `convert::pose(..)`:
+// for code that reads soak's f64 core types; the generator's own API speaks Rapier's types.
 pub mod convert;
 // Public: free functions measuring a hull, named as `hull::pitch_degrees(..)`.
 pub mod hull;

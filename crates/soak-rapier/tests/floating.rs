@@ -436,5 +436,15 @@ fn draft_and_submerged_fraction_read_the_pose_and_the_last_step() {
         b.submerged_fraction()
     );
     assert!((b.submerged_volume() - 0.5 * b.volume()).abs() < 0.02 * b.volume());
-    assert!(b.center_of_buoyancy().y < 0.0);
+    // Rapier's types back: the centre of buoyancy of a sphere centred at the
+    // surface, 3r/8 below its centre; after the first step, the force handed
+    // to Rapier is the buoyancy of the half under water, straight up.
+    let cb = b.center_of_buoyancy();
+    assert!(cb.x.abs() < 1e-3 && cb.z.abs() < 1e-3, "{cb}");
+    assert!((cb.y + 3.0 / 16.0).abs() < 5e-3, "{cb}");
+    let f = b.applied_force();
+    let half = 1000.0 * 9.81 * 0.5 * b.volume();
+    assert!(((f64::from(f.y) - half) / half).abs() < 0.03, "{f} vs {half}");
+    assert!(f.x.abs() < 1e-3 * f.y && f.z.abs() < 1e-3 * f.y, "{f}");
+    assert!(b.applied_torque().length() < 1e-3 * f.y, "{}", b.applied_torque());
 }

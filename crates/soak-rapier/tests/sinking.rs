@@ -18,8 +18,8 @@ use soak_graph::{
     Flooding, FlowOptions, LiquidGraph, Permeability, SegmentGraphOptions, TexelNodes, load_graph,
 };
 use soak_hydro::{Drag, MassModel, Water};
-use soak_rapier::hull::{freeboard, pitch_degrees};
-use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakId, convert};
+use soak_rapier::hull::{highest_above_water, pitch_degrees};
+use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakId};
 
 const DT: f32 = 1.0 / 30.0;
 const HULL_AREAL_DENSITY: f64 = 40.0;
@@ -124,7 +124,7 @@ fn run(hole: (&[[f64; 3]], f64), kappa: f64, seconds: f64) -> Run {
     let steps = (seconds / DT as f64).round() as usize;
     for _ in 0..steps {
         let t = b.soak.time();
-        let pose = convert::pose(b.world.bodies[b.handle].position());
+        let pose = *b.world.bodies[b.handle].position();
         if (t - PUNCH).abs() < 0.5 * DT as f64 && kappa > 0.0 {
             let p = b.soak.flooding_mut(b.id).unwrap().permeability_mut().unwrap();
             for c in hole.0 {
@@ -133,7 +133,7 @@ fn run(hole: (&[[f64; 3]], f64), kappa: f64, seconds: f64) -> Run {
             }
             out.pitch_at_punch = pitch_degrees(&pose);
         }
-        let board = freeboard(&b.atlas, &pose, b.soak.water(), t);
+        let board = highest_above_water(&b.atlas, &pose, b.soak.water(), t);
         out.lowest_freeboard = out.lowest_freeboard.min(board);
         let f = b.soak.flooding(b.id).unwrap();
         let inside = f.inside();

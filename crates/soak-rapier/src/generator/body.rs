@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use nalgebra::Point3;
+use rapier3d::math::Vector;
 use rapier3d::prelude::RigidBodyHandle;
 use soak_bake::Atlas;
 use soak_graph::Flooding;
@@ -88,9 +88,19 @@ impl SoakBody {
     pub fn forces(&self) -> &HydroForces {
         &self.forces
     }
-    /// The force and torque handed to Rapier at the last step, world frame.
+    /// The force and torque handed to Rapier at the last step, world frame
+    /// (N and N·m about the centre of mass; f64, as soak summed them).
     pub fn applied(&self) -> &Wrench {
         &self.applied
+    }
+    /// The force handed to Rapier at the last step, world frame, N.
+    pub fn applied_force(&self) -> Vector {
+        crate::convert::to_vector(&self.applied.force)
+    }
+    /// The torque about the centre of mass handed to Rapier at the last
+    /// step, world frame, N·m.
+    pub fn applied_torque(&self) -> Vector {
+        crate::convert::to_vector(&self.applied.torque)
     }
     /// Its volume under water at the last step, m³ (0 when dry or skipped
     /// above the crests).
@@ -111,9 +121,10 @@ impl SoakBody {
         self.shape.volume
     }
     /// Its centre of buoyancy at the last step, world, m (its centre of
-    /// mass when dry).
-    pub fn center_of_buoyancy(&self) -> Point3<f64> {
-        self.forces.center_of_buoyancy
+    /// mass when dry); in f64 as soak computed it:
+    /// [`forces()`](Self::forces)`.center_of_buoyancy`.
+    pub fn center_of_buoyancy(&self) -> Vector {
+        crate::convert::point_to_vector(&self.forces.center_of_buoyancy)
     }
     /// Steps at which the body was above the highest crest and skipped.
     pub fn dry_skips(&self) -> u64 {

@@ -217,8 +217,8 @@ impl ForceGenerator {
     }
 
     /// Punches a hole in a flooding body's hull: the wall's permeability
-    /// becomes `kappa` (m) within `radius` (m) of `centre` (local frame,
-    /// m). Returns the texels it covers; 0 for a sealed liquid graph, which
+    /// becomes `kappa` (m) within `radius` (m) of `centre` (the mesh's own
+    /// frame, m: `[x, y, z]` or a point). Returns the texels it covers; 0 for a sealed liquid graph, which
     /// has no wall ([`Flooding::sealed`]).
     ///
     /// # Errors
@@ -227,10 +227,11 @@ impl ForceGenerator {
     pub fn punch(
         &mut self,
         id: SoakId,
-        centre: Point3<f64>,
+        centre: impl Into<Point3<f64>>,
         radius: f64,
         kappa: f64,
     ) -> Result<usize, SoakError> {
+        let centre = centre.into();
         let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
         let flooding = b
             .effects

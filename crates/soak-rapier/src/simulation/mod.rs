@@ -161,8 +161,7 @@ impl Simulation {
         let t = self.soak.time();
         for (id, hole, punched) in self.holes.iter_mut() {
             if !*punched && t >= hole.at {
-                self.soak
-                    .punch(*id, nalgebra::Point3::from(hole.centre), hole.radius, hole.kappa)?;
+                self.soak.punch(*id, hole.centre, hole.radius, hole.kappa)?;
                 *punched = true;
             }
         }
