@@ -4,7 +4,7 @@
 //! and the per-triangle baseline; and on a Gerstner sea, per texel, in
 //! Archimedes mode (which also takes the surface's slope for its torque)
 //! and in pressure mode, and on the two-wave swell of `buoy_on_waves.toml`
-//! sampled (the default) and read exactly; the sphere moving with drag,
+//! sampled (the default) and read exactly, and tiled; the sphere moving with drag,
 //! per texel and tiled, and on the swell (sampled) with and without drag,
 //! at 1024² and 128²; the boat at 1024², per texel and tiled; the sphere
 //! at 2048², beyond the cache.
@@ -117,6 +117,10 @@ fn hydro(c: &mut Criterion) {
             b.iter(|| evaluate(&atlas, &swell, &state, &mass, 0.0, &o).unwrap())
         });
     }
+    // Tiled: tiles under the waves in closed form (sampling included).
+    g.bench_function("swell_tiled", |b| {
+        b.iter(|| tiled.evaluate(&atlas, &swell, &state, &mass, 0.0, &opts).unwrap())
+    });
     g.finish();
 }
 

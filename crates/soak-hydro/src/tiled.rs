@@ -15,7 +15,7 @@ use crate::hydrostatics::body_state::BodyState;
 use crate::hydrostatics::drag_kernel::{
     Added, DragLanes, DragMoments, Facing, FacingBounds, HBox, LocalDrag, add_drag_ranges, uniform_velocity,
 };
-use crate::hydrostatics::evaluation::{drag_sums, evaluate};
+use crate::hydrostatics::evaluation::{drag_sums, evaluate, patch_sums, sample_patch};
 use crate::hydrostatics::finish::finish;
 use crate::hydrostatics::forces::HydroForces;
 use crate::hydrostatics::frame::{Frame, texel};
@@ -24,7 +24,11 @@ use crate::hydrostatics::planar_kernel::{PlanarTexels, add_planar_ranges};
 use crate::hydrostatics::sums::{BuoyancySums, DragAcc, DragSums};
 use crate::mass::MassProperties;
 use crate::parallel::par_map;
-use crate::water::Water;
+use crate::water::{SurfacePatch, Water};
+
+mod sea;
+
+pub use self::sea::SEA_TILE_TOLERANCE;
 
 /// Moments of one tile's texels, relative to the atlas origin.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -313,6 +317,33 @@ impl TiledAtlas {
         state.check()?;
         let frame = Frame::new(atlas, water, state, mass, t);
         if frame.plane.is_none() {
+            // A sampled sea (handed in, or sampled here as `evaluate` would):
+            // tiles under the waves in closed form. Drag, and any other
+            // surface, per texel.
+            if options.drag.is_none() {
+                let handed = water
+                    .surface
+                    .as_any()
+                    .and_then(|s| s.downcast_ref::<SurfacePatch>());
+                let sampled = match handed {
+                    Some(_) => None,
+                    None => sample_patch(atlas, water, state, t, options)?,
+                };
+                if let Some(patch) = handed.or(sampled.as_ref()) {
+                    let archimedes = options.buoyancy == BuoyancyMode::Archimedes;
+                    let counted = match self.sea_sums(atlas, &frame, patch, archimedes) {
+                        Some((sums, counts)) => (sums, counts),
+                        None => (
+                            patch_sums(atlas, water, state, &frame, t, options, patch).0,
+                            TileCounts::default(),
+                        ),
+                    };
+                    return Ok((
+                        finish(&frame, water, state, mass, &counted.0, None, options),
+                        counted.1,
+                    ));
+                }
+            }
             return evaluate(atlas, water, state, mass, t, options).map(|f| (f, TileCounts::default()));
         }
         let (sums, drag, counts) = self.sums(atlas, water, state, &frame, t, options);

@@ -266,7 +266,7 @@ fn general_sums<S: TexelSurface>(
 /// the processor has it, the per-texel loop elsewhere. With drag the
 /// kernel hands each chunk's depths to a loop that gathers the submerged
 /// texels with the fluid's velocity for the sea's drag kernel.
-fn patch_sums(
+pub(crate) fn patch_sums(
     atlas: &Atlas,
     water: &Water,
     state: &BodyState,
@@ -334,7 +334,7 @@ fn patch_sums(
 /// [`evaluate`] samples on its own when handed a sea; sample once and
 /// evaluate on the water [`sampled_water`] returns when one step evaluates
 /// the same body more than once (an implicit solve at shifted heights).
-fn sample_patch(
+pub(crate) fn sample_patch(
     atlas: &Atlas,
     water: &Water,
     state: &BodyState,

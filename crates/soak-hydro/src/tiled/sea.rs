@@ -1,0 +1,253 @@
+//! The tiled path on a sampled sea: tiles wholly under the waves in closed
+//! form, from the surface's second-order Taylor polynomial over each.
+//!
+//! Under a [`SurfacePatch`] a texel's depth is `h(X, Z) − Y`. Over a tile,
+//! whose world footprint is a disc of radius `ρ` (its bounding sphere's)
+//! about the point `P` its centre `c` is carried to, `h` is its Taylor
+//! polynomial `h₀ + s·Δ + ½ Δᵀ H Δ` (`Δ` the horizontal offset from `P`,
+//! `s` the slope and `H` the second derivatives read from the patch at `P`)
+//! within `K ρ³ / 6`, `K` the patch's [`SurfacePatch::cubic_bound`]. Since
+//! `Δ = L (x − c)` is affine in the texel's object position `x` (`L` the
+//! horizontal rows of the rotation), the depth is then an affine part
+//! `α + β·x`, which the tile's moments integrate in closed form as under a
+//! plane, and a quadratic part `δ(x) = ½ (x − c)ᵀ Q (x − c)` with
+//! `Q = Lᵀ H L`:
+//!
+//! - the sums linear in the depth (`Σ w`, `Σ d A`) take it exactly, from
+//!   the tile's second moments: `Σ A_j δ = ½ tr(Q Σ A_j (x − c)(x − c)ᵀ)`;
+//! - those with a further factor `x` or `d` (`Σ w x`, `Σ x × d A`, `Σ w d`,
+//!   `Σ d² A`) take it at the tile's centre, an error of second order in
+//!   the tile's size times `δ`, itself second order;
+//! - Archimedes' slope sums `Σ w ρ × s` take the slope to first order
+//!   across the tile (`s + H Δ`), `Σ A_y r_y` exactly.
+//!
+//! A tile is taken in closed form only when the remainder `K ρ³ / 6` is
+//! within [`SEA_TILE_TOLERANCE`] of the body's bounding radius and the
+//! polynomial (with that remainder) is positive over the whole disc; a
+//! tile the waterline may cut, or too large against the waves' curvature,
+//! goes through the sea kernel texel by texel, and a tile wholly above the
+//! waves is skipped. For a 1024² atlas of a half-metre body on a metres-long
+//! swell the remainder is below a micrometre and nearly every tile under
+//! water takes the closed form.
+
+use std::ops::Range;
+
+use nalgebra::{Matrix2, Matrix2x3, Matrix3, Vector2, Vector3};
+use soak_bake::Atlas;
+
+use super::{Sums, TileCounts, TileMoments, TiledAtlas, add_closed_form};
+use crate::hydrostatics::frame::Frame;
+use crate::hydrostatics::sea_kernel::{self, SeaFrame, add_sea_range};
+use crate::hydrostatics::sums::{BuoyancySums, SlopeSums};
+use crate::parallel::par_map;
+use crate::water::{Surface, SurfacePatch};
+
+/// The largest remainder of a tile's Taylor polynomial (see the module's
+/// documentation) at which the tile is still taken in closed form, as a
+/// fraction of the body's bounding radius: a depth error of at most this
+/// much at any texel of such a tile.
+pub const SEA_TILE_TOLERANCE: f64 = 1e-4;
+
+/// Groups of tiles per parallel task.
+const GROUP_CHUNK: usize = 32;
+
+impl Sums {
+    /// The moments of one tile.
+    fn of(m: &TileMoments) -> Self {
+        Self {
+            s0: m.s0,
+            s1: m.s1,
+            s2: m.s2,
+            area: m.area,
+            texels: u64::from(m.range.1 - m.range.0),
+        }
+    }
+}
+
+/// One evaluation's constants.
+struct SeaTiles<'a> {
+    rot: Matrix3<f64>,
+    /// The world's up in object axes.
+    g: Vector3<f64>,
+    /// The horizontal rows of `rot`: `Δ = L (x − c)`.
+    l: Matrix2x3<f64>,
+    ow: Vector3<f64>,
+    /// The centre of mass from the atlas origin, world axes, m.
+    com: Vector3<f64>,
+    /// Highest height of the patch, m.
+    top: f64,
+    tolerance: f64,
+    delta: f64,
+    archimedes: bool,
+    patch: &'a SurfacePatch,
+}
+
+/// What one chunk of groups adds.
+#[derive(Default)]
+struct Part {
+    /// Closed forms, object axes (rotated once at the end).
+    local: BuoyancySums,
+    /// The kernel's sums and the slope sums, world axes.
+    world: BuoyancySums,
+    counts: TileCounts,
+    /// Whether a tile in closed form may come within `δ` of the surface
+    /// (its share of `Σ ln min(d/δ, 1)` would then not be zero).
+    shallow: bool,
+}
+
+impl TiledAtlas {
+    /// The buoyancy sums (world axes, as the sea kernel gives them) of a
+    /// body under `patch`, tiles wholly under it in closed form: `None`
+    /// where the sea kernel is not available, or where every tile is under
+    /// water and some in closed form lie within the depth scale of the
+    /// surface (Archimedes' deep-volume weight then needs every texel's
+    /// depth): take the per-texel path then.
+    pub(crate) fn sea_sums(
+        &self,
+        atlas: &Atlas,
+        frame: &Frame,
+        patch: &SurfacePatch,
+        archimedes: bool,
+    ) -> Option<(BuoyancySums, TileCounts)> {
+        if !sea_kernel::available() {
+            return None;
+        }
+        let rot = frame.rot;
+        let top = patch
+            .height_bounds(patch.time())
+            .map_or(f64::INFINITY, |(_, hi)| hi);
+        let c = SeaTiles {
+            rot,
+            g: rot.transpose() * Vector3::y(),
+            l: Matrix2x3::from_rows(&[rot.row(0), rot.row(2)]),
+            ow: frame.ow,
+            com: frame.com - frame.ow,
+            top,
+            tolerance: SEA_TILE_TOLERANCE * frame.depth_scale,
+            delta: frame.depth_scale,
+            archimedes,
+            patch,
+        };
+        let sea = SeaFrame {
+            rot,
+            ow: frame.ow,
+            com: c.com,
+            top,
+            delta: frame.depth_scale,
+            patch,
+            archimedes,
+        };
+        let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
+        let parts = par_map(n_chunks, |k| {
+            let groups = &self.groups[k * GROUP_CHUNK..((k + 1) * GROUP_CHUNK).min(self.groups.len())];
+            let mut part = Part::default();
+            let mut texels: Vec<Range<usize>> = Vec::new();
+            for group in groups {
+                let b = &group.bounds;
+                if (c.ow + rot * b.centre).y - b.radius >= c.top {
+                    part.counts.dry += group.tiles.len();
+                    continue;
+                }
+                for ti in group.tiles.clone() {
+                    self.sea_tile(&c, ti, &mut part, &mut texels);
+                }
+            }
+            for r in texels {
+                add_sea_range(&mut part.world, atlas, r, &sea, None);
+            }
+            part
+        });
+        let mut sums = BuoyancySums::default();
+        let mut counts = TileCounts::default();
+        let mut shallow = false;
+        for p in parts {
+            sums = sums + p.local.rotated(&rot) + p.world;
+            counts.submerged += p.counts.submerged;
+            counts.dry += p.counts.dry;
+            counts.cut += p.counts.cut;
+            shallow |= p.shallow;
+        }
+        if archimedes && shallow && sums.count == atlas.len() {
+            return None;
+        }
+        Some((sums, counts))
+    }
+
+    /// Settles tile `ti`: skipped, in closed form into `part`, or listed in
+    /// `texels` for the kernel.
+    fn sea_tile(&self, c: &SeaTiles, ti: usize, part: &mut Part, texels: &mut Vec<Range<usize>>) {
+        let m = &self.tiles[ti];
+        let (rho, centre) = (m.radius, m.centre);
+        let p = c.ow + c.rot * centre;
+        if p.y - rho >= c.top {
+            part.counts.dry += 1;
+            return;
+        }
+        let (h, s, hess, third) = c.patch.taylor(p.x, p.z);
+        let slope = Vector2::new(s[0], s[1]);
+        // d(x) ≈ α + β·x + δ(x): the affine part from the tangent plane at P.
+        let beta = c.l.transpose() * slope - c.g;
+        let dc = h - p.y;
+        let alpha = dc - beta.dot(&centre);
+        let hm = Matrix2::new(hess[0], hess[1], hess[1], hess[2]);
+        // The cubic term's largest size over the disc, twice over for the
+        // change of the third derivatives across it.
+        let cubic = third[0].abs() + 3.0 * third[1].abs() + 3.0 * third[2].abs() + third[3].abs();
+        let remainder = cubic * rho * rho * rho / 3.0;
+        // The affine part varies over the tile by at most the smaller of
+        // |β| ρ and |β|·(half the box), as under a plane.
+        let linear = (beta.norm() * rho).min(beta.abs().dot(&m.half_extent));
+        let reach = linear + 0.5 * hm.norm() * rho * rho + remainder;
+        if dc + reach <= 0.0 {
+            part.counts.dry += 1;
+            return;
+        }
+        let range = m.range.0 as usize..m.range.1 as usize;
+        if dc - reach <= 0.0 || remainder > c.tolerance {
+            part.counts.cut += 1;
+            match texels.last_mut() {
+                Some(last) if last.end == range.start => last.end = range.end,
+                _ => texels.push(range),
+            }
+            return;
+        }
+        part.counts.submerged += 1;
+        part.shallow |= dc - reach < c.delta;
+        let sums = Sums::of(m);
+        let mut t = BuoyancySums::default();
+        add_closed_form(&mut t, &sums, alpha, &beta, &c.g);
+        // The quadratic part: u_j = Σ A_j δ = ½ tr(Q M_j), with
+        // M_j = Σ A_j (x − c)(x − c)ᵀ = S2_j − S1_j cᵀ − c S1_jᵀ + S0_j c cᵀ
+        // from the moments (`Q` symmetric): ½ tr(Q S2_j) − cᵀQ S1_j + ½ S0_j cᵀQc.
+        let q = c.l.transpose() * hm * c.l;
+        let qc = q * centre;
+        let cqc = centre.dot(&qc);
+        let s1qc = m.s1 * qc;
+        let u =
+            Vector3::from_fn(|j, _| 0.5 * q.component_mul(&m.s2[j]).sum() - s1qc[j] + 0.5 * m.s0[j] * cqc);
+        let gu = c.g.dot(&u);
+        t.vol -= gu;
+        t.wr -= gu * centre;
+        t.wd2 -= dc * gu;
+        t.f -= u;
+        t.rxf -= centre.cross(&u);
+        t.d2a += dc * u;
+        if c.archimedes {
+            // Σ w ρ × s to first order across the tile: the weight W, its
+            // first moment about the centre m, the slope s + H Δ.
+            let w = t.vol;
+            let first = t.wr - centre * w;
+            let rho_c = c.rot * centre - c.com;
+            let s3 = Vector3::new(slope.x, 0.0, slope.y);
+            let ds = hm * (c.l * first);
+            let ds3 = Vector3::new(ds.x, 0.0, ds.y);
+            part.world.slope = part.world.slope
+                + SlopeSums {
+                    wrs: w * rho_c.cross(&s3) + (c.rot * first).cross(&s3) + rho_c.cross(&ds3),
+                    ayr: c.g.dot(&(m.s1 * c.g)),
+                    shallow: 0.0,
+                };
+        }
+        part.local = part.local + t;
+    }
+}

@@ -1,0 +1,147 @@
+//! The tiled path on a sampled sea against the per-texel path on the same
+//! patch (every texel reading the patch's bicubic): tiles under the waves
+//! in closed form from the surface's second-order Taylor polynomial, within
+//! the tolerance the tiles are held to.
+
+use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
+use soak_hydro::{
+    BodyState, BuoyancyMode, Gerstner, GerstnerWave, HydroForces, HydroOptions, MassModel, TiledAtlas, Water,
+    evaluate, sampled_water,
+};
+
+fn swell() -> Water {
+    Water::new(Gerstner::new(0.0, GerstnerWave::SWELL.to_vec(), 9.80665).unwrap())
+}
+
+/// The largest differences between two evaluations: of the submerged
+/// volume (of `volume`), the centre of buoyancy (of `radius`), the force
+/// (of the weight of the water `volume` displaces) and the torque (of that
+/// times `radius`).
+fn differences(a: &HydroForces, b: &HydroForces, volume: f64, radius: f64) -> [f64; 4] {
+    let weight = 1000.0 * 9.80665 * volume;
+    [
+        (a.submerged_volume - b.submerged_volume).abs() / volume,
+        (a.center_of_buoyancy - b.center_of_buoyancy).norm() / radius,
+        (a.buoyancy.force - b.buoyancy.force).norm() / weight,
+        (a.buoyancy.torque - b.buoyancy.torque).norm() / (weight * radius),
+    ]
+}
+
+fn check(name: &str, mesh: &Mesh, n: u32, poses: &[(Vector3<f64>, (f64, f64, f64))]) {
+    let atlas = Atlas::bake(mesh, BakeOptions::square(n)).unwrap();
+    let tiled = TiledAtlas::new(&atlas);
+    let mass = MassModel::Solid { density: 500.0 }
+        .mass_properties(&atlas)
+        .unwrap();
+    let volume = atlas.volume();
+    let radius = atlas.bounding_radius();
+    let sea = swell();
+    for &(offset, (r, p, y)) in poses {
+        for (mode, t) in [(BuoyancyMode::Archimedes, 1.3), (BuoyancyMode::Pressure, 4.1)] {
+            // `offset.y` from the surface's height over the body at `t`.
+            let at = offset + Vector3::y() * sea.surface.height(offset.x, offset.z, t);
+            let state = BodyState {
+                linear_velocity: Vector3::new(0.3, -0.1, 0.2),
+                angular_velocity: Vector3::new(0.1, 0.2, -0.3),
+                ..BodyState::at_rest(Isometry3::from_parts(
+                    at.into(),
+                    UnitQuaternion::from_euler_angles(r, p, y),
+                ))
+            };
+            let options = HydroOptions {
+                buoyancy: mode,
+                ..HydroOptions::default()
+            };
+            let water = sampled_water(&atlas, &sea, &state, t, &options).unwrap().unwrap();
+            let want = evaluate(&atlas, &water, &state, &mass, t, &options).unwrap();
+            let (got, counts) = tiled
+                .evaluate_counted(&atlas, &water, &state, &mass, t, &options)
+                .unwrap();
+            let d = differences(&got, &want, volume, radius);
+            println!(
+                "{name} {n}² at {offset:?} {mode:?}: {} closed, {} per texel, {} dry; volume {:.1e}, \
+                 centre {:.1e}, force {:.1e}, torque {:.1e}",
+                counts.submerged, counts.cut, counts.dry, d[0], d[1], d[2], d[3]
+            );
+            // The closed forms were used, and agree with the texels far
+            // below the patch's own error against the exact surface.
+            assert!(counts.submerged >= 50, "{name} {at:?}: {counts:?}");
+            // Archimedes' torque takes the slope across a tile to first
+            // order only: an error of second order in the tile's size.
+            let bounds = [1e-7, 1e-6, 1e-6, 1e-4];
+            for (what, (d, bound)) in ["volume", "centre", "force", "torque"]
+                .iter()
+                .zip(d.iter().zip(bounds))
+            {
+                assert!(*d < bound, "{name} {at:?} {mode:?}: {what} {d:.2e}");
+            }
+            let direct = tiled.evaluate(&atlas, &sea, &state, &mass, t, &options).unwrap();
+            assert_eq!(
+                direct.submerged_volume, got.submerged_volume,
+                "{name}: sampled here or handed in"
+            );
+        }
+    }
+}
+
+#[test]
+fn tiles_under_the_swell_take_the_per_texel_sums() {
+    let sphere = builtin::sphere(0.5, 64, 32);
+    let poses = [
+        (Vector3::new(0.0, 0.1, 0.0), (0.3, 0.2, 0.1)),
+        (Vector3::new(2.3, -0.2, -1.1), (-0.4, 1.0, 0.2)),
+    ];
+    check("sphere", &sphere, 384, &poses);
+    let boat = builtin::boat(4.0, 1.2, 0.6);
+    let poses = [
+        (Vector3::new(0.5, -0.35, 0.3), (0.05, 0.4, -0.03)),
+        (Vector3::new(-1.0, -0.3, 2.0), (-0.1, 2.0, 0.08)),
+    ];
+    check("boat", &boat, 256, &poses);
+}
+
+/// Wholly under the swell: within the depth scale of the surface, where
+/// Archimedes' deep-volume weight needs every texel's depth, the tiled path
+/// hands the body to the per-texel path (the same bits); deep down, where
+/// that weight is one, the closed forms serve and agree.
+#[test]
+fn a_body_wholly_under_the_swell_takes_the_texels_near_the_surface_and_the_tiles_deep_down() {
+    let atlas = Atlas::bake(&builtin::sphere(0.5, 48, 24), BakeOptions::square(256)).unwrap();
+    let tiled = TiledAtlas::new(&atlas);
+    let mass = MassModel::Solid { density: 500.0 }
+        .mass_properties(&atlas)
+        .unwrap();
+    let sea = swell();
+    let options = HydroOptions::default();
+    let t = 2.0;
+    for (below, closed) in [(0.7, false), (3.0, true)] {
+        let at = Vector3::new(0.4, sea.surface.height(0.4, -0.2, t) - below, -0.2);
+        let state = BodyState::at_rest(Isometry3::from_parts(
+            at.into(),
+            UnitQuaternion::from_euler_angles(0.2, 0.5, -0.1),
+        ));
+        let water = sampled_water(&atlas, &sea, &state, t, &options).unwrap().unwrap();
+        let want = evaluate(&atlas, &water, &state, &mass, t, &options).unwrap();
+        let (got, counts) = tiled
+            .evaluate_counted(&atlas, &water, &state, &mass, t, &options)
+            .unwrap();
+        assert_eq!(got.submerged_texels, atlas.len(), "{below} m under");
+        if closed {
+            assert_eq!(counts.submerged + counts.cut, tiled.tiles().len(), "{counts:?}");
+            assert!(counts.submerged > 0, "{counts:?}");
+            assert_eq!(got.deep, 1.0);
+            let d = differences(&got, &want, atlas.volume(), atlas.bounding_radius());
+            let bounds = [1e-7, 1e-6, 1e-6, 1e-4];
+            assert!(
+                d.iter().zip(bounds).all(|(d, b)| *d < b),
+                "{below} m under: {d:?}"
+            );
+        } else {
+            assert_eq!(counts, soak_hydro::TileCounts::default(), "{below} m under");
+            assert_eq!(got.buoyancy, want.buoyancy);
+            assert_eq!(got.submerged_volume, want.submerged_volume);
+            assert!(got.deep < 1.0, "{}", got.deep);
+        }
+    }
+}
