@@ -67,9 +67,9 @@ fn check(name: &str, mesh: &Mesh, n: u32, poses: &[(Vector3<f64>, (f64, f64, f64
             // The closed forms were used, and agree with the texels far
             // below the patch's own error against the exact surface.
             assert!(counts.submerged >= 50, "{name} {at:?}: {counts:?}");
-            // Archimedes' torque takes the slope across a tile to first
-            // order only: an error of second order in the tile's size.
-            let bounds = [1e-7, 1e-6, 1e-6, 1e-4];
+            // Archimedes' torque takes the depth at the tile's centre in its
+            // second-order slope term: its error is the loosest.
+            let bounds = [1e-7, 1e-6, 1e-6, 1e-5];
             for (what, (d, bound)) in ["volume", "centre", "force", "torque"]
                 .iter()
                 .zip(d.iter().zip(bounds))
@@ -132,7 +132,7 @@ fn a_body_wholly_under_the_swell_takes_the_texels_near_the_surface_and_the_tiles
             assert!(counts.submerged > 0, "{counts:?}");
             assert_eq!(got.deep, 1.0);
             let d = differences(&got, &want, atlas.volume(), atlas.bounding_radius());
-            let bounds = [1e-7, 1e-6, 1e-6, 1e-4];
+            let bounds = [1e-7, 1e-6, 1e-6, 1e-5];
             assert!(
                 d.iter().zip(bounds).all(|(d, b)| *d < b),
                 "{below} m under: {d:?}"

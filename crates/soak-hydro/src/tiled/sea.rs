@@ -18,8 +18,9 @@
 //! - those with a further factor `x` or `d` (`Σ w x`, `Σ x × d A`, `Σ w d`,
 //!   `Σ d² A`) take it at the tile's centre, an error of second order in
 //!   the tile's size times `δ`, itself second order;
-//! - Archimedes' slope sums `Σ w ρ × s` take the slope to first order
-//!   across the tile (`s + H Δ`), `Σ A_y r_y` exactly.
+//! - Archimedes' slope sums `Σ w ρ × s` take the slope across the tile as
+//!   `s + H Δ`, with the weight's first moment exactly and its second with
+//!   the depth at the centre; `Σ A_y r_y` exactly.
 //!
 //! A tile is taken in closed form only when the remainder `K ρ³ / 6` is
 //! within [`SEA_TILE_TOLERANCE`] of the body's bounding radius and the
@@ -233,17 +234,34 @@ impl TiledAtlas {
         t.rxf -= centre.cross(&u);
         t.d2a += dc * u;
         if c.archimedes {
-            // Σ w ρ × s to first order across the tile: the weight W, its
-            // first moment about the centre m, the slope s + H Δ.
+            // Σ w ρ × s with ρ = ρ_c + R y and s = s_c + P y (y = x − c,
+            // P y = (H L y) laid in the horizontal plane): the weight W and
+            // its first moment about the centre m exactly, its second
+            // moment Σ w y yᵀ with the depth at the centre,
+            // −d_c Σ (g·A) y yᵀ = −d_c M_g.
             let w = t.vol;
             let first = t.wr - centre * w;
             let rho_c = c.rot * centre - c.com;
             let s3 = Vector3::new(slope.x, 0.0, slope.y);
-            let ds = hm * (c.l * first);
+            let hl = hm * c.l;
+            let ds = hl * first;
             let ds3 = Vector3::new(ds.x, 0.0, ds.y);
+            let t1 = m.s1.transpose() * c.g;
+            let mg = (m.s2[0] * c.g.x + m.s2[1] * c.g.y + m.s2[2] * c.g.z)
+                - t1 * centre.transpose()
+                - centre * t1.transpose()
+                + centre * centre.transpose() * c.g.dot(&m.s0);
+            let mut second = Vector3::zeros();
+            for k in 0..3 {
+                let rk: Vector3<f64> = c.rot.column(k).into();
+                for l in 0..3 {
+                    let pl = Vector3::new(hl[(0, l)], 0.0, hl[(1, l)]);
+                    second += mg[(k, l)] * rk.cross(&pl);
+                }
+            }
             part.world.slope = part.world.slope
                 + SlopeSums {
-                    wrs: w * rho_c.cross(&s3) + (c.rot * first).cross(&s3) + rho_c.cross(&ds3),
+                    wrs: w * rho_c.cross(&s3) + (c.rot * first).cross(&s3) + rho_c.cross(&ds3) - dc * second,
                     ayr: c.g.dot(&(m.s1 * c.g)),
                     shallow: 0.0,
                 };

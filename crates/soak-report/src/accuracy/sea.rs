@@ -1,7 +1,8 @@
 //! The sea rows: what the sampled read of a Gerstner sea
 //! ([`SeaSampling::PerWavelength`]) costs in accuracy and saves in time,
 //! against the exact inversion of the Gerstner map at every texel (the
-//! reference), per knob setting.
+//! reference), per knob setting; and the tiled path on the same sampled
+//! sea ([`TiledAtlas`]: tiles under the waves in closed form).
 
 use std::hint::black_box;
 
@@ -9,8 +10,8 @@ use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use serde::Serialize;
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::{
-    BodyState, Gerstner, GerstnerWave, HydroOptions, MassModel, SeaSampling, SurfacePatch, Water, evaluate,
-    sampled_water,
+    BodyState, Gerstner, GerstnerWave, HydroForces, HydroOptions, MassModel, SeaSampling, SurfacePatch,
+    TiledAtlas, Water, evaluate, sampled_water,
 };
 
 use super::AccuracyError;
@@ -37,8 +38,13 @@ pub struct SeaRow {
     /// Worst |τ − τ_exact| / (ρ g V_body × bounding diameter) (Archimedes'
     /// torque, slope term included) over the poses.
     pub torque_error: f64,
+    /// The tiled path on the sampled sea: the same three errors against
+    /// the exact inversion (volume, centre of buoyancy, torque).
+    pub tiled_errors: [f64; 3],
     /// Sampled evaluation (sampling included), ms (median).
     pub sampled_ms: f64,
+    /// Tiled evaluation on the sampled sea (sampling included), ms (median).
+    pub tiled_ms: f64,
     /// Exact inversion at every texel, ms (median).
     pub exact_ms: f64,
     /// The same body at the same pose on calm water (planar kernel), ms.
@@ -81,6 +87,7 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
     let mut rows = Vec::new();
     for (name, mesh) in meshes {
         let atlas = Atlas::bake(&mesh, BakeOptions::square(resolution))?;
+        let tiled = TiledAtlas::new(&atlas);
         let mass = MassModel::Solid { density: DENSITY }.mass_properties(&atlas)?;
         let volume = mesh.volume();
         let diameter = 2.0 * atlas.bounding_radius();
@@ -98,13 +105,21 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
                 sea: SeaSampling::PerWavelength(per),
                 ..HydroOptions::default()
             };
-            let mut errors = [0.0f64; 3];
-            for ((state, t), e) in poses().into_iter().zip(&reference) {
-                let s = evaluate(&atlas, &water, &state, &mass, t, &options)?;
+            let (mut errors, mut tiled_errors) = ([0.0f64; 3], [0.0f64; 3]);
+            let worst = |errors: &mut [f64; 3], s: &HydroForces, e: &HydroForces| {
                 errors[0] = errors[0].max((s.submerged_volume - e.submerged_volume).abs() / volume);
                 errors[1] = errors[1].max((s.center_of_buoyancy - e.center_of_buoyancy).norm() / diameter);
                 errors[2] =
                     errors[2].max((s.buoyancy.torque - e.buoyancy.torque).norm() / (weight * diameter));
+            };
+            for ((state, t), e) in poses().into_iter().zip(&reference) {
+                worst(
+                    &mut errors,
+                    &evaluate(&atlas, &water, &state, &mass, t, &options)?,
+                    e,
+                );
+                let s = tiled.evaluate(&atlas, &water, &state, &mass, t, &options)?;
+                worst(&mut tiled_errors, &s, e);
             }
             let (state, t) = poses()[0];
             let patch = sampled_water(&atlas, &water, &state, t, &options)?;
@@ -113,11 +128,14 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
                 .and_then(|w| w.surface.as_any())
                 .and_then(|s| s.downcast_ref::<SurfacePatch>());
             let (spacing, nodes) = patch.map_or((f64::NAN, [0, 0]), |p| (p.spacing(), p.nodes()));
-            let [sampled_ms, exact_ms, plane_ms] = per_call_ms(
+            let [sampled_ms, tiled_ms, exact_ms, plane_ms] = per_call_ms(
                 runs,
                 [
                     &mut || {
                         black_box(evaluate(&atlas, &water, &state, &mass, t, &options).ok());
+                    },
+                    &mut || {
+                        black_box(tiled.evaluate(&atlas, &water, &state, &mass, t, &options).ok());
                     },
                     &mut || {
                         black_box(evaluate(&atlas, &water, &state, &mass, t, &exact).ok());
@@ -136,7 +154,9 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
                 volume_error: errors[0],
                 cob_error: errors[1],
                 torque_error: errors[2],
+                tiled_errors,
                 sampled_ms,
+                tiled_ms,
                 exact_ms,
                 plane_ms,
             });
@@ -146,7 +166,7 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
 }
 
 /// The sea rows as lines of a table (header first), for text and markdown.
-pub(super) fn sea_cells(rows: &[SeaRow]) -> Vec<[String; 10]> {
+pub(super) fn sea_cells(rows: &[SeaRow]) -> Vec<[String; 12]> {
     let mut all = vec![
         [
             "mesh",
@@ -156,7 +176,9 @@ pub(super) fn sea_cells(rows: &[SeaRow]) -> Vec<[String; 10]> {
             "volume err",
             "CoB err",
             "torque err",
+            "tiled: V / CoB / τ err",
             "sampled",
+            "tiled",
             "exact",
             "plane",
         ]
@@ -171,7 +193,9 @@ pub(super) fn sea_cells(rows: &[SeaRow]) -> Vec<[String; 10]> {
             format!("{:.1e}", r.volume_error),
             format!("{:.1e}", r.cob_error),
             format!("{:.1e}", r.torque_error),
+            r.tiled_errors.map(|e| format!("{e:.1e}")).join(" / "),
             format!("{:.3} ms", r.sampled_ms),
+            format!("{:.3} ms", r.tiled_ms),
             format!("{:.3} ms", r.exact_ms),
             format!("{:.3} ms", r.plane_ms),
         ]);

@@ -128,8 +128,10 @@ The two-wave swell of `data/scenes/buoy_on_waves.toml` (wavelengths 9 m and 4 m)
 the sampled read (`SeaSampling::PerWavelength`: the surface sampled once over the body's footprint, \
 bicubic Hermite between the nodes) against the exact inversion of the Gerstner map at every texel \
 (`SeaSampling::Exact`). Errors are the worst over the poses, of the volume over the body's volume and \
-of the centre of buoyancy and Archimedes' torque (over ρgV) over the bounding diameter; times are \
-per evaluation with the sampling included, beside the same body on calm water.\n\n";
+of the centre of buoyancy and Archimedes' torque (over ρgV) over the bounding diameter; the tiled \
+path (`TiledAtlas`) reads the same sampled sea, tiles under the waves in closed form from the \
+surface's second-order Taylor polynomial over each. Times are per evaluation with the sampling \
+included, beside the same body on calm water (per texel).\n\n";
 
 /// The sea rows as aligned text.
 fn sea_text(report: &Report) -> String {
