@@ -19,8 +19,9 @@
 //!   `Σ d² A`) take it at the tile's centre, an error of second order in
 //!   the tile's size times `δ`, itself second order;
 //! - Archimedes' slope sums `Σ w ρ × s` take the slope across the tile as
-//!   `s + H Δ`, with the weight's first moment exactly and its second with
-//!   the depth at the centre; `Σ A_y r_y` exactly.
+//!   `s + H Δ + ½ D³h[Δ, Δ]` (the third derivatives read from the patch
+//!   too), with the weight's first moment exactly and its second with the
+//!   depth at the centre; `Σ A_y r_y` exactly.
 //!
 //! A tile is taken in closed form only when the remainder `K ρ³ / 6` is
 //! within [`SEA_TILE_TOLERANCE`] of the body's bounding radius and the
@@ -259,6 +260,16 @@ impl TiledAtlas {
                     second += mg[(k, l)] * rk.cross(&pl);
                 }
             }
+            // The slope's second-order part ½ D³h[Δ, Δ] against the same
+            // second moment: ½ tr(Lᵀ T_i L M_g) per slope component.
+            let [xxx, xxz, xzz, zzz] = third;
+            let curl = |t: Matrix2<f64>| 0.5 * (c.l.transpose() * t * c.l).component_mul(&mg).sum();
+            let ds2 = Vector3::new(
+                curl(Matrix2::new(xxx, xxz, xxz, xzz)),
+                0.0,
+                curl(Matrix2::new(xxz, xzz, xzz, zzz)),
+            );
+            second += rho_c.cross(&ds2);
             part.world.slope = part.world.slope
                 + SlopeSums {
                     wrs: w * rho_c.cross(&s3) + (c.rot * first).cross(&s3) + rho_c.cross(&ds3) - dc * second,
