@@ -139,7 +139,14 @@ struct Group {
 /// tile whose centre is under water joins the run, and the planar kernel
 /// takes its dry texels' sums back out: either way the kernel does full
 /// work only on the smaller side of the waterline.
-/// Any other surface falls back to the per-texel path.
+///
+/// On a sampled sea (a [`SurfacePatch`](crate::SurfacePatch), handed in or
+/// sampled as [`HydroOptions::sea`] asks) tiles wholly under the waves take
+/// the same closed forms from the surface's second-order Taylor polynomial
+/// over each tile, the error of its remainder held under
+/// [`SEA_TILE_TOLERANCE`]; the rest goes through the
+/// sea kernel texel by texel. Drag on a sea, and any other surface, fall
+/// back to the per-texel path.
 ///
 /// Two levels: the atlas' tiles (`tile_size`² texels), and groups of
 /// [`TiledAtlas::GROUP`]² neighbouring tiles, consecutive in the tile
@@ -288,7 +295,8 @@ impl TiledAtlas {
     }
 
     /// Same as [`crate::evaluate`], using closed forms for tiles wholly under
-    /// a planar surface. Falls back to the per-texel path for other surfaces.
+    /// a planar surface or a sampled sea (without drag). Falls back to the
+    /// per-texel path for other surfaces.
     /// `self` must come from this `atlas` (same bake or refresh).
     pub fn evaluate(
         &self,

@@ -44,10 +44,21 @@ use crate::hydrostatics::sums::{BuoyancySums, SlopeSums};
 use crate::parallel::par_map;
 use crate::water::{Surface, SurfacePatch};
 
-/// The largest remainder of a tile's Taylor polynomial (see the module's
-/// documentation) at which the tile is still taken in closed form, as a
-/// fraction of the body's bounding radius: a depth error of at most this
-/// much at any texel of such a tile.
+/// How far the tiled path on a sampled sea lets the surface depart from
+/// its second-order Taylor polynomial over a tile taken in closed form, as
+/// a fraction of the body's bounding radius.
+///
+/// Over a tile whose footprint is a disc of radius `ρ`, the polynomial
+/// `h₀ + s·Δ + ½ Δᵀ H Δ` read from the patch at the disc's centre makes the
+/// depth affine plus quadratic in the texel's object position, which the
+/// tile's moments integrate in closed form. Its remainder is estimated
+/// from the third derivatives there as `|D³h| ρ³ / 3` (twice the cubic
+/// term's largest size, for their change across the disc); a tile whose
+/// estimate is above this fraction of the bounding radius goes through the
+/// texels. The cubic term is odd about the tile's centre, so what the sums
+/// feel of it is far smaller: on the two-wave swell at 1024² the tiled and
+/// per-texel reads of one patch agree to 1e-9 of the volume and 1e-7 of the
+/// torque (`soak accuracy` puts both against the exact inversion).
 pub const SEA_TILE_TOLERANCE: f64 = 1e-4;
 
 /// Groups of tiles per parallel task.
