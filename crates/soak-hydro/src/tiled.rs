@@ -698,32 +698,85 @@ enum Side {
 
 /// Adds texels wholly under water, of moments `m`, to object-frame sums
 /// (`wr`, `f`, `rxf` in object axes; rotated by the caller).
-fn add_closed_form(s: &mut BuoyancySums, m: &Sums, alpha: f64, beta: &Vector3<f64>, g: &Vector3<f64>) {
+/// The moments the closed form reads: a run's [`Sums`] or one tile's
+/// [`TileMoments`], without a copy.
+trait Moments {
+    fn s0(&self) -> &Vector3<f64>;
+    fn s1(&self) -> &Matrix3<f64>;
+    fn s2(&self) -> &[Matrix3<f64>; 3];
+    fn area(&self) -> f64;
+    fn texels(&self) -> u64;
+}
+
+impl Moments for Sums {
+    fn s0(&self) -> &Vector3<f64> {
+        &self.s0
+    }
+    fn s1(&self) -> &Matrix3<f64> {
+        &self.s1
+    }
+    fn s2(&self) -> &[Matrix3<f64>; 3] {
+        &self.s2
+    }
+    fn area(&self) -> f64 {
+        self.area
+    }
+    fn texels(&self) -> u64 {
+        self.texels
+    }
+}
+
+impl Moments for TileMoments {
+    fn s0(&self) -> &Vector3<f64> {
+        &self.s0
+    }
+    fn s1(&self) -> &Matrix3<f64> {
+        &self.s1
+    }
+    fn s2(&self) -> &[Matrix3<f64>; 3] {
+        &self.s2
+    }
+    fn area(&self) -> f64 {
+        self.area
+    }
+    fn texels(&self) -> u64 {
+        u64::from(self.range.1 - self.range.0)
+    }
+}
+
+fn add_closed_form<M: Moments>(
+    s: &mut BuoyancySums,
+    m: &M,
+    alpha: f64,
+    beta: &Vector3<f64>,
+    g: &Vector3<f64>,
+) {
+    let (s0, s1, s2) = (*m.s0(), *m.s1(), m.s2());
     // Σ A d = α S0 + S1 β
-    let ad = alpha * m.s0 + m.s1 * beta;
+    let ad = alpha * s0 + s1 * beta;
     // T1 = Σ (g·A) x = S1ᵀ g ; T2 = Σ (g·A) x xᵀ = Σ_j g_j S2_j
-    let t1 = m.s1.transpose() * g;
-    let t2 = m.s2[0] * g.x + m.s2[1] * g.y + m.s2[2] * g.z;
+    let t1 = s1.transpose() * g;
+    let t2 = s2[0] * g.x + s2[1] * g.y + s2[2] * g.z;
     // w = −(g·A) d
     s.vol += -g.dot(&ad);
     s.wr += -(alpha * t1 + t2 * beta);
-    s.wd2 += -0.5 * (alpha * alpha * g.dot(&m.s0) + 2.0 * alpha * beta.dot(&t1) + beta.dot(&(t2 * beta)));
+    s.wd2 += -0.5 * (alpha * alpha * g.dot(&s0) + 2.0 * alpha * beta.dot(&t1) + beta.dot(&(t2 * beta)));
     s.f += -ad;
     // Σ x × A d = α Σ x × A + Σ (β·x) x × A
     let cross1 = Vector3::new(
-        m.s1[(2, 1)] - m.s1[(1, 2)],
-        m.s1[(0, 2)] - m.s1[(2, 0)],
-        m.s1[(1, 0)] - m.s1[(0, 1)],
+        s1[(2, 1)] - s1[(1, 2)],
+        s1[(0, 2)] - s1[(2, 0)],
+        s1[(1, 0)] - s1[(0, 1)],
     );
     // Σ (β·x) x_k A_j = (S2_j β)_k
-    let b0 = m.s2[0] * beta;
-    let b1 = m.s2[1] * beta;
-    let b2 = m.s2[2] * beta;
+    let b0 = s2[0] * beta;
+    let b1 = s2[1] * beta;
+    let b2 = s2[2] * beta;
     let cross2 = Vector3::new(b2[1] - b1[2], b0[2] - b2[0], b1[0] - b0[1]);
     s.rxf += -(alpha * cross1 + cross2);
     // Σ (d²/2) A_j = (α² S0_j + 2α (S1 β)_j + βᵀ S2_j β) / 2
     let bsb = Vector3::new(beta.dot(&b0), beta.dot(&b1), beta.dot(&b2));
-    s.d2a += 0.5 * (alpha * alpha * m.s0 + 2.0 * alpha * (m.s1 * beta) + bsb);
-    s.area += m.area;
-    s.count += m.texels as usize;
+    s.d2a += 0.5 * (alpha * alpha * s0 + 2.0 * alpha * (s1 * beta) + bsb);
+    s.area += m.area();
+    s.count += m.texels() as usize;
 }

@@ -37,7 +37,7 @@ use std::ops::Range;
 use nalgebra::{Matrix2, Matrix2x3, Matrix3, Vector2, Vector3};
 use soak_bake::Atlas;
 
-use super::{Sums, TileCounts, TileMoments, TiledAtlas, add_closed_form};
+use super::{TileCounts, TiledAtlas, add_closed_form};
 use crate::hydrostatics::frame::Frame;
 use crate::hydrostatics::sea_kernel::{self, SeaFrame, add_sea_range};
 use crate::hydrostatics::sums::{BuoyancySums, SlopeSums};
@@ -63,19 +63,6 @@ pub const SEA_TILE_TOLERANCE: f64 = 1e-4;
 
 /// Groups of tiles per parallel task.
 const GROUP_CHUNK: usize = 32;
-
-impl Sums {
-    /// The moments of one tile.
-    fn of(m: &TileMoments) -> Self {
-        Self {
-            s0: m.s0,
-            s1: m.s1,
-            s2: m.s2,
-            area: m.area,
-            texels: u64::from(m.range.1 - m.range.0),
-        }
-    }
-}
 
 /// One evaluation's constants.
 struct SeaTiles<'a> {
@@ -226,9 +213,8 @@ impl TiledAtlas {
         }
         part.counts.submerged += 1;
         part.shallow |= dc - reach < c.delta;
-        let sums = Sums::of(m);
         let mut t = BuoyancySums::default();
-        add_closed_form(&mut t, &sums, alpha, &beta, &c.g);
+        add_closed_form(&mut t, m, alpha, &beta, &c.g);
         // The quadratic part: u_j = Σ A_j δ = ½ tr(Q M_j), with
         // M_j = Σ A_j (x − c)(x − c)ᵀ = S2_j − S1_j cᵀ − c S1_jᵀ + S0_j c cᵀ
         // from the moments (`Q` symmetric): ½ tr(Q S2_j) − cᵀQ S1_j + ½ S0_j cᵀQc.
@@ -263,18 +249,18 @@ impl TiledAtlas {
                 - t1 * centre.transpose()
                 - centre * t1.transpose()
                 + centre * centre.transpose() * c.g.dot(&m.s0);
+            // Σ_kl M_kl R e_k × P e_l = Σ_k R e_k × (P M) e_k.
+            let hlm = hl * mg;
             let mut second = Vector3::zeros();
             for k in 0..3 {
                 let rk: Vector3<f64> = c.rot.column(k).into();
-                for l in 0..3 {
-                    let pl = Vector3::new(hl[(0, l)], 0.0, hl[(1, l)]);
-                    second += mg[(k, l)] * rk.cross(&pl);
-                }
+                second += rk.cross(&Vector3::new(hlm[(0, k)], 0.0, hlm[(1, k)]));
             }
             // The slope's second-order part ½ D³h[Δ, Δ] against the same
-            // second moment: ½ tr(Lᵀ T_i L M_g) per slope component.
+            // second moment: ½ tr(T_i N) per slope component, N = L M_g Lᵀ.
             let [xxx, xxz, xzz, zzz] = third;
-            let curl = |t: Matrix2<f64>| 0.5 * (c.l.transpose() * t * c.l).component_mul(&mg).sum();
+            let n = c.l * mg * c.l.transpose();
+            let curl = |t: Matrix2<f64>| 0.5 * t.component_mul(&n).sum();
             let ds2 = Vector3::new(
                 curl(Matrix2::new(xxx, xxz, xxz, xzz)),
                 0.0,

@@ -455,15 +455,15 @@ impl SurfacePatch {
     pub fn taylor(&self, x: f64, z: f64) -> (f64, [f64; 2], [f64; 3], [f64; 4]) {
         let Place { cell, u, v } = self.place(x, z);
         let a = &self.coefficients[cell];
-        // c_p(v) = Σ_q a_pq v^q and its first two derivatives, then the
-        // polynomials in u.
-        let c = |p: usize| ((a[p][3] * v + a[p][2]) * v + a[p][1]) * v + a[p][0];
-        let dc = |p: usize| (3.0 * a[p][3] * v + 2.0 * a[p][2]) * v + a[p][1];
-        let ddc = |p: usize| 6.0 * a[p][3] * v + 2.0 * a[p][2];
-        let dddc = |p: usize| 6.0 * a[p][3];
-        let poly = |k: &dyn Fn(usize) -> f64| ((k(3) * u + k(2)) * u + k(1)) * u + k(0);
-        let du = |k: &dyn Fn(usize) -> f64| (3.0 * k(3) * u + 2.0 * k(2)) * u + k(1);
-        let duu = |k: &dyn Fn(usize) -> f64| 6.0 * k(3) * u + 2.0 * k(2);
+        // c_p(v) = Σ_q a_pq v^q and its derivatives, once each, then the
+        // polynomials in u and their derivatives.
+        let c: [f64; 4] = std::array::from_fn(|p| ((a[p][3] * v + a[p][2]) * v + a[p][1]) * v + a[p][0]);
+        let dc: [f64; 4] = std::array::from_fn(|p| (3.0 * a[p][3] * v + 2.0 * a[p][2]) * v + a[p][1]);
+        let ddc: [f64; 4] = std::array::from_fn(|p| 6.0 * a[p][3] * v + 2.0 * a[p][2]);
+        let dddc: [f64; 4] = std::array::from_fn(|p| 6.0 * a[p][3]);
+        let poly = |k: &[f64; 4]| ((k[3] * u + k[2]) * u + k[1]) * u + k[0];
+        let du = |k: &[f64; 4]| (3.0 * k[3] * u + 2.0 * k[2]) * u + k[1];
+        let duu = |k: &[f64; 4]| 6.0 * k[3] * u + 2.0 * k[2];
         let inv = 1.0 / self.spacing;
         let (inv2, inv3) = (inv * inv, inv * inv * inv);
         (
@@ -471,7 +471,7 @@ impl SurfacePatch {
             [du(&c) * inv, poly(&dc) * inv],
             [duu(&c) * inv2, du(&dc) * inv2, poly(&ddc) * inv2],
             [
-                6.0 * c(3) * inv3,
+                6.0 * c[3] * inv3,
                 duu(&dc) * inv3,
                 du(&ddc) * inv3,
                 poly(&dddc) * inv3,
