@@ -28,7 +28,10 @@ fn differences(a: &HydroForces, b: &HydroForces, volume: f64, radius: f64) -> [f
     ]
 }
 
-fn check(name: &str, mesh: &Mesh, n: u32, poses: &[(Vector3<f64>, (f64, f64, f64))]) {
+/// A place (its height from the surface's there) and Euler angles (rad).
+type Place = (Vector3<f64>, (f64, f64, f64));
+
+fn check(name: &str, mesh: &Mesh, n: u32, poses: &[Place]) {
     let atlas = Atlas::bake(mesh, BakeOptions::square(n)).unwrap();
     let tiled = TiledAtlas::new(&atlas);
     let mass = MassModel::Solid { density: 500.0 }
