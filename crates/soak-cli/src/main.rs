@@ -24,6 +24,8 @@ mod bench;
 mod common;
 mod demo;
 mod hydro;
+mod interrupt;
+mod progress;
 mod render;
 mod segment;
 mod simulate;
@@ -68,10 +70,16 @@ enum Command {
 fn main() -> std::process::ExitCode {
     match run(Cli::parse()) {
         Ok(()) => std::process::ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            std::process::ExitCode::FAILURE
-        }
+        Err(e) => match e.downcast_ref::<interrupt::Interrupted>() {
+            Some(stopped) => {
+                eprintln!("{stopped}");
+                std::process::ExitCode::from(interrupt::EXIT_CODE)
+            }
+            None => {
+                eprintln!("error: {e:#}");
+                std::process::ExitCode::FAILURE
+            }
+        },
     }
 }
 

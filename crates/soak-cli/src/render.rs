@@ -389,10 +389,20 @@ pub fn run(args: &Args) -> Result<()> {
     )?;
     let mut written = 0;
     let mut render_time = 0.0;
+    crate::interrupt::install();
+    let mut progress = crate::progress::Progress::new(args.scene.display().to_string(), "steps", last);
+    let mut reached = 0;
     for step in 0..=last {
+        if crate::interrupt::requested() {
+            break;
+        }
         if step > 0 {
             sim.step()?;
         }
+        reached = step;
+        progress.set(step, || {
+            format!("t = {:.2} s, {written} frame(s) written", sim.time())
+        });
         let wanted = step == last || args.every.is_some_and(|k| step.is_multiple_of(k));
         if wanted {
             let start = Instant::now();
@@ -405,8 +415,9 @@ pub fn run(args: &Args) -> Result<()> {
             written += 1;
         }
     }
+    progress.finish();
     println!(
-        "wrote {written} frame(s) of {}×{} to {} (last: step {last}, t = {:.3} s); {:.0} ms per frame on {}",
+        "wrote {written} frame(s) of {}×{} to {} (last: step {reached}, t = {:.3} s); {:.0} ms per frame on {}",
         args.width,
         args.height,
         args.out.display(),
@@ -414,6 +425,12 @@ pub fn run(args: &Args) -> Result<()> {
         1e3 * render_time / f64::from(written.max(1)),
         renderer.adapter()
     );
+    if reached < last {
+        return Err(crate::interrupt::Interrupted {
+            done: format!("at step {reached} of {last}: {written} frame(s) written"),
+        }
+        .into());
+    }
     Ok(())
 }
 

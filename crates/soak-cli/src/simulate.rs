@@ -1,11 +1,14 @@
 //! `soak simulate SCENE.toml`: run a scene headless.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::Context;
 use soak_rapier::scene::{DEFAULT_TOLERANCE, ResolutionSpec};
 use soak_rapier::{Backend, LoadedScene, Sample, Simulation};
+
+use crate::interrupt::Interrupted;
+use crate::progress::Progress;
 
 /// Arguments of `soak simulate`.
 #[derive(clap::Args)]
@@ -83,33 +86,24 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         pngs += sim.write_liquid_pngs(&args.out)?.len();
     }
     let total = sim.total_steps();
-    let bar = if std::io::stderr().is_terminal() {
-        let bar = indicatif::ProgressBar::new(total);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template("{msg} {wide_bar} {pos}/{len} steps, eta {eta}")
-                .expect("valid template"),
-        );
-        bar.set_message(args.scene.display().to_string());
-        Some(bar)
-    } else {
-        None
-    };
+    let duration = crate::progress::seconds(loaded.scene.duration);
+    crate::interrupt::install();
+    let mut progress = Progress::new(args.scene.display().to_string(), "steps", total);
+    let mut steps = 0;
     for k in 1..=total {
-        sim.step()?;
-        if let Some(b) = &bar
-            && k % 16 == 0
-        {
-            b.set_position(k);
+        if crate::interrupt::requested() {
+            break;
         }
+        sim.step()?;
+        steps = k;
+        progress.set(k, || format!("t = {:.2} s of {duration} s", sim.time()));
         if let Some(n) = png_every
             && k % n as u64 == 0
         {
             pngs += sim.write_liquid_pngs(&args.out)?.len();
         }
     }
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    progress.finish();
     if let Some(path) = &args.csv {
         write_csv(path, &sim)?;
     }
@@ -121,7 +115,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
             "{} after {:.2} s ({} steps):",
             args.scene.display(),
             sim.time(),
-            total
+            steps
         );
         for r in &report {
             println!(
@@ -156,6 +150,15 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
             "warning: {} non-finite or absurd quantities were kept from Rapier",
             sim.soak.firewall().count()
         );
+    }
+    if steps < total {
+        return Err(Interrupted {
+            done: format!(
+                "at t = {:.3} s of {duration} s ({steps} of {total} steps); the results above are of that time",
+                sim.time()
+            ),
+        }
+        .into());
     }
     Ok(())
 }

@@ -72,7 +72,29 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         threads: args.threads.unwrap_or(defaults.threads).max(1),
         mode: args.buoyancy.mode(),
     };
-    let outcomes = stress::run(&cells, &options)?;
+    crate::interrupt::install();
+    let progress = std::sync::Mutex::new(crate::progress::Progress::new(
+        "soak stress",
+        "cells",
+        cells.len() as u64,
+    ));
+    let outcomes = stress::run_with(
+        &cells,
+        &options,
+        &stress::Control {
+            stop: &crate::interrupt::requested,
+            done: &|done, _| {
+                if let Ok(mut p) = progress.lock() {
+                    p.set(done as u64, || {
+                        format!("{:.0} s in", start.elapsed().as_secs_f64())
+                    });
+                }
+            },
+        },
+    )?;
+    if let Ok(p) = progress.into_inner() {
+        p.finish();
+    }
     let seconds = start.elapsed().as_secs_f64();
 
     if args.json {
@@ -102,6 +124,16 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
             eprintln!("  {}: {}", o.cell, o.failures.join("; "));
         }
         bail!("{} of {} stress cells failed", failing.len(), outcomes.len());
+    }
+    if outcomes.len() < cells.len() {
+        return Err(crate::interrupt::Interrupted {
+            done: format!(
+                "after {} of {} cells (all of them passed; the table above is theirs)",
+                outcomes.len(),
+                cells.len()
+            ),
+        }
+        .into());
     }
     Ok(())
 }

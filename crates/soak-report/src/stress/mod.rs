@@ -76,6 +76,36 @@ impl Default for StressOptions {
 /// set up or run, or an error baking a mesh. A cell that runs and fails a
 /// check is not an error: its [`Outcome::pass`] is `false`.
 pub fn run(cells: &[Cell], options: &StressOptions) -> Result<Vec<Outcome>, StressError> {
+    run_with(
+        cells,
+        options,
+        &Control {
+            stop: &|| false,
+            done: &|_, _| {},
+        },
+    )
+}
+
+/// What a caller may do while the matrix runs ([`run_with`]).
+pub struct Control<'a> {
+    /// Asked before each cell: once it answers `true` (a Ctrl-C handler's
+    /// flag, a deadline) no further cell starts.
+    pub stop: &'a (dyn Fn() -> bool + Sync),
+    /// Told after each cell how many cells are done, of how many.
+    pub done: &'a (dyn Fn(usize, usize) + Sync),
+}
+
+/// [`run`] under `control`: the outcomes of the cells that ran, in the
+/// order of `cells`; all of them unless `control.stop` stopped the run, in
+/// which case the cells it kept from starting are left out.
+///
+/// # Errors
+/// As [`run`].
+pub fn run_with(
+    cells: &[Cell],
+    options: &StressOptions,
+    control: &Control,
+) -> Result<Vec<Outcome>, StressError> {
     // Bake each mesh once per scale.
     let mut keys: Vec<(Shape, u64)> = cells.iter().map(|c| (c.mesh, c.scale.to_bits())).collect();
     keys.sort_unstable();
@@ -92,18 +122,23 @@ pub fn run(cells: &[Cell], options: &StressOptions) -> Result<Vec<Outcome>, Stre
     };
 
     let next = AtomicUsize::new(0);
+    let finished = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Result<Outcome, StressError>>>> =
         Mutex::new((0..cells.len()).map(|_| None).collect());
     std::thread::scope(|s| {
         for _ in 0..options.threads.max(1).min(cells.len()) {
             s.spawn(|| {
                 loop {
+                    if (control.stop)() {
+                        break;
+                    }
                     let i = next.fetch_add(1, Ordering::Relaxed);
                     let Some(cell) = cells.get(i) else { break };
                     let r = run_cell(cell, fixture_of(cell), options.max_steps, options.mode);
                     if let Ok(mut results) = results.lock() {
                         results[i] = Some(r);
                     }
+                    (control.done)(finished.fetch_add(1, Ordering::Relaxed) + 1, cells.len());
                 }
             });
         }
@@ -119,6 +154,7 @@ pub fn run(cells: &[Cell], options: &StressOptions) -> Result<Vec<Outcome>, Stre
                     source: Box::new(e),
                 });
             }
+            None if (control.stop)() => {}
             None => return Err(StressError::Worker),
         }
     }
