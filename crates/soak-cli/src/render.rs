@@ -16,7 +16,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use nalgebra::{Isometry3, Point3, Vector3};
-use soak_bake::{Mesh, UnwrapOptions};
+use soak_bake::Mesh;
 use soak_hydro::Gerstner;
 use soak_rapier::scene::{LoadedScene, WaterKind};
 use soak_rapier::{Simulation, convert};
@@ -136,15 +136,7 @@ impl SceneRenderer {
         let mut albedos = Vec::new();
         let mut radius = Vec::new();
         for (i, b) in loaded.scene.bodies.iter().enumerate() {
-            let source = if b.mesh.starts_with("builtin:") {
-                b.mesh.clone()
-            } else {
-                loaded.resolve(&b.mesh).to_string_lossy().into_owned()
-            };
-            let mut mesh = soak_bake::load_mesh(&source).with_context(|| format!("body `{}`", b.name))?;
-            if b.unwrap {
-                mesh = soak_bake::unwrap(&mesh, UnwrapOptions::default())?.0;
-            }
+            let mesh = loaded.body_mesh(i)?;
             let r = mesh
                 .positions
                 .iter()

@@ -21,6 +21,11 @@ pub struct Args {
     /// Write the time series (pose, forces, submerged volume, mass) as CSV.
     #[arg(long)]
     csv: Option<PathBuf>,
+    /// Write the run as an animated glTF binary (`.glb`): each body a node
+    /// with its mesh, its poses sampled at the scene's output rate
+    /// (`output.every` steps), for Blender or any glTF viewer.
+    #[arg(long, value_name = "FILE.glb")]
+    gltf: Option<PathBuf>,
     /// Override the scene's duration, s.
     #[arg(long)]
     duration: Option<f64>,
@@ -69,7 +74,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     }
     let png_every = args.liquid_png_every.or(loaded.scene.output.liquid_png_every);
     let mut sim = Simulation::from_scene(&loaded)?;
-    sim.record(args.csv.is_some());
+    sim.record(args.csv.is_some() || args.gltf.is_some());
     // Say which side `resolution = "auto"` chose for each body that asked.
     for (spec, body) in loaded.scene.bodies.iter().zip(&sim.bodies) {
         if matches!(spec.resolution, ResolutionSpec::Auto(_)) {
@@ -107,6 +112,9 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     if let Some(path) = &args.csv {
         write_csv(path, &sim)?;
     }
+    if let Some(path) = &args.gltf {
+        write_gltf(path, &loaded, &sim)?;
+    }
     let report = sim.report();
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
@@ -141,6 +149,9 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         if let Some(path) = &args.csv {
             println!("time series in {}", path.display());
         }
+        if let Some(path) = &args.gltf {
+            println!("animated glTF in {}", path.display());
+        }
         if pngs > 0 {
             println!("{pngs} liquid textures in {}", args.out.display());
         }
@@ -160,6 +171,23 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         }
         .into());
     }
+    Ok(())
+}
+
+/// Writes the recorded samples as an animated glTF binary, the bodies drawn
+/// with their scene meshes.
+fn write_gltf(path: &std::path::Path, loaded: &LoadedScene, sim: &Simulation) -> anyhow::Result<()> {
+    let meshes = (0..sim.bodies.len())
+        .map(|i| loaded.body_mesh(i))
+        .collect::<Result<Vec<_>, _>>()?;
+    let names: Vec<String> = sim.bodies.iter().map(|b| b.name.clone()).collect();
+    let run = soak_rapier::export::Recording::from_samples(&names, meshes, sim.samples())?;
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    let file = std::fs::File::create(path).with_context(|| format!("cannot write {}", path.display()))?;
+    run.write_glb(std::io::BufWriter::new(file))
+        .with_context(|| format!("writing {}", path.display()))?;
     Ok(())
 }
 

@@ -10,6 +10,8 @@ mod simulation;
 // Public: free functions between nalgebra and Rapier's types, named as `convert::pose(..)`:
 // for code that reads soak's f64 core types; the generator's own API speaks Rapier's types.
 pub mod convert;
+// Public: a run as an animated glTF binary, named as `export::Recording`.
+pub mod export;
 // Public: free functions measuring a hull, named as `hull::pitch_degrees(..)`.
 pub mod hull;
 // Public: the many spec types of a scene file, named as `scene::BodySpec`.

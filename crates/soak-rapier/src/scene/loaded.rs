@@ -63,6 +63,39 @@ impl LoadedScene {
         }
     }
 
+    /// The mesh of body `i` as the simulation takes it: its file (relative
+    /// to the scene's) or `builtin:` mesh, unwrapped where the body asks.
+    ///
+    /// # Errors
+    /// [`SceneError::Body`] naming the body and its line: no such body, a
+    /// mesh that does not load or unwrap.
+    pub fn body_mesh(&self, i: usize) -> Result<soak_bake::Mesh, SceneError> {
+        let key = format!("bodies[{i}].mesh");
+        let body_err = |name: &str, message: String| SceneError::Body {
+            path: self.path.clone(),
+            line: self.line_of(&key),
+            body: name.to_string(),
+            message,
+        };
+        let b = self
+            .scene
+            .bodies
+            .get(i)
+            .ok_or_else(|| body_err(&format!("#{i}"), "no such body in the scene".to_string()))?;
+        let source = if b.mesh.starts_with("builtin:") {
+            b.mesh.clone()
+        } else {
+            self.resolve(&b.mesh).to_string_lossy().into_owned()
+        };
+        let mesh = soak_bake::load_mesh(&source).map_err(|e| body_err(&b.name, e.to_string()))?;
+        if !b.unwrap {
+            return Ok(mesh);
+        }
+        soak_bake::unwrap(&mesh, soak_bake::UnwrapOptions::default())
+            .map(|(m, _)| m)
+            .map_err(|e| body_err(&b.name, e.to_string()))
+    }
+
     /// A path relative to the scene file.
     pub fn resolve(&self, relative: &str) -> PathBuf {
         let p = Path::new(relative);

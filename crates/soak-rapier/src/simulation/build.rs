@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::*;
-use soak_bake::{Atlas, BakeOptions, UnwrapOptions};
+use soak_bake::{Atlas, BakeOptions};
 use soak_hydro::{Gerstner, HeightField, MassModel, Plane, Unbounded, Water};
 
 use super::{SimBody, Simulation};
@@ -147,17 +147,7 @@ impl Simulation {
                 body: b.name.clone(),
                 message,
             };
-            let source = if b.mesh.starts_with("builtin:") {
-                b.mesh.clone()
-            } else {
-                loaded.resolve(&b.mesh).to_string_lossy().into_owned()
-            };
-            let mut mesh = soak_bake::load_mesh(&source).map_err(|e| body_err(e.to_string()))?;
-            if b.unwrap {
-                mesh = soak_bake::unwrap(&mesh, UnwrapOptions::default())
-                    .map_err(|e| body_err(e.to_string()))?
-                    .0;
-            }
+            let mesh = loaded.body_mesh(i)?;
             let [rx, ry, rz] = b.rotation_deg.map(f64::to_radians);
             let pose = Isometry3::from_parts(
                 Translation3::from(Vector3::from(b.position)),
