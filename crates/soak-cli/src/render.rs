@@ -63,6 +63,11 @@ pub struct Args {
     /// (`frame_000000.png`, ...).
     #[arg(long)]
     pub every: Option<u64>,
+    /// Also encode the frames written as a video (H.264 in MP4, at the
+    /// simulation's pace) with the `ffmpeg` found on the `PATH`; needs
+    /// `--every`.
+    #[arg(long, value_name = "OUT.mp4", requires = "every")]
+    pub video: Option<PathBuf>,
     /// Image width, pixels.
     #[arg(long, default_value_t = 640)]
     pub width: u32,
@@ -353,6 +358,57 @@ fn albedo_for(name: &str, mesh: &str, index: usize, fixed: bool) -> Albedo {
     }
 }
 
+/// Encodes `frames` (PNG files of one size), each shown `seconds` long, as
+/// H.264 in MP4 with the `ffmpeg` on the `PATH`.
+fn encode_video(frames: &[PathBuf], seconds: f64, video: &Path) -> Result<()> {
+    use std::fmt::Write as _;
+    if frames.is_empty() {
+        bail!("no frame to encode into {}", video.display());
+    }
+    // The concat demuxer's list: the frames written, each for its time.
+    let mut list = String::from("ffconcat version 1.0\n");
+    for f in frames {
+        let name = std::fs::canonicalize(f).with_context(|| format!("cannot find {}", f.display()))?;
+        let _ = writeln!(list, "file '{}'\nduration {seconds}", name.display());
+    }
+    // The last frame once more, so that its duration counts.
+    let last = std::fs::canonicalize(&frames[frames.len() - 1])?;
+    let _ = writeln!(list, "file '{}'", last.display());
+    let list_path = video.with_extension("ffconcat");
+    std::fs::write(&list_path, list).with_context(|| format!("cannot write {}", list_path.display()))?;
+    let run = std::process::Command::new("ffmpeg")
+        .args(["-y", "-loglevel", "error", "-f", "concat", "-safe", "0", "-i"])
+        .arg(&list_path)
+        .args([
+            "-c:v",
+            "libx264",
+            "-pix_fmt",
+            "yuv420p",
+            "-vf",
+            "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+        ])
+        .arg(video)
+        .output();
+    let _ = std::fs::remove_file(&list_path);
+    match run {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => bail!(
+            "--video needs ffmpeg, which is not on the PATH (Debian: `apt install ffmpeg`); \
+             the {} frame(s) are written, and `ffmpeg -framerate {:.3} -pattern_type glob -i 'frame_*.png' {}` \
+             encodes them once it is installed",
+            frames.len(),
+            1.0 / seconds,
+            video.display()
+        ),
+        Err(e) => Err(e).context("running ffmpeg"),
+        Ok(out) if !out.status.success() => bail!(
+            "ffmpeg could not encode {}: {}",
+            video.display(),
+            String::from_utf8_lossy(&out.stderr).trim()
+        ),
+        Ok(_) => Ok(()),
+    }
+}
+
 fn frame_path(out: &Path, step: u64) -> PathBuf {
     out.join(format!("frame_{step:06}.png"))
 }
@@ -380,6 +436,7 @@ pub fn run(args: &Args) -> Result<()> {
         },
     )?;
     let mut written = 0;
+    let mut frames = Vec::new();
     let mut render_time = 0.0;
     crate::interrupt::install();
     let mut progress = crate::progress::Progress::new(args.scene.display().to_string(), "steps", last);
@@ -404,6 +461,7 @@ pub fn run(args: &Args) -> Result<()> {
             image
                 .save(&path)
                 .with_context(|| format!("cannot write {}", path.display()))?;
+            frames.push(path);
             written += 1;
         }
     }
@@ -417,6 +475,16 @@ pub fn run(args: &Args) -> Result<()> {
         1e3 * render_time / f64::from(written.max(1)),
         renderer.adapter()
     );
+    if let (Some(video), Some(every)) = (&args.video, args.every) {
+        let seconds_per_frame = sim.dt() * every as f64;
+        encode_video(&frames, seconds_per_frame, video)?;
+        println!(
+            "encoded {} frame(s) at {:.1} frames per second into {}",
+            frames.len(),
+            1.0 / seconds_per_frame,
+            video.display()
+        );
+    }
     if reached < last {
         return Err(crate::interrupt::Interrupted {
             done: format!("at step {reached} of {last}: {written} frame(s) written"),

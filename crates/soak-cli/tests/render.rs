@@ -182,3 +182,85 @@ fn bad_render_arguments_are_refused_with_the_option_named() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--video` without ffmpeg on the `PATH`: the frames are written, and the
+/// message says what is missing and how to encode them once it is there.
+#[test]
+fn a_video_without_ffmpeg_says_so_and_keeps_the_frames() {
+    let dir = out_dir("no-ffmpeg");
+    let scene = scene();
+    let video = dir.join("crate.mp4");
+    // A PATH with nothing on it: no ffmpeg to find.
+    let empty = dir.join("empty-path");
+    std::fs::create_dir_all(&empty).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_soak"))
+        .env("PATH", &empty)
+        .args([
+            "render",
+            scene.to_str().unwrap(),
+            "--frame",
+            "20",
+            "--every",
+            "10",
+        ])
+        .args(["--width", "64", "--height", "36", "--out", dir.to_str().unwrap()])
+        .arg("--video")
+        .arg(&video)
+        .output()
+        .expect("runs soak");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    if stderr.contains("no GPU adapter") {
+        assert!(
+            std::env::var("CI").as_deref() != Ok("true"),
+            "no GPU adapter under CI=true: {stderr}"
+        );
+        eprintln!("no GPU adapter: skipping ({stderr})");
+        return;
+    }
+    assert!(!out.status.success());
+    assert!(
+        stderr.contains("--video needs ffmpeg, which is not on the PATH"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("the 3 frame(s) are written"), "{stderr}");
+    for step in [0, 10, 20] {
+        assert!(dir.join(format!("frame_{step:06}.png")).exists(), "frame {step}");
+    }
+    assert!(!video.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--video` with the machine's ffmpeg: an MP4 of the frames (skipped, with
+/// a notice, where ffmpeg is not installed).
+#[test]
+fn a_video_of_the_frames_is_encoded_where_ffmpeg_is_installed() {
+    if Command::new("ffmpeg").arg("-version").output().is_err() {
+        eprintln!("no ffmpeg on this machine: the encoding is not checked here");
+        return;
+    }
+    let dir = out_dir("video");
+    let scene = scene();
+    let video = dir.join("crate.mp4");
+    let Some(out) = render(&[
+        scene.to_str().unwrap(),
+        "--frame",
+        "20",
+        "--every",
+        "5",
+        "--width",
+        "64",
+        "--height",
+        "36",
+        "--out",
+        dir.to_str().unwrap(),
+        "--video",
+        video.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let bytes = std::fs::read(&video).expect("the video was written");
+    // An MP4 starts with its `ftyp` box.
+    assert_eq!(&bytes[4..8], b"ftyp");
+    let _ = std::fs::remove_dir_all(&dir);
+}
