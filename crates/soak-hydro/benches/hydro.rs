@@ -162,6 +162,14 @@ fn drag_rows(
     g.bench_function("swell_drag", |b| {
         b.iter(|| evaluate(atlas, &swell, &moving, mass, 0.0, &opts).unwrap())
     });
+    // Tiled on the swell: buoyancy in closed form under the waves, drag per
+    // texel without the sea kernel's read of the tiles in closed form.
+    g.bench_function("swell_moving_tiled", |b| {
+        b.iter(|| tiled.evaluate(atlas, &swell, &moving, mass, 0.0, &still).unwrap())
+    });
+    g.bench_function("swell_drag_tiled", |b| {
+        b.iter(|| tiled.evaluate(atlas, &swell, &moving, mass, 0.0, &opts).unwrap())
+    });
 }
 
 /// The sphere of [`hydro`] at 128² (8,000 texels, the resolution of the

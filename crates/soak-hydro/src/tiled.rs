@@ -21,6 +21,7 @@ use crate::hydrostatics::forces::HydroForces;
 use crate::hydrostatics::frame::{Frame, texel};
 use crate::hydrostatics::options::{BuoyancyMode, HydroOptions};
 use crate::hydrostatics::planar_kernel::{PlanarTexels, add_planar_ranges};
+use crate::hydrostatics::sea_drag::{SeaDragFrame, SeaDragParams};
 use crate::hydrostatics::sums::{BuoyancySums, DragAcc, DragSums};
 use crate::mass::MassProperties;
 use crate::parallel::par_map;
@@ -145,7 +146,9 @@ struct Group {
 /// the same closed forms from the surface's second-order Taylor polynomial
 /// over each tile, the error of its remainder held under
 /// [`SEA_TILE_TOLERANCE`]; the rest goes through the
-/// sea kernel texel by texel. Drag on a sea, and any other surface, fall
+/// sea kernel texel by texel. Drag on a sea takes every texel of a tile in
+/// closed form as submerged and the others as the sea kernel finds them,
+/// each with the fluid's velocity where it is. Any other surface falls
 /// back to the per-texel path.
 ///
 /// Two levels: the atlas' tiles (`tile_size`² texels), and groups of
@@ -295,8 +298,8 @@ impl TiledAtlas {
     }
 
     /// Same as [`crate::evaluate`], using closed forms for tiles wholly under
-    /// a planar surface or a sampled sea (without drag). Falls back to the
-    /// per-texel path for other surfaces.
+    /// a planar surface or a sampled sea. Falls back to the per-texel path
+    /// for other surfaces.
     /// `self` must come from this `atlas` (same bake or refresh).
     pub fn evaluate(
         &self,
@@ -326,33 +329,46 @@ impl TiledAtlas {
         let frame = Frame::new(atlas, water, state, mass, t);
         if frame.plane.is_none() {
             // A sampled sea (handed in, or sampled here as `evaluate` would):
-            // tiles under the waves in closed form. Drag, and any other
-            // surface, per texel.
-            if options.drag.is_none() {
-                let handed = water
-                    .surface
-                    .as_any()
-                    .and_then(|s| s.downcast_ref::<SurfacePatch>());
-                let sampled = match handed {
-                    Some(_) => None,
-                    None => sample_patch(atlas, water, state, t, options)?,
+            // tiles under the waves in closed form. Any other surface per
+            // texel.
+            let handed = water
+                .surface
+                .as_any()
+                .and_then(|s| s.downcast_ref::<SurfacePatch>());
+            let sampled = match handed {
+                Some(_) => None,
+                None => sample_patch(atlas, water, state, t, options)?,
+            };
+            let Some(patch) = handed.or(sampled.as_ref()) else {
+                return evaluate(atlas, water, state, mass, t, options).map(|f| (f, TileCounts::default()));
+            };
+            let archimedes = options.buoyancy == BuoyancyMode::Archimedes;
+            let c = frame.rot.transpose() * (frame.com - frame.ow);
+            let drag_frame = options.drag.map(|drag| SeaDragFrame {
+                params: SeaDragParams::new(
+                    &drag,
+                    water.density,
+                    &frame.rot,
+                    &c,
+                    &state.linear_velocity,
+                    &state.angular_velocity,
+                ),
+                rot: frame.rot,
+                ow: frame.ow,
+                patch,
+            });
+            let (sums, drag, counts) =
+                match self.sea_sums(atlas, &frame, patch, archimedes, drag_frame.as_ref()) {
+                    Some((sums, drag, counts)) => (sums, drag.map(|d| d.system(&frame.rot, &c)), counts),
+                    None => {
+                        let (sums, drag) = patch_sums(atlas, water, state, &frame, t, options, patch);
+                        (sums, drag, TileCounts::default())
+                    }
                 };
-                if let Some(patch) = handed.or(sampled.as_ref()) {
-                    let archimedes = options.buoyancy == BuoyancyMode::Archimedes;
-                    let counted = match self.sea_sums(atlas, &frame, patch, archimedes) {
-                        Some((sums, counts)) => (sums, counts),
-                        None => (
-                            patch_sums(atlas, water, state, &frame, t, options, patch).0,
-                            TileCounts::default(),
-                        ),
-                    };
-                    return Ok((
-                        finish(&frame, water, state, mass, &counted.0, None, options),
-                        counted.1,
-                    ));
-                }
-            }
-            return evaluate(atlas, water, state, mass, t, options).map(|f| (f, TileCounts::default()));
+            return Ok((
+                finish(&frame, water, state, mass, &sums, drag.as_ref(), options),
+                counts,
+            ));
         }
         let (sums, drag, counts) = self.sums(atlas, water, state, &frame, t, options);
         Ok((

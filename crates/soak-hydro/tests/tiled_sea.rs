@@ -6,8 +6,8 @@
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::{
-    BodyState, BuoyancyMode, Gerstner, GerstnerWave, HydroForces, HydroOptions, MassModel, TiledAtlas, Water,
-    evaluate, sampled_water,
+    BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HydroForces, HydroOptions, MassModel, TiledAtlas,
+    Water, evaluate, sampled_water,
 };
 
 fn swell() -> Water {
@@ -83,6 +83,34 @@ fn check(name: &str, mesh: &Mesh, n: u32, poses: &[Place]) {
             assert_eq!(
                 direct.submerged_volume, got.submerged_volume,
                 "{name}: sampled here or handed in"
+            );
+
+            // With drag: the same texels' drag, each in the fluid's velocity
+            // where it is (summed in another order).
+            let options = HydroOptions {
+                drag: Some(Drag {
+                    coefficient: 0.8,
+                    linear: 20.0,
+                }),
+                ..options
+            };
+            let water = sampled_water(&atlas, &sea, &state, t, &options).unwrap().unwrap();
+            let want = evaluate(&atlas, &water, &state, &mass, t, &options).unwrap();
+            let got = tiled
+                .evaluate(&atlas, &water, &state, &mass, t, &options)
+                .unwrap();
+            let scale = want.drag.force.norm() + want.drag.torque.norm() / radius;
+            let off = (got.drag.force - want.drag.force).norm()
+                + (got.drag.torque - want.drag.torque).norm() / radius;
+            println!("  with drag: {off:.1e} of {scale:.1e}");
+            assert!(
+                scale > 1.0 && off < 1e-12 * scale,
+                "{name} {at:?} {mode:?}: drag off by {off:.2e} of {scale:.2e}"
+            );
+            let d = differences(&got, &want, volume, radius);
+            assert!(
+                d[0] < 1e-7 && d[1] < 1e-6,
+                "{name} {at:?} {mode:?}: with drag {d:?}"
             );
         }
     }

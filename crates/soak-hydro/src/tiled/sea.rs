@@ -39,6 +39,7 @@ use soak_bake::Atlas;
 
 use super::{TileCounts, TiledAtlas, add_closed_form};
 use crate::hydrostatics::frame::Frame;
+use crate::hydrostatics::sea_drag::{SeaDragFrame, SeaDragSums, sea_drag_range};
 use crate::hydrostatics::sea_kernel::{self, SeaFrame, add_sea_range};
 use crate::hydrostatics::sums::{BuoyancySums, SlopeSums};
 use crate::parallel::par_map;
@@ -93,11 +94,15 @@ struct Part {
     /// Whether a tile in closed form may come within `δ` of the surface
     /// (its share of `Σ ln min(d/δ, 1)` would then not be zero).
     shallow: bool,
+    /// Drag sums (object axes), where drag is on.
+    drag: SeaDragSums,
 }
 
 impl TiledAtlas {
     /// The buoyancy sums (world axes, as the sea kernel gives them) of a
-    /// body under `patch`, tiles wholly under it in closed form: `None`
+    /// body under `patch`, tiles wholly under it in closed form, and with
+    /// `drag` the sea's drag sums of its submerged texels (every texel of a
+    /// tile in closed form, the others as the sea kernel finds them): `None`
     /// where the sea kernel is not available, or where every tile is under
     /// water and some in closed form lie within the depth scale of the
     /// surface (Archimedes' deep-volume weight then needs every texel's
@@ -108,7 +113,8 @@ impl TiledAtlas {
         frame: &Frame,
         patch: &SurfacePatch,
         archimedes: bool,
-    ) -> Option<(BuoyancySums, TileCounts)> {
+        drag: Option<&SeaDragFrame>,
+    ) -> Option<(BuoyancySums, Option<SeaDragSums>, TileCounts)> {
         if !sea_kernel::available() {
             return None;
         }
@@ -141,7 +147,7 @@ impl TiledAtlas {
         let parts = par_map(n_chunks, |k| {
             let groups = &self.groups[k * GROUP_CHUNK..((k + 1) * GROUP_CHUNK).min(self.groups.len())];
             let mut part = Part::default();
-            let mut texels: Vec<Range<usize>> = Vec::new();
+            let (mut texels, mut closed): (Vec<Range<usize>>, Vec<Range<usize>>) = (Vec::new(), Vec::new());
             for group in groups {
                 let b = &group.bounds;
                 if (c.ow + rot * b.centre).y - b.radius >= c.top {
@@ -149,19 +155,38 @@ impl TiledAtlas {
                     continue;
                 }
                 for ti in group.tiles.clone() {
-                    self.sea_tile(&c, ti, &mut part, &mut texels);
+                    self.sea_tile(&c, ti, &mut part, &mut texels, &mut closed);
                 }
             }
+            let Some(drag) = drag else {
+                for r in texels {
+                    add_sea_range(&mut part.world, atlas, r, &sea, None);
+                }
+                return part;
+            };
+            // The drag kernel takes the kernel's depths where it read them,
+            // and every texel of a tile in closed form as submerged.
+            let mut depths = Vec::new();
             for r in texels {
-                add_sea_range(&mut part.world, atlas, r, &sea, None);
+                depths.clear();
+                depths.resize(r.len(), 0.0);
+                add_sea_range(&mut part.world, atlas, r.clone(), &sea, Some(&mut depths));
+                part.drag = part.drag + sea_drag_range(atlas, r, &depths, drag);
+            }
+            for r in closed {
+                depths.clear();
+                depths.resize(r.len(), 1.0);
+                part.drag = part.drag + sea_drag_range(atlas, r, &depths, drag);
             }
             part
         });
         let mut sums = BuoyancySums::default();
+        let mut drag_sums = SeaDragSums::default();
         let mut counts = TileCounts::default();
         let mut shallow = false;
         for p in parts {
             sums = sums + p.local.rotated(&rot) + p.world;
+            drag_sums = drag_sums + p.drag;
             counts.submerged += p.counts.submerged;
             counts.dry += p.counts.dry;
             counts.cut += p.counts.cut;
@@ -170,12 +195,19 @@ impl TiledAtlas {
         if archimedes && shallow && sums.count == atlas.len() {
             return None;
         }
-        Some((sums, counts))
+        Some((sums, drag.map(|_| drag_sums), counts))
     }
 
-    /// Settles tile `ti`: skipped, in closed form into `part`, or listed in
-    /// `texels` for the kernel.
-    fn sea_tile(&self, c: &SeaTiles, ti: usize, part: &mut Part, texels: &mut Vec<Range<usize>>) {
+    /// Settles tile `ti`: skipped, in closed form into `part` (its texels
+    /// listed in `closed`), or listed in `texels` for the kernel.
+    fn sea_tile(
+        &self,
+        c: &SeaTiles,
+        ti: usize,
+        part: &mut Part,
+        texels: &mut Vec<Range<usize>>,
+        closed: &mut Vec<Range<usize>>,
+    ) {
         let m = &self.tiles[ti];
         let (rho, centre) = (m.radius, m.centre);
         let p = c.ow + c.rot * centre;
@@ -205,13 +237,11 @@ impl TiledAtlas {
         let range = m.range.0 as usize..m.range.1 as usize;
         if dc - reach <= 0.0 || remainder > c.tolerance {
             part.counts.cut += 1;
-            match texels.last_mut() {
-                Some(last) if last.end == range.start => last.end = range.end,
-                _ => texels.push(range),
-            }
+            extend(texels, range);
             return;
         }
         part.counts.submerged += 1;
+        extend(closed, range);
         part.shallow |= dc - reach < c.delta;
         let mut t = BuoyancySums::default();
         add_closed_form(&mut t, m, alpha, &beta, &c.g);
@@ -275,5 +305,13 @@ impl TiledAtlas {
                 };
         }
         part.local = part.local + t;
+    }
+}
+
+/// Appends `range` to `ranges`, extending the last one where it follows it.
+fn extend(ranges: &mut Vec<Range<usize>>, range: Range<usize>) {
+    match ranges.last_mut() {
+        Some(last) if last.end == range.start => last.end = range.end,
+        _ => ranges.push(range),
     }
 }
