@@ -21,7 +21,7 @@ use crate::hydrostatics::forces::HydroForces;
 use crate::hydrostatics::frame::{Frame, texel};
 use crate::hydrostatics::options::{BuoyancyMode, HydroOptions};
 use crate::hydrostatics::planar_kernel::{PlanarTexels, add_planar_ranges};
-use crate::hydrostatics::sea_drag::{SeaDragFrame, SeaDragParams};
+use crate::hydrostatics::sea_drag::SeaDragFrame;
 use crate::hydrostatics::sums::{BuoyancySums, DragAcc, DragSums};
 use crate::mass::MassProperties;
 use crate::parallel::par_map;
@@ -343,28 +343,27 @@ impl TiledAtlas {
                 return evaluate(atlas, water, state, mass, t, options).map(|f| (f, TileCounts::default()));
             };
             let archimedes = options.buoyancy == BuoyancyMode::Archimedes;
-            let c = frame.rot.transpose() * (frame.com - frame.ow);
-            let drag_frame = options.drag.map(|drag| SeaDragFrame {
-                params: SeaDragParams::new(
-                    &drag,
-                    water.density,
-                    &frame.rot,
-                    &c,
-                    &state.linear_velocity,
-                    &state.angular_velocity,
-                ),
-                rot: frame.rot,
-                ow: frame.ow,
+            let drag_frame = options
+                .drag
+                .map(|drag| SeaDragFrame::of(&drag, water, state, &frame, patch));
+            let (sums, drag, counts) = match self.sea_sums(
+                atlas,
+                &frame,
                 patch,
-            });
-            let (sums, drag, counts) =
-                match self.sea_sums(atlas, &frame, patch, archimedes, drag_frame.as_ref()) {
-                    Some((sums, drag, counts)) => (sums, drag.map(|d| d.system(&frame.rot, &c)), counts),
-                    None => {
-                        let (sums, drag) = patch_sums(atlas, water, state, &frame, t, options, patch);
-                        (sums, drag, TileCounts::default())
-                    }
-                };
+                archimedes,
+                drag_frame.as_ref().map(|(f, _)| f),
+            ) {
+                Some((sums, drag, counts)) => (
+                    sums,
+                    drag.zip(drag_frame.as_ref())
+                        .map(|(d, (_, c))| d.system(&frame.rot, c)),
+                    counts,
+                ),
+                None => {
+                    let (sums, drag) = patch_sums(atlas, water, state, &frame, t, options, patch);
+                    (sums, drag, TileCounts::default())
+                }
+            };
             return Ok((
                 finish(&frame, water, state, mass, &sums, drag.as_ref(), options),
                 counts,

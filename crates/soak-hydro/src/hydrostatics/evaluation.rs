@@ -11,7 +11,7 @@ use super::forces::HydroForces;
 use super::frame::{Frame, texel};
 use super::options::{BuoyancyMode, Drag, HydroOptions, SeaSampling};
 use super::planar_kernel::{PlanarTexels, add_planar_ranges};
-use super::sea_drag::{SeaDragFrame, SeaDragParams, SeaDragSums, sea_drag_range};
+use super::sea_drag::{SeaDragFrame, SeaDragSums, sea_drag_range};
 use super::sea_kernel::{self, SeaFrame, add_sea_range};
 use super::sums::{BuoyancySums, DragAcc, DragSums, TexelDrag};
 use crate::error::{HydroError, WaterError};
@@ -296,20 +296,7 @@ pub(crate) fn patch_sums(
         });
         return (sums, None);
     };
-    let c = frame.rot.transpose() * (frame.com - frame.ow);
-    let drag_frame = SeaDragFrame {
-        params: SeaDragParams::new(
-            drag,
-            water.density,
-            &frame.rot,
-            &c,
-            &state.linear_velocity,
-            &state.angular_velocity,
-        ),
-        rot: frame.rot,
-        ow: frame.ow,
-        patch,
-    };
+    let (drag_frame, c) = SeaDragFrame::of(drag, water, state, frame, patch);
     let both = chunked_sum(atlas.len(), Both::<SeaDragSums>::default(), |range| {
         let mut s = BuoyancySums::default();
         let mut depths = [0.0; CHUNK];

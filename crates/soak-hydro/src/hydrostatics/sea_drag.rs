@@ -17,10 +17,12 @@ use std::ops::Range;
 use nalgebra::{Matrix3, Vector3, Vector6};
 use soak_bake::Atlas;
 
+use super::body_state::BodyState;
 use super::drag_kernel::{LANES, Lanes, add_iso_lanes, add_rank1_lanes, lanes, madd};
+use super::frame::Frame;
 use super::options::Drag;
 use super::sums::{DragAcc, DragSums};
-use crate::water::SurfacePatch;
+use crate::water::{SurfacePatch, Water};
 
 /// What every texel of an evaluation shares.
 #[derive(Clone, Copy, Debug)]
@@ -146,6 +148,38 @@ pub(crate) struct SeaDragFrame<'a> {
     pub ow: Vector3<f64>,
     /// The sampled sea, with its velocities.
     pub patch: &'a SurfacePatch,
+}
+
+impl<'a> SeaDragFrame<'a> {
+    /// The frame of one evaluation of a body at `state` under `patch` in
+    /// `water`, with `drag`; and the centre of mass from the atlas origin in
+    /// object axes, which [`SeaDragSums::system`] takes.
+    pub(crate) fn of(
+        drag: &Drag,
+        water: &Water,
+        state: &BodyState,
+        frame: &Frame,
+        patch: &'a SurfacePatch,
+    ) -> (Self, Vector3<f64>) {
+        let c = frame.rot.transpose() * (frame.com - frame.ow);
+        let params = SeaDragParams::new(
+            drag,
+            water.density,
+            &frame.rot,
+            &c,
+            &state.linear_velocity,
+            &state.angular_velocity,
+        );
+        (
+            Self {
+                params,
+                rot: frame.rot,
+                ow: frame.ow,
+                patch,
+            },
+            c,
+        )
+    }
 }
 
 /// The drag sums of the texels of `range` whose depth (`depths`, one per
