@@ -250,28 +250,13 @@ impl Recording {
                 "SCALAR",
                 json!({"min": [t0], "max": [t1]}),
             );
-            for (path, output) in [
-                (
-                    "translation",
-                    add(
-                        floats(&mut track.translations.iter().flatten().copied()),
-                        FLOAT,
-                        track.times.len(),
-                        "VEC3",
-                        json!({}),
-                    ),
-                ),
-                (
-                    "rotation",
-                    add(
-                        floats(&mut track.rotations.iter().flatten().copied()),
-                        FLOAT,
-                        track.times.len(),
-                        "VEC4",
-                        json!({}),
-                    ),
-                ),
+            let translations = floats(&mut track.translations.iter().flatten().copied());
+            let rotations = floats(&mut track.rotations.iter().flatten().copied());
+            for (path, values, kind) in [
+                ("translation", translations, "VEC3"),
+                ("rotation", rotations, "VEC4"),
             ] {
+                let output = add(values, FLOAT, track.times.len(), kind, json!({}));
                 samplers.push(json!({"input": input, "output": output, "interpolation": "LINEAR"}));
                 channels.push(json!({"sampler": samplers.len() - 1, "target": {"node": i, "path": path}}));
             }
