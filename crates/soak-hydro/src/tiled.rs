@@ -352,6 +352,7 @@ impl TiledAtlas {
                 patch,
                 archimedes,
                 drag_frame.as_ref().map(|(f, _)| f),
+                options.sea_velocity,
             ) {
                 Some((sums, drag, counts)) => (
                     sums,

@@ -19,7 +19,7 @@ use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuError, GpuHydro, GpuHydroError, GpuOptions, adapter_label};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HeightField, HydroForces, HydroOptions, MassModel,
-    MassProperties, Plane, SeaSampling, Surface, SurfacePatch, Unbounded, Water, evaluate,
+    MassProperties, Plane, SeaSampling, SeaVelocity, Surface, SurfacePatch, Unbounded, Water, evaluate,
 };
 
 const MESHES: [&str; 7] = [
@@ -491,6 +491,7 @@ fn parity(
                     drag,
                     dt: 1.0 / 60.0,
                     sea,
+                    sea_velocity: SeaVelocity::PerTexel,
                 };
                 (water, state, options)
             })
@@ -666,6 +667,7 @@ fn a_batch_of_100_equals_100_single_evaluations() {
             } else {
                 SeaSampling::Exact
             },
+            ..HydroOptions::default()
         };
         bodies.push((b, GpuBody::from((id, water, state, b.mass, options))));
     }

@@ -70,6 +70,32 @@ fn sea_sampling_is_checked_and_read() {
 }
 
 #[test]
+fn sea_velocity_is_read_and_refused_on_a_plane() {
+    let sea = "[water]\nkind = \"gerstner\"\nwaves = [{ amplitude = 0.3, wavelength = 8.0, direction_deg = 0.0, steepness = 0.5 }]\n";
+    let scene = LoadedScene::from_str(sea, std::path::Path::new(".")).unwrap();
+    let sim = Simulation::from_scene(&scene).unwrap();
+    assert_eq!(
+        sim.soak.sea_velocity(),
+        soak_hydro::SeaVelocity::PerTile,
+        "the default"
+    );
+    let per_texel = format!("{sea}velocity = \"per_texel\"\n");
+    let scene = LoadedScene::from_str(&per_texel, std::path::Path::new(".")).unwrap();
+    assert_eq!(
+        scene.scene.water.velocity,
+        Some(soak_hydro::SeaVelocity::PerTexel)
+    );
+    let sim = Simulation::from_scene(&scene).unwrap();
+    assert_eq!(sim.soak.sea_velocity(), soak_hydro::SeaVelocity::PerTexel);
+    let plane = "[water]\nkind = \"plane\"\nvelocity = \"per_texel\"\n";
+    let e = LoadedScene::from_str(plane, std::path::Path::new(".")).unwrap_err();
+    assert!(e.to_string().contains("water.velocity"), "{e}");
+    let unknown = format!("{sea}velocity = \"per_body\"\n");
+    let e = LoadedScene::from_str(&unknown, std::path::Path::new(".")).unwrap_err();
+    assert!(e.to_string().contains("per_tile"), "{e}");
+}
+
+#[test]
 fn resolution_auto_picks_the_side_for_the_tolerance() {
     let scene = |body: &str| {
         format!(

@@ -620,6 +620,13 @@ impl DragMoments {
         self.add_difference(o, &Self::default());
     }
 
+    /// The moments of tile `ti` from the running sums `prefix`.
+    pub(crate) fn of_tile(prefix: &[Self], ti: usize) -> Self {
+        let mut m = Self::default();
+        m.add_difference(&prefix[ti + 1], &prefix[ti]);
+        m
+    }
+
     /// Adds the linear part of all the texels (the caller checks there is one).
     pub(crate) fn add_linear(&self, acc: &mut DragAcc, p: &LocalDrag) {
         for (s, m) in acc.iso.iter_mut().zip(&self.linear[..10]) {

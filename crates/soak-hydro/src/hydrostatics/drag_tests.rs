@@ -14,7 +14,7 @@ use super::forces::Wrench;
 use super::frame::{Frame, texel};
 use super::implicit_drag::implicit_drag;
 use super::options::{Drag, HydroOptions};
-use super::sea_drag::{SeaDragParams, sea_drag_texels};
+use super::sea_drag::{SeaDragParams, SeaDragSums, sea_drag_texels};
 use super::sums::{DragAcc, DragSums, TexelDrag};
 use crate::mass::{MassModel, MassProperties};
 use crate::tiled::TiledAtlas;
@@ -210,6 +210,51 @@ proptest! {
         let (dk, db) = differences(&got, &want);
         prop_assert!(dk <= 1e-11 && db <= 1e-11, "K {dk:e}, b {db:e}");
         prop_assert_eq!(got.k, got.k.transpose());
+    }
+}
+
+proptest! {
+    /// A tile all of whose texels face the flow (or all turn from it) in
+    /// fluid moving the same over it takes, in closed form from its
+    /// moments, what the sea's drag kernel takes texel by texel.
+    #[test]
+    fn a_tile_in_one_fluid_velocity_takes_its_texels_drag(
+        texels in prop::collection::vec((vec3(), vec3(), 0.001..0.1f64), 1..80),
+        normal in vec3(),
+        u in vec3(),
+        omega in prop::array::uniform3(-0.2..0.2f64),
+        towards in prop::bool::ANY,
+        drag in drag_coefficients(),
+    ) {
+        let n = normal + Vector3::new(0.0, 0.0, 1e-3);
+        let n = n / n.norm();
+        // Texels within 0.35 m of the origin facing within about 30° of n,
+        // the body moving 3 m/s through the fluid along n or against it.
+        let tile: Vec<(Vector3<f64>, Vector3<f64>)> = texels
+            .iter()
+            .map(|(x, tilt, area)| (0.1 * x, (n + 0.15 * tilt) * *area))
+            .collect();
+        let w = u + if towards { 3.0 } else { -3.0 } * n;
+        let p = SeaDragParams::new(
+            &drag,
+            1000.0,
+            &Matrix3::identity(),
+            &Vector3::zeros(),
+            &w,
+            &Vector3::from(omega),
+        );
+        let (mut moments, mut hbox) = (DragMoments::default(), HBox::default());
+        for (x, a) in &tile {
+            moments.add_texel(x, a);
+            hbox.add_texel(x, a);
+        }
+        let mut got = SeaDragSums::default();
+        prop_assert!(got.add_uniform_tile(&moments, &hbox.bounds(), &p, &u), "all face alike");
+        let texels: Vec<[Vector3<f64>; 3]> = tile.iter().map(|(x, a)| [*x, *a, u]).collect();
+        let want = sea_drag_texels(&p, &texels);
+        let (got, want) = (got.system(&Matrix3::identity(), &Vector3::zeros()), want.system(&Matrix3::identity(), &Vector3::zeros()));
+        let (dk, db) = differences(&got, &want);
+        prop_assert!(dk <= 1e-11 && db <= 1e-11, "K {dk:e}, b {db:e}");
     }
 }
 

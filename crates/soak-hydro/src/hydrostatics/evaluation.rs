@@ -304,7 +304,7 @@ pub(crate) fn patch_sums(
         add_sea_range(&mut s, atlas, range.clone(), &sea, Some(depths));
         Both {
             b: s,
-            d: sea_drag_range(atlas, range, depths, &drag_frame),
+            d: sea_drag_range(atlas, range, depths, &drag_frame, None),
         }
     });
     (both.b, Some(both.d.system(&frame.rot, &c)))

@@ -18,9 +18,12 @@ use nalgebra::{Matrix3, Vector3, Vector6};
 use soak_bake::Atlas;
 
 use super::body_state::BodyState;
-use super::drag_kernel::{LANES, Lanes, add_iso_lanes, add_rank1_lanes, lanes, madd};
+use super::drag_kernel::{
+    DragMoments, Facing, FacingBounds, LANES, Lanes, add_iso_lanes, add_rank1_lanes, lanes, madd,
+};
 use super::frame::Frame;
 use super::options::Drag;
+use super::sums::upper6;
 use super::sums::{DragAcc, DragSums};
 use crate::water::{SurfacePatch, Water};
 
@@ -93,6 +96,67 @@ impl SeaDragSums {
             k,
             b: Vector6::new(f.x, f.y, f.z, tau.x, tau.y, tau.z),
         }
+    }
+}
+
+impl SeaDragSums {
+    /// Adds a tile wholly under water of drag moments `m` and facing box
+    /// `facing`, in fluid moving at `u` (object axes) all over it, in
+    /// closed form: its texels move through the fluid at
+    /// `W − u + ω × x`, so the planar closed forms hold with `W − u` for
+    /// `W`, and the right-hand side takes `u` whole: `(S u, S₁ × u) −
+    /// λ Σ (A·u) h / a` with `S`, `S₁` the tile's `Σ s` and `Σ s x`.
+    /// `false` (and nothing added) where some of its texels may face the
+    /// flow and some not: the caller sums those texel by texel.
+    pub(crate) fn add_uniform_tile(
+        &mut self,
+        m: &DragMoments,
+        facing: &FacingBounds,
+        p: &SeaDragParams,
+        u: &Vector3<f64>,
+    ) -> bool {
+        let w = [p.w[0] - u.x, p.w[1] - u.y, p.w[2] - u.z, p.w[3], p.w[4], p.w[5]];
+        let quadratic = p.kq != 0.0
+            && match facing.facing(&w) {
+                Facing::All => true,
+                Facing::None => false,
+                Facing::Mixed => return false,
+            };
+        // Σ s and Σ s x, for the right-hand side.
+        let (mut s0, mut s1) = (0.0, Vector3::zeros());
+        if p.lin > 0.0 {
+            let (iso, gg) = m.linear.split_at(10);
+            for (a, v) in self.acc.iso.iter_mut().zip(iso) {
+                *a += p.lin * v;
+            }
+            for (a, v) in self.acc.gg.iter_mut().zip(gg) {
+                *a += p.lin * v;
+            }
+            s0 += p.lin * iso[0];
+            s1 += p.lin * Vector3::new(iso[1], iso[2], iso[3]);
+            // λ Σ (A·u) h / a = λ (Σ h hᵀ / a)[:, 0..3] u.
+            for (i, b) in self.b.iter_mut().enumerate() {
+                let gu: f64 = (0..3).map(|j| gg[upper6(i.min(j), i.max(j))] * u[j]).sum();
+                *b -= p.lin * gu;
+            }
+        }
+        if quadratic {
+            for (k, a) in self.acc.iso.iter_mut().enumerate() {
+                let f: f64 = (0..6).map(|j| m.quadratic[j][k] * w[j]).sum();
+                let s = p.kq * f;
+                *a += s;
+                match k {
+                    0 => s0 += s,
+                    1..=3 => s1[k - 1] += s,
+                    _ => {}
+                }
+            }
+        }
+        let (f, t) = (s0 * u, s1.cross(u));
+        for (b, v) in self.b.iter_mut().zip(f.iter().chain(t.iter())) {
+            *b += v;
+        }
+        true
     }
 }
 
@@ -190,6 +254,7 @@ pub(crate) fn sea_drag_range(
     range: Range<usize>,
     depths: &[f64],
     frame: &SeaDragFrame,
+    fluid: Option<Vector3<f64>>,
 ) -> SeaDragSums {
     let mut sums = SumLanes::default();
     #[cfg(target_arch = "x86_64")]
@@ -198,12 +263,12 @@ pub(crate) fn sea_drag_range(
             // SAFETY: the processor has AVX2 and FMA, checked just above.
             #[allow(unsafe_code)]
             unsafe {
-                sea_drag_avx2(&mut sums, atlas, range, depths, frame)
+                sea_drag_avx2(&mut sums, atlas, range, depths, frame, fluid)
             };
             return sums.finish();
         }
     }
-    sea_drag_lanes::<false>(&mut sums, atlas, range, depths, frame);
+    sea_drag_lanes::<false>(&mut sums, atlas, range, depths, frame, fluid);
     sums.finish()
 }
 
@@ -216,8 +281,9 @@ fn sea_drag_avx2(
     range: Range<usize>,
     depths: &[f64],
     frame: &SeaDragFrame,
+    fluid: Option<Vector3<f64>>,
 ) {
-    sea_drag_lanes::<true>(sums, atlas, range, depths, frame);
+    sea_drag_lanes::<true>(sums, atlas, range, depths, frame, fluid);
 }
 
 /// The texels of `range`, [`LANES`] at a time (the last group padded with
@@ -230,6 +296,7 @@ fn sea_drag_lanes<const FMA: bool>(
     range: Range<usize>,
     depths: &[f64],
     frame: &SeaDragFrame,
+    fluid: Option<Vector3<f64>>,
 ) {
     let n = atlas.len();
     let xs = atlas.local_positions().columns(0..n);
@@ -244,6 +311,12 @@ fn sea_drag_lanes<const FMA: bool>(
         let at = |v: &[f32], k: usize| if wet[k] { f64::from(v[g + k]) } else { 0.0 };
         let x: [Lanes; 3] = std::array::from_fn(|c| lanes(|k| at(xs[c], k)));
         let a: [Lanes; 3] = std::array::from_fn(|c| lanes(|k| at(avs[c], k)));
+        if let Some(u) = fluid {
+            // One velocity over the range, object axes.
+            let u: [Lanes; 3] = std::array::from_fn(|c| lanes(|k| if wet[k] { u[c] } else { 0.0 }));
+            add_group::<FMA>(sums, &frame.params, &x, &a, &u);
+            continue;
+        }
         // The fluid's velocity at each texel's place (world), then in
         // object axes.
         let mut uw = [[0.0; LANES]; 3];

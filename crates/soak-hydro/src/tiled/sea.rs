@@ -38,7 +38,9 @@ use nalgebra::{Matrix2, Matrix2x3, Matrix3, Vector2, Vector3};
 use soak_bake::Atlas;
 
 use super::{TileCounts, TiledAtlas, add_closed_form};
+use crate::hydrostatics::drag_kernel::DragMoments;
 use crate::hydrostatics::frame::Frame;
+use crate::hydrostatics::options::SeaVelocity;
 use crate::hydrostatics::sea_drag::{SeaDragFrame, SeaDragSums, sea_drag_range};
 use crate::hydrostatics::sea_kernel::{self, SeaFrame, add_sea_range};
 use crate::hydrostatics::sums::{BuoyancySums, SlopeSums};
@@ -114,6 +116,7 @@ impl TiledAtlas {
         patch: &SurfacePatch,
         archimedes: bool,
         drag: Option<&SeaDragFrame>,
+        detail: SeaVelocity,
     ) -> Option<(BuoyancySums, Option<SeaDragSums>, TileCounts)> {
         if !sea_kernel::available() {
             return None;
@@ -144,10 +147,23 @@ impl TiledAtlas {
             archimedes,
         };
         let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
+        // Over tiles, a tile's texels take the fluid's velocity at its
+        // centre (object axes); texel by texel, each its own.
+        let tile_fluid = |ti: usize| -> Option<TileFluid> {
+            let d = drag.filter(|_| detail == SeaVelocity::PerTile)?;
+            let centre = self.tiles[ti].centre;
+            Some((
+                ti,
+                d.rot.transpose() * d.patch.velocity_at(&(d.ow + d.rot * centre)),
+            ))
+        };
         let parts = par_map(n_chunks, |k| {
             let groups = &self.groups[k * GROUP_CHUNK..((k + 1) * GROUP_CHUNK).min(self.groups.len())];
             let mut part = Part::default();
-            let (mut texels, mut closed): (Vec<Range<usize>>, Vec<Range<usize>>) = (Vec::new(), Vec::new());
+            // Texel ranges for the sea kernel and, where drag is on, those
+            // of tiles in closed form whose drag is summed texel by texel;
+            // each with the fluid's velocity over it where it is one.
+            let (mut texels, mut closed) = (Ranges::default(), Ranges::default());
             for group in groups {
                 let b = &group.bounds;
                 if (c.ow + rot * b.centre).y - b.radius >= c.top {
@@ -155,11 +171,32 @@ impl TiledAtlas {
                     continue;
                 }
                 for ti in group.tiles.clone() {
-                    self.sea_tile(&c, ti, &mut part, &mut texels, &mut closed);
+                    let m = &self.tiles[ti];
+                    let range = m.range.0 as usize..m.range.1 as usize;
+                    match self.sea_tile(&c, ti, &mut part) {
+                        SeaTile::Dry => {}
+                        SeaTile::Texels => texels.push(range, tile_fluid(ti)),
+                        SeaTile::Closed => match (drag, tile_fluid(ti)) {
+                            // The tile's drag in closed form, in the fluid's
+                            // velocity at its centre, where its texels all
+                            // face the flow alike.
+                            (Some(d), Some((_, u))) => {
+                                let moments = DragMoments::of_tile(&self.drag_prefix, ti);
+                                if !part
+                                    .drag
+                                    .add_uniform_tile(&moments, &self.facing[ti], &d.params, &u)
+                                {
+                                    closed.push(range, Some((ti, u)));
+                                }
+                            }
+                            (Some(_), None) => closed.push(range, None),
+                            (None, _) => {}
+                        },
+                    }
                 }
             }
             let Some(drag) = drag else {
-                for r in texels {
+                for (r, _) in texels.0 {
                     add_sea_range(&mut part.world, atlas, r, &sea, None);
                 }
                 return part;
@@ -167,16 +204,40 @@ impl TiledAtlas {
             // The drag kernel takes the kernel's depths where it read them,
             // and every texel of a tile in closed form as submerged.
             let mut depths = Vec::new();
-            for r in texels {
+            // The kernel over runs of consecutive ranges, as without drag;
+            // the drag over each range of the run, with its depths.
+            let mut rest = &texels.0[..];
+            while let Some((first, _)) = rest.first() {
+                let len = 1 + rest.windows(2).take_while(|w| w[0].0.end == w[1].0.start).count();
+                let (run, next) = rest.split_at(len);
+                rest = next;
+                let span = first.start..run[len - 1].0.end;
                 depths.clear();
-                depths.resize(r.len(), 0.0);
-                add_sea_range(&mut part.world, atlas, r.clone(), &sea, Some(&mut depths));
-                part.drag = part.drag + sea_drag_range(atlas, r, &depths, drag);
+                depths.resize(span.len(), 0.0);
+                add_sea_range(&mut part.world, atlas, span.clone(), &sea, Some(&mut depths));
+                for (r, fluid) in run {
+                    let depths = &depths[r.start - span.start..r.end - span.start];
+                    // A tile the kernel finds wholly under water takes its
+                    // drag in closed form as the others do.
+                    if let Some((ti, u)) = fluid
+                        && depths.iter().all(|&d| d > 0.0)
+                    {
+                        let moments = DragMoments::of_tile(&self.drag_prefix, *ti);
+                        if part
+                            .drag
+                            .add_uniform_tile(&moments, &self.facing[*ti], &drag.params, u)
+                        {
+                            continue;
+                        }
+                    }
+                    part.drag =
+                        part.drag + sea_drag_range(atlas, r.clone(), depths, drag, fluid.map(|(_, u)| u));
+                }
             }
-            for r in closed {
+            for (r, fluid) in closed.0 {
                 depths.clear();
                 depths.resize(r.len(), 1.0);
-                part.drag = part.drag + sea_drag_range(atlas, r, &depths, drag);
+                part.drag = part.drag + sea_drag_range(atlas, r, &depths, drag, fluid.map(|(_, u)| u));
             }
             part
         });
@@ -198,22 +259,15 @@ impl TiledAtlas {
         Some((sums, drag.map(|_| drag_sums), counts))
     }
 
-    /// Settles tile `ti`: skipped, in closed form into `part` (its texels
-    /// listed in `closed`), or listed in `texels` for the kernel.
-    fn sea_tile(
-        &self,
-        c: &SeaTiles,
-        ti: usize,
-        part: &mut Part,
-        texels: &mut Vec<Range<usize>>,
-        closed: &mut Vec<Range<usize>>,
-    ) {
+    /// Settles tile `ti`: skipped, in closed form into `part`, or left to
+    /// the kernel.
+    fn sea_tile(&self, c: &SeaTiles, ti: usize, part: &mut Part) -> SeaTile {
         let m = &self.tiles[ti];
         let (rho, centre) = (m.radius, m.centre);
         let p = c.ow + c.rot * centre;
         if p.y - rho >= c.top {
             part.counts.dry += 1;
-            return;
+            return SeaTile::Dry;
         }
         let (h, s, hess, third) = c.patch.taylor(p.x, p.z);
         let slope = Vector2::new(s[0], s[1]);
@@ -232,16 +286,13 @@ impl TiledAtlas {
         let reach = linear + 0.5 * hm.norm() * rho * rho + remainder;
         if dc + reach <= 0.0 {
             part.counts.dry += 1;
-            return;
+            return SeaTile::Dry;
         }
-        let range = m.range.0 as usize..m.range.1 as usize;
         if dc - reach <= 0.0 || remainder > c.tolerance {
             part.counts.cut += 1;
-            extend(texels, range);
-            return;
+            return SeaTile::Texels;
         }
         part.counts.submerged += 1;
-        extend(closed, range);
         part.shallow |= dc - reach < c.delta;
         let mut t = BuoyancySums::default();
         add_closed_form(&mut t, m, alpha, &beta, &c.g);
@@ -305,13 +356,35 @@ impl TiledAtlas {
                 };
         }
         part.local = part.local + t;
+        SeaTile::Closed
     }
 }
 
-/// Appends `range` to `ranges`, extending the last one where it follows it.
-fn extend(ranges: &mut Vec<Range<usize>>, range: Range<usize>) {
-    match ranges.last_mut() {
-        Some(last) if last.end == range.start => last.end = range.end,
-        _ => ranges.push(range),
+/// Where a tile lies under the sea.
+enum SeaTile {
+    /// Above the waves: skipped.
+    Dry,
+    /// In closed form.
+    Closed,
+    /// Through the sea kernel, texel by texel.
+    Texels,
+}
+
+/// Texel ranges, each with its tile and the fluid's velocity over it
+/// (object axes) where the drag takes one per tile.
+#[derive(Default)]
+struct Ranges(Vec<(Range<usize>, Option<TileFluid>)>);
+
+/// A tile and the fluid's velocity at its centre (object axes, m/s).
+type TileFluid = (usize, Vector3<f64>);
+
+impl Ranges {
+    /// Appends `range`, extending the last one where it follows it and
+    /// neither has a velocity of its own.
+    fn push(&mut self, range: Range<usize>, fluid: Option<TileFluid>) {
+        match self.0.last_mut() {
+            Some((last, None)) if fluid.is_none() && last.end == range.start => last.end = range.end,
+            _ => self.0.push((range, fluid)),
+        }
     }
 }

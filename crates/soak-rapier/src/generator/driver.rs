@@ -135,6 +135,7 @@ impl ForceGenerator {
                 drag: b.effects.drag,
                 dt,
                 sea: self.sea,
+                sea_velocity: self.sea_velocity,
             };
             work.push((k, state, options));
         }

@@ -238,6 +238,7 @@ impl LoadedScene {
         )?;
         only("waves", w.waves.is_some(), &[WaterKind::Gerstner])?;
         only("sampling", w.sampling.is_some(), &[WaterKind::Gerstner])?;
+        only("velocity", w.velocity.is_some(), &[WaterKind::Gerstner])?;
         if let Some(soak_hydro::SeaSampling::PerWavelength(n)) = w.sampling {
             positive("water.sampling.per_wavelength", n)?;
         }

@@ -11,6 +11,7 @@
 //! density = 1000.0        # kg/m³
 //! waves = [{ amplitude = 0.3, wavelength = 8.0, direction_deg = 0.0, steepness = 0.5 }]
 //! sampling = { per_wavelength = 16 }  # the default; or "exact" (every texel inverts the sea)
+//! velocity = "per_tile"              # drag reads the sea's velocity once per tile (default); or "per_texel"
 //!
 //! [[bodies]]
 //! name = "buoy"

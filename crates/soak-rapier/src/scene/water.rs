@@ -1,7 +1,7 @@
 //! The fluid a scene floats its bodies in: [`WaterSpec`] and its [`WaterKind`].
 
 use serde::{Deserialize, Serialize};
-use soak_hydro::{GerstnerWave, SeaSampling};
+use soak_hydro::{GerstnerWave, SeaSampling, SeaVelocity};
 
 /// Which fluid surface.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -44,4 +44,8 @@ pub struct WaterSpec {
     /// shortest wavelength) or `"exact"` (every texel inverts the Gerstner
     /// map: the reference, far slower).
     pub sampling: Option<SeaSampling>,
+    /// Where the drag reads a sampled sea's velocity: `"per_tile"` (the
+    /// default: once per tile of each body's atlas) or `"per_texel"` (at
+    /// every texel: the reference).
+    pub velocity: Option<SeaVelocity>,
 }

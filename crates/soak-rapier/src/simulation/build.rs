@@ -120,7 +120,8 @@ impl Simulation {
         world.integration_parameters.dt = scene.dt as f32;
         let mut soak = ForceGenerator::new(water_of(loaded)?)
             .with_backend(scene.backend)
-            .with_sea_sampling(scene.water.sampling.unwrap_or_default());
+            .with_sea_sampling(scene.water.sampling.unwrap_or_default())
+            .with_sea_velocity(scene.water.velocity.unwrap_or_default());
         let mut weather = None;
         if let Some(env) = &scene.environment {
             soak.set_environment(env.environment())
