@@ -5,7 +5,8 @@
 //! Archimedes mode (which also takes the surface's slope for its torque)
 //! and in pressure mode, and on the two-wave swell of `buoy_on_waves.toml`
 //! sampled (the default) and read exactly, and tiled; the sphere moving with drag,
-//! per texel and tiled, and on the swell (sampled) with and without drag,
+//! per texel and tiled, and on the swell (sampled) with and without drag
+//! (tiled, the fluid's velocity read once per tile and at every texel),
 //! at 1024² and 128²; the boat at 1024², per texel and tiled; the sphere
 //! at 2048², beyond the cache.
 
@@ -15,7 +16,7 @@ use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::reference::{self, ClipPlane};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HydroOptions, MassModel, MassProperties,
-    SeaSampling, TiledAtlas, Water, evaluate, streaming_read,
+    SeaSampling, SeaVelocity, TiledAtlas, Water, evaluate, streaming_read,
 };
 
 /// `mesh` baked at `n`², and the mass properties of a solid of half the
@@ -169,6 +170,19 @@ fn drag_rows(
     });
     g.bench_function("swell_drag_tiled", |b| {
         b.iter(|| tiled.evaluate(atlas, &swell, &moving, mass, 0.0, &opts).unwrap())
+    });
+    // The same with the fluid's velocity read at every texel rather than
+    // once per tile (the default): what reading it per tile saves.
+    let per_texel = HydroOptions {
+        sea_velocity: SeaVelocity::PerTexel,
+        ..opts
+    };
+    g.bench_function("swell_drag_tiled_per_texel", |b| {
+        b.iter(|| {
+            tiled
+                .evaluate(atlas, &swell, &moving, mass, 0.0, &per_texel)
+                .unwrap()
+        })
     });
 }
 

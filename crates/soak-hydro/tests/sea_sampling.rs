@@ -175,6 +175,43 @@ fn sampled_water_is_sampled_once_and_read_as_it_is() {
     );
 }
 
+/// The velocity's derivatives the patch reports are its interpolant's:
+/// within a cell, central differences of the velocity (trilinear, so
+/// differences across half a millimetre are exact to rounding); and the
+/// value beside them is the velocity itself.
+#[test]
+fn the_patch_velocity_gradient_is_its_interpolants() {
+    let water = swell();
+    let patch = SurfacePatch::sample(
+        &*water.surface,
+        1.1,
+        [-1.0, -2.0],
+        [3.0, 1.0],
+        0.25,
+        Some((-1.0, 0.5)),
+    )
+    .unwrap();
+    let h = 2.5e-4;
+    for p in [
+        Vector3::new(0.1, -0.3, -0.9),
+        Vector3::new(2.33, -0.81, 0.4),
+        Vector3::new(-0.61, 0.07, -1.7),
+    ] {
+        let (u, grad) = patch.velocity_gradient_at(&p);
+        assert!((u - patch.velocity_at(&p)).norm() <= 1e-14, "{u} vs the velocity");
+        for j in 0..3 {
+            let e = Vector3::ith(j, h);
+            let d = (patch.velocity_at(&(p + e)) - patch.velocity_at(&(p - e))) / (2.0 * h);
+            let got: Vector3<f64> = grad.column(j).into();
+            assert!(
+                (got - d).norm() <= 1e-8 * (1.0 + d.norm()),
+                "{p} along {j}: {got} vs {d}"
+            );
+        }
+        assert!(grad.norm() > 0.1, "the swell's velocity varies: {grad}");
+    }
+}
+
 #[test]
 fn the_patch_passes_through_the_surface_at_its_nodes_and_near_it_between() {
     let water = swell();

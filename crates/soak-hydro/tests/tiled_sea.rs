@@ -112,9 +112,9 @@ fn check(name: &str, mesh: &Mesh, n: u32, poses: &[Place]) {
                 "{name} {at:?} {mode:?}: drag off by {:.2e} of {scale:.2e}",
                 off(&got)
             );
-            // Read once per tile (the default): within a few thousandths at
-            // these resolutions (the sphere's tiles span 3 cm, the boat's
-            // 10 cm, of waves 4 and 9 m long).
+            // Read once per tile to first order (the default): within a
+            // few thousandths at these resolutions (the sphere's tiles span
+            // 3 cm, the boat's 10 cm, of waves 4 and 9 m long).
             let per_tile = HydroOptions {
                 sea_velocity: SeaVelocity::PerTile,
                 ..options
@@ -127,7 +127,7 @@ fn check(name: &str, mesh: &Mesh, n: u32, poses: &[Place]) {
                 off(&tiles)
             );
             assert!(
-                off(&tiles) < 1e-2 * scale,
+                off(&tiles) < 5e-3 * scale,
                 "{name} {at:?} {mode:?}: drag per tile off by {:.2e} of {scale:.2e}",
                 off(&tiles)
             );

@@ -725,6 +725,14 @@ impl FacingBounds {
     /// misplaced. An empty box (no texel of any area) is mixed.
     #[inline]
     pub(crate) fn facing(&self, w: &[f64; 6]) -> Facing {
+        self.facing_within(w, 0.0)
+    }
+
+    /// [`FacingBounds::facing`] with each texel's facing per unit area
+    /// (`h·w / |A|`) free to differ from the box's by up to `spread` more
+    /// (m/s): for a fluid whose velocity varies over the texels.
+    #[inline]
+    pub(crate) fn facing_within(&self, w: &[f64; 6], spread: f64) -> Facing {
         let (mut centre, mut reach, mut size) = (0.0, 0.0, 0.0);
         for ((m, h), w) in self.mid.iter().zip(&self.half).zip(w) {
             let (c, r) = (m * w, h * w.abs());
@@ -733,6 +741,7 @@ impl FacingBounds {
             size += c.abs() + r;
         }
         let margin = 1e-12 * size;
+        let reach = reach + spread;
         if centre - reach > margin {
             Facing::All
         } else if centre + reach <= -margin {

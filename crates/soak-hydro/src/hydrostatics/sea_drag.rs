@@ -99,60 +99,131 @@ impl SeaDragSums {
     }
 }
 
+/// The fluid's velocity over a tile to first order about a point `c`:
+/// `u + U (x − c)` at `x` (object axes, from the atlas origin).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LinearFluid {
+    /// The velocity at `c`, m/s.
+    pub u: Vector3<f64>,
+    /// Its derivatives `∂u_i/∂x_j`, 1/s.
+    pub grad: Matrix3<f64>,
+    /// Where it is taken, m.
+    pub c: Vector3<f64>,
+}
+
+impl LinearFluid {
+    /// The velocity at `x`.
+    #[inline]
+    fn at(&self, x: &Vector3<f64>) -> Vector3<f64> {
+        self.u + self.grad * (x - self.c)
+    }
+}
+
 impl SeaDragSums {
-    /// Adds a tile wholly under water of drag moments `m` and facing box
-    /// `facing`, in fluid moving at `u` (object axes) all over it, in
-    /// closed form: its texels move through the fluid at
-    /// `W − u + ω × x`, so the planar closed forms hold with `W − u` for
-    /// `W`, and the right-hand side takes `u` whole: `(S u, S₁ × u) −
-    /// λ Σ (A·u) h / a` with `S`, `S₁` the tile's `Σ s` and `Σ s x`.
-    /// `false` (and nothing added) where some of its texels may face the
-    /// flow and some not: the caller sums those texel by texel.
-    pub(crate) fn add_uniform_tile(
+    /// Adds a tile wholly under water in fluid moving at `fluid`, in
+    /// closed form from its drag moments `m`, its facing box `facing` and
+    /// its area moments `s1` (`Σ A_j x_k`) and `s2` (`Σ A_j x_k x_l`),
+    /// all within `radius` of `fluid.c`.
+    ///
+    /// A texel at `x` moves through the fluid at `W₀ + ω × x − U x` with
+    /// `W₀ = W − u + U c`, so its facing is `h·w₀ − Aᵀ U x`: the planar
+    /// closed forms with `w₀`, less `Σ (Aᵀ U x) (1, x, x xᵀ)`, whose first
+    /// two moments are `s1`'s and `s2`'s contractions with `U` and whose
+    /// third is taken to first order about `c`. The right-hand side is
+    /// `(Σ s u(x), Σ s x × u(x))` from the tile's `Σ s`, `Σ s x` and
+    /// `Σ s x xᵀ`, less the skin friction's `λ Σ (A·u) h / a` with the
+    /// velocity at the tile's area-weighted centroid (the velocity's
+    /// change across the tile in that term, odd about the centroid, is
+    /// left out). Uniform fluid
+    /// (`U = 0`): the texels' sums exactly. `false` (and nothing added)
+    /// where some of its texels may face the flow and some not: the
+    /// caller sums those texel by texel.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn add_tile(
         &mut self,
         m: &DragMoments,
         facing: &FacingBounds,
+        s1: &Matrix3<f64>,
+        s2: &[Matrix3<f64>; 3],
+        radius: f64,
         p: &SeaDragParams,
-        u: &Vector3<f64>,
+        fluid: &LinearFluid,
     ) -> bool {
-        let w = [p.w[0] - u.x, p.w[1] - u.y, p.w[2] - u.z, p.w[3], p.w[4], p.w[5]];
+        let (u, grad, c) = (&fluid.u, &fluid.grad, &fluid.c);
+        // Facing `h·(W − u, ω) − Aᵀ U (x − c)`: the box's with the
+        // velocity at c, give or take |U| times the tile's radius.
+        let wc = [p.w[0] - u.x, p.w[1] - u.y, p.w[2] - u.z, p.w[3], p.w[4], p.w[5]];
+        let w0 = Vector3::new(p.w[0], p.w[1], p.w[2]) - u + grad * c;
+        let w = [w0.x, w0.y, w0.z, p.w[3], p.w[4], p.w[5]];
         let quadratic = p.kq != 0.0
-            && match facing.facing(&w) {
+            && match facing.facing_within(&wc, grad.norm() * radius) {
                 Facing::All => true,
                 Facing::None => false,
                 Facing::Mixed => return false,
             };
-        // Σ s and Σ s x, for the right-hand side.
-        let (mut s0, mut s1) = (0.0, Vector3::zeros());
+        // The tile's own iso sums Σ s (1, x, x xᵀ), for the right-hand side.
+        let mut iso = [0.0; 10];
         if p.lin > 0.0 {
-            let (iso, gg) = m.linear.split_at(10);
-            for (a, v) in self.acc.iso.iter_mut().zip(iso) {
+            let (l_iso, gg) = m.linear.split_at(10);
+            for (a, v) in iso.iter_mut().zip(l_iso) {
                 *a += p.lin * v;
             }
             for (a, v) in self.acc.gg.iter_mut().zip(gg) {
                 *a += p.lin * v;
             }
-            s0 += p.lin * iso[0];
-            s1 += p.lin * Vector3::new(iso[1], iso[2], iso[3]);
-            // λ Σ (A·u) h / a = λ (Σ h hᵀ / a)[:, 0..3] u.
+            // λ Σ (A·u(x)) h / a ≈ λ (Σ h hᵀ / a)[:, 0..3] u(x̄), the
+            // velocity at the tile's area-weighted centroid x̄, about which
+            // the change of u is odd.
+            let bar = if l_iso[0] > 0.0 {
+                fluid.at(&(Vector3::new(l_iso[1], l_iso[2], l_iso[3]) / l_iso[0]))
+            } else {
+                *u
+            };
             for (i, b) in self.b.iter_mut().enumerate() {
-                let gu: f64 = (0..3).map(|j| gg[upper6(i.min(j), i.max(j))] * u[j]).sum();
+                let gu: f64 = (0..3).map(|j| gg[upper6(i.min(j), i.max(j))] * bar[j]).sum();
                 *b -= p.lin * gu;
             }
         }
         if quadratic {
-            for (k, a) in self.acc.iso.iter_mut().enumerate() {
+            // Σ (Aᵀ U x), Σ (Aᵀ U x) x, and Σ (Aᵀ U x) x xᵀ to first order
+            // about c.
+            let e0 = grad.component_mul(s1).sum();
+            let e1 = Vector3::from_fn(|l, _| (0..3).map(|j| (grad.row(j) * s2[j].column(l))[0]).sum::<f64>());
+            let e2 = c * e1.transpose() + e1 * c.transpose() - c * c.transpose() * e0;
+            let e = [
+                e0,
+                e1.x,
+                e1.y,
+                e1.z,
+                e2[(0, 0)],
+                e2[(1, 1)],
+                e2[(2, 2)],
+                e2[(0, 1)],
+                e2[(1, 2)],
+                e2[(2, 0)],
+            ];
+            for (k, a) in iso.iter_mut().enumerate() {
                 let f: f64 = (0..6).map(|j| m.quadratic[j][k] * w[j]).sum();
-                let s = p.kq * f;
-                *a += s;
-                match k {
-                    0 => s0 += s,
-                    1..=3 => s1[k - 1] += s,
-                    _ => {}
-                }
+                *a += p.kq * (f - e[k]);
             }
         }
-        let (f, t) = (s0 * u, s1.cross(u));
+        for (a, v) in self.acc.iso.iter_mut().zip(&iso) {
+            *a += v;
+        }
+        // Σ s u(x) = S u + U (S₁ − S c); Σ s x × u(x) = S₁ × (u − U c) + Σ s x × U x.
+        let (s0, s1x) = (iso[0], Vector3::new(iso[1], iso[2], iso[3]));
+        let s2x = Matrix3::new(
+            iso[4], iso[7], iso[9], iso[7], iso[5], iso[8], iso[9], iso[8], iso[6],
+        );
+        let f = s0 * u + grad * (s1x - s0 * c);
+        // (Σ s x × U x)_p = ε_pqr (U S₂)_rq.
+        let us2 = grad * s2x;
+        let curl = Vector3::new(
+            us2[(2, 1)] - us2[(1, 2)],
+            us2[(0, 2)] - us2[(2, 0)],
+            us2[(1, 0)] - us2[(0, 1)],
+        );
+        let t = s1x.cross(&(u - grad * c)) + curl;
         for (b, v) in self.b.iter_mut().zip(f.iter().chain(t.iter())) {
             *b += v;
         }
@@ -254,7 +325,7 @@ pub(crate) fn sea_drag_range(
     range: Range<usize>,
     depths: &[f64],
     frame: &SeaDragFrame,
-    fluid: Option<Vector3<f64>>,
+    fluid: Option<&LinearFluid>,
 ) -> SeaDragSums {
     let mut sums = SumLanes::default();
     #[cfg(target_arch = "x86_64")]
@@ -281,7 +352,7 @@ fn sea_drag_avx2(
     range: Range<usize>,
     depths: &[f64],
     frame: &SeaDragFrame,
-    fluid: Option<Vector3<f64>>,
+    fluid: Option<&LinearFluid>,
 ) {
     sea_drag_lanes::<true>(sums, atlas, range, depths, frame, fluid);
 }
@@ -296,7 +367,7 @@ fn sea_drag_lanes<const FMA: bool>(
     range: Range<usize>,
     depths: &[f64],
     frame: &SeaDragFrame,
-    fluid: Option<Vector3<f64>>,
+    fluid: Option<&LinearFluid>,
 ) {
     let n = atlas.len();
     let xs = atlas.local_positions().columns(0..n);
@@ -311,9 +382,16 @@ fn sea_drag_lanes<const FMA: bool>(
         let at = |v: &[f32], k: usize| if wet[k] { f64::from(v[g + k]) } else { 0.0 };
         let x: [Lanes; 3] = std::array::from_fn(|c| lanes(|k| at(xs[c], k)));
         let a: [Lanes; 3] = std::array::from_fn(|c| lanes(|k| at(avs[c], k)));
-        if let Some(u) = fluid {
-            // One velocity over the range, object axes.
-            let u: [Lanes; 3] = std::array::from_fn(|c| lanes(|k| if wet[k] { u[c] } else { 0.0 }));
+        if let Some(fluid) = fluid {
+            // The velocity to first order over the range, object axes.
+            let at: [Vector3<f64>; LANES] = std::array::from_fn(|k| {
+                if wet[k] {
+                    fluid.at(&Vector3::new(x[0][k], x[1][k], x[2][k]))
+                } else {
+                    Vector3::zeros()
+                }
+            });
+            let u: [Lanes; 3] = std::array::from_fn(|c| lanes(|k| at[k][c]));
             add_group::<FMA>(sums, &frame.params, &x, &a, &u);
             continue;
         }

@@ -41,7 +41,7 @@ use super::{TileCounts, TiledAtlas, add_closed_form};
 use crate::hydrostatics::drag_kernel::DragMoments;
 use crate::hydrostatics::frame::Frame;
 use crate::hydrostatics::options::SeaVelocity;
-use crate::hydrostatics::sea_drag::{SeaDragFrame, SeaDragSums, sea_drag_range};
+use crate::hydrostatics::sea_drag::{LinearFluid, SeaDragFrame, SeaDragSums, sea_drag_range};
 use crate::hydrostatics::sea_kernel::{self, SeaFrame, add_sea_range};
 use crate::hydrostatics::sums::{BuoyancySums, SlopeSums};
 use crate::parallel::par_map;
@@ -147,15 +147,19 @@ impl TiledAtlas {
             archimedes,
         };
         let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
-        // Over tiles, a tile's texels take the fluid's velocity at its
-        // centre (object axes); texel by texel, each its own.
+        // Over tiles, a tile's texels take the fluid's velocity to first
+        // order about its centre (object axes); texel by texel, each its
+        // own.
         let tile_fluid = |ti: usize| -> Option<TileFluid> {
             let d = drag.filter(|_| detail == SeaVelocity::PerTile)?;
             let centre = self.tiles[ti].centre;
-            Some((
-                ti,
-                d.rot.transpose() * d.patch.velocity_at(&(d.ow + d.rot * centre)),
-            ))
+            let (u, grad) = d.patch.velocity_gradient_at(&(d.ow + d.rot * centre));
+            let fluid = LinearFluid {
+                u: d.rot.transpose() * u,
+                grad: d.rot.transpose() * grad * d.rot,
+                c: centre,
+            };
+            Some((ti, fluid))
         };
         let parts = par_map(n_chunks, |k| {
             let groups = &self.groups[k * GROUP_CHUNK..((k + 1) * GROUP_CHUNK).min(self.groups.len())];
@@ -177,16 +181,11 @@ impl TiledAtlas {
                         SeaTile::Dry => {}
                         SeaTile::Texels => texels.push(range, tile_fluid(ti)),
                         SeaTile::Closed => match (drag, tile_fluid(ti)) {
-                            // The tile's drag in closed form, in the fluid's
-                            // velocity at its centre, where its texels all
-                            // face the flow alike.
-                            (Some(d), Some((_, u))) => {
-                                let moments = DragMoments::of_tile(&self.drag_prefix, ti);
-                                if !part
-                                    .drag
-                                    .add_uniform_tile(&moments, &self.facing[ti], &d.params, &u)
-                                {
-                                    closed.push(range, Some((ti, u)));
+                            // The tile's drag in closed form where its
+                            // texels all face the flow alike.
+                            (Some(d), Some((_, fluid))) => {
+                                if !self.add_tile_drag(&mut part.drag, ti, d, &fluid) {
+                                    closed.push(range, Some((ti, fluid)));
                                 }
                             }
                             (Some(_), None) => closed.push(range, None),
@@ -219,25 +218,21 @@ impl TiledAtlas {
                     let depths = &depths[r.start - span.start..r.end - span.start];
                     // A tile the kernel finds wholly under water takes its
                     // drag in closed form as the others do.
-                    if let Some((ti, u)) = fluid
+                    if let Some((ti, fluid)) = fluid
                         && depths.iter().all(|&d| d > 0.0)
+                        && self.add_tile_drag(&mut part.drag, *ti, drag, fluid)
                     {
-                        let moments = DragMoments::of_tile(&self.drag_prefix, *ti);
-                        if part
-                            .drag
-                            .add_uniform_tile(&moments, &self.facing[*ti], &drag.params, u)
-                        {
-                            continue;
-                        }
+                        continue;
                     }
-                    part.drag =
-                        part.drag + sea_drag_range(atlas, r.clone(), depths, drag, fluid.map(|(_, u)| u));
+                    let fluid = fluid.as_ref().map(|(_, f)| f);
+                    part.drag = part.drag + sea_drag_range(atlas, r.clone(), depths, drag, fluid);
                 }
             }
-            for (r, fluid) in closed.0 {
+            for (r, fluid) in &closed.0 {
                 depths.clear();
                 depths.resize(r.len(), 1.0);
-                part.drag = part.drag + sea_drag_range(atlas, r, &depths, drag, fluid.map(|(_, u)| u));
+                let fluid = fluid.as_ref().map(|(_, f)| f);
+                part.drag = part.drag + sea_drag_range(atlas, r.clone(), &depths, drag, fluid);
             }
             part
         });
@@ -257,6 +252,29 @@ impl TiledAtlas {
             return None;
         }
         Some((sums, drag.map(|_| drag_sums), counts))
+    }
+
+    /// Adds the drag of tile `ti`, wholly under water in `fluid`, in closed
+    /// form; `false` (nothing added) where its texels may not all face the
+    /// flow alike.
+    fn add_tile_drag(
+        &self,
+        sums: &mut SeaDragSums,
+        ti: usize,
+        d: &SeaDragFrame,
+        fluid: &LinearFluid,
+    ) -> bool {
+        let m = &self.tiles[ti];
+        let moments = DragMoments::of_tile(&self.drag_prefix, ti);
+        sums.add_tile(
+            &moments,
+            &self.facing[ti],
+            &m.s1,
+            &m.s2,
+            m.radius,
+            &d.params,
+            fluid,
+        )
     }
 
     /// Settles tile `ti`: skipped, in closed form into `part`, or left to
@@ -375,8 +393,9 @@ enum SeaTile {
 #[derive(Default)]
 struct Ranges(Vec<(Range<usize>, Option<TileFluid>)>);
 
-/// A tile and the fluid's velocity at its centre (object axes, m/s).
-type TileFluid = (usize, Vector3<f64>);
+/// A tile and the fluid's velocity over it, to first order about its
+/// centre (object axes).
+type TileFluid = (usize, LinearFluid);
 
 impl Ranges {
     /// Appends `range`, extending the last one where it follows it and

@@ -11,7 +11,7 @@
 //! spacing is an accuracy knob like the atlas resolution
 //! ([`SeaSampling`](crate::SeaSampling)).
 
-use nalgebra::{Point3, Vector3};
+use nalgebra::{Matrix3, Point3, Vector3};
 
 use super::Surface;
 use crate::error::WaterError;
@@ -141,6 +141,47 @@ impl VelocityGrid {
             cells,
             coefficients,
         }
+    }
+
+    /// The velocity at `p` (world, m) and its derivatives `∂u_i/∂p_j`
+    /// (1/s), those of the trilinear interpolant of the cell `p` lies in
+    /// (clamped to the grid; no derivative along an axis it is clamped on).
+    fn gradient(&self, origin: &[f64; 2], p: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
+        let inv = self.inv_spacing;
+        // The cell along an axis, the fraction across it, and whether `q`
+        // lies within the grid along it.
+        let axis = |q: f64, nodes: usize, cells: usize| {
+            let f = q.clamp(0.0, (nodes - 1) as f64);
+            let i = (f as usize).min(cells - 1);
+            (i, f - i as f64, q == f && nodes > 1)
+        };
+        let (i, fx, ix) = axis((p.x - origin[0]) * inv, self.nodes[0], self.cells[0]);
+        let (l, fy, iy) = axis((p.y - self.y0) * inv, self.nodes[1], self.cells[1]);
+        let (k, fz, iz) = axis((p.z - origin[1]) * inv, self.nodes[2], self.cells[2]);
+        let c = &self.coefficients[(l * self.cells[2] + k) * self.cells[0] + i];
+        let at = |m: usize| {
+            c[0][m]
+                + fx * c[1][m]
+                + fz * c[2][m]
+                + fy * c[3][m]
+                + fx * fz * c[4][m]
+                + fx * fy * c[5][m]
+                + fz * fy * c[6][m]
+                + fx * fz * fy * c[7][m]
+        };
+        let dx = |m: usize| c[1][m] + fz * c[4][m] + fy * c[5][m] + fz * fy * c[7][m];
+        let dy = |m: usize| c[3][m] + fx * c[5][m] + fz * c[6][m] + fx * fz * c[7][m];
+        let dz = |m: usize| c[2][m] + fx * c[4][m] + fy * c[6][m] + fx * fy * c[7][m];
+        let on = |inside: bool| if inside { inv } else { 0.0 };
+        let (sx, sy, sz) = (on(ix), on(iy), on(iz));
+        (
+            Vector3::from_fn(|m, _| at(m)),
+            Matrix3::from_fn(|m, j| match j {
+                0 => sx * dx(m),
+                1 => sy * dy(m),
+                _ => sz * dz(m),
+            }),
+        )
     }
 
     /// The velocity at `p` (world, m), clamped to the grid, multiply-adds
@@ -501,6 +542,15 @@ impl SurfacePatch {
     pub fn velocity_at(&self, p: &Vector3<f64>) -> Vector3<f64> {
         let [x, y, z, _] = self.velocity_lanes::<false>(p);
         Vector3::new(x, y, z)
+    }
+
+    /// [`SurfacePatch::velocity_at`] and its derivatives `∂u_i/∂p_j` (1/s)
+    /// at `p`: the trilinear interpolant's, in the cell `p` lies in.
+    pub fn velocity_gradient_at(&self, p: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
+        match &self.velocity {
+            Some(g) => g.gradient(&self.origin, p),
+            None => (Vector3::zeros(), Matrix3::zeros()),
+        }
     }
 
     /// [`SurfacePatch::velocity_at`] as four lanes (the last zero),

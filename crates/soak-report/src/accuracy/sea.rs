@@ -2,7 +2,10 @@
 //! ([`SeaSampling::PerWavelength`]) costs in accuracy and saves in time,
 //! against the exact inversion of the Gerstner map at every texel (the
 //! reference), per knob setting; and the tiled path on the same sampled
-//! sea ([`TiledAtlas`]: tiles under the waves in closed form).
+//! sea ([`TiledAtlas`]: tiles under the waves in closed form); and the
+//! drag of the body moving through the swell, the fluid's velocity read
+//! from the sampled sea at every texel or once per tile
+//! ([`SeaVelocity`]), against the exact inversion's.
 
 use std::hint::black_box;
 
@@ -10,8 +13,8 @@ use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use serde::Serialize;
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::{
-    BodyState, Gerstner, GerstnerWave, HydroForces, HydroOptions, MassModel, SeaSampling, SurfacePatch,
-    TiledAtlas, Water, evaluate, sampled_water,
+    BodyState, Drag, Gerstner, GerstnerWave, HydroForces, HydroOptions, MassModel, SeaSampling, SeaVelocity,
+    SurfacePatch, TiledAtlas, Water, evaluate, sampled_water,
 };
 
 use super::AccuracyError;
@@ -49,6 +52,44 @@ pub struct SeaRow {
     pub exact_ms: f64,
     /// The same body at the same pose on calm water (planar kernel), ms.
     pub plane_ms: f64,
+    /// The body moving through the swell with drag: worst relative
+    /// difference of the drag (force, and torque over the bounding
+    /// radius) against the exact inversion's, the fluid's velocity read
+    /// from the sampled sea at every texel and (tiled) once per tile; and
+    /// between those two.
+    pub drag_errors: [f64; 3],
+    /// Tiled evaluation with drag, the fluid's velocity once per tile, ms.
+    pub drag_tile_ms: f64,
+    /// Tiled evaluation with drag, the fluid's velocity at every texel, ms.
+    pub drag_texel_ms: f64,
+}
+
+/// The drag of the moving body in the sea rows.
+const DRAG: Drag = Drag {
+    coefficient: 0.8,
+    linear: 20.0,
+};
+
+/// The poses of [`poses`], moving and turning through the water.
+fn moving() -> Vec<(BodyState, f64)> {
+    poses()
+        .into_iter()
+        .map(|(s, t)| {
+            let state = BodyState {
+                linear_velocity: Vector3::new(0.6, -0.2, 0.3),
+                angular_velocity: Vector3::new(0.2, 0.4, -0.1),
+                ..s
+            };
+            (state, t)
+        })
+        .collect()
+}
+
+/// `|ΔF| + |Δτ| / r` against `|F| + |τ| / r` of the reference's drag.
+fn drag_difference(got: &HydroForces, want: &HydroForces, radius: f64) -> f64 {
+    let (g, w) = (&got.drag_explicit, &want.drag_explicit);
+    let off = (g.force - w.force).norm() + (g.torque - w.torque).norm() / radius;
+    off / (w.force.norm() + w.torque.norm() / radius)
 }
 
 /// The two-wave swell of `data/scenes/buoy_on_waves.toml`.
@@ -100,6 +141,14 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
             .into_iter()
             .map(|(s, t)| evaluate(&atlas, &water, &s, &mass, t, &exact))
             .collect::<Result<Vec<_>, _>>()?;
+        let drag_exact = HydroOptions {
+            drag: Some(DRAG),
+            ..exact
+        };
+        let drag_reference = moving()
+            .into_iter()
+            .map(|(s, t)| evaluate(&atlas, &water, &s, &mass, t, &drag_exact))
+            .collect::<Result<Vec<_>, _>>()?;
         for per in [4.0, 8.0, 16.0, 32.0] {
             let options = HydroOptions {
                 sea: SeaSampling::PerWavelength(per),
@@ -121,6 +170,23 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
                 let s = tiled.evaluate(&atlas, &water, &state, &mass, t, &options)?;
                 worst(&mut tiled_errors, &s, e);
             }
+            let radius = 0.5 * diameter;
+            let per_tile = HydroOptions {
+                drag: Some(DRAG),
+                ..options
+            };
+            let per_texel = HydroOptions {
+                sea_velocity: SeaVelocity::PerTexel,
+                ..per_tile
+            };
+            let mut drag_errors = [0.0f64; 3];
+            for ((state, t), e) in moving().into_iter().zip(&drag_reference) {
+                let texels = evaluate(&atlas, &water, &state, &mass, t, &per_texel)?;
+                let tiles = tiled.evaluate(&atlas, &water, &state, &mass, t, &per_tile)?;
+                drag_errors[0] = drag_errors[0].max(drag_difference(&texels, e, radius));
+                drag_errors[1] = drag_errors[1].max(drag_difference(&tiles, e, radius));
+                drag_errors[2] = drag_errors[2].max(drag_difference(&tiles, &texels, radius));
+            }
             let (state, t) = poses()[0];
             let patch = sampled_water(&atlas, &water, &state, t, &options)?;
             let patch = patch
@@ -128,7 +194,15 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
                 .and_then(|w| w.surface.as_any())
                 .and_then(|s| s.downcast_ref::<SurfacePatch>());
             let (spacing, nodes) = patch.map_or((f64::NAN, [0, 0]), |p| (p.spacing(), p.nodes()));
-            let [sampled_ms, tiled_ms, exact_ms, plane_ms] = per_call_ms(
+            let (moving_state, _) = moving()[0];
+            let [
+                sampled_ms,
+                tiled_ms,
+                exact_ms,
+                plane_ms,
+                drag_tile_ms,
+                drag_texel_ms,
+            ] = per_call_ms(
                 runs,
                 [
                     &mut || {
@@ -142,6 +216,20 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
                     },
                     &mut || {
                         black_box(evaluate(&atlas, &calm, &state, &mass, t, &options).ok());
+                    },
+                    &mut || {
+                        black_box(
+                            tiled
+                                .evaluate(&atlas, &water, &moving_state, &mass, t, &per_tile)
+                                .ok(),
+                        );
+                    },
+                    &mut || {
+                        black_box(
+                            tiled
+                                .evaluate(&atlas, &water, &moving_state, &mass, t, &per_texel)
+                                .ok(),
+                        );
                     },
                 ],
             );
@@ -159,6 +247,9 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
                 tiled_ms,
                 exact_ms,
                 plane_ms,
+                drag_errors,
+                drag_tile_ms,
+                drag_texel_ms,
             });
         }
     }
@@ -166,7 +257,7 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
 }
 
 /// The sea rows as lines of a table (header first), for text and markdown.
-pub(super) fn sea_cells(rows: &[SeaRow]) -> Vec<[String; 12]> {
+pub(super) fn sea_cells(rows: &[SeaRow]) -> Vec<[String; 15]> {
     let mut all = vec![
         [
             "mesh",
@@ -181,6 +272,9 @@ pub(super) fn sea_cells(rows: &[SeaRow]) -> Vec<[String; 12]> {
             "tiled",
             "exact",
             "plane",
+            "drag err: texel / tile / tile−texel",
+            "tiled + drag",
+            "per texel",
         ]
         .map(String::from),
     ];
@@ -198,6 +292,9 @@ pub(super) fn sea_cells(rows: &[SeaRow]) -> Vec<[String; 12]> {
             format!("{:.3} ms", r.tiled_ms),
             format!("{:.3} ms", r.exact_ms),
             format!("{:.3} ms", r.plane_ms),
+            r.drag_errors.map(|e| format!("{e:.1e}")).join(" / "),
+            format!("{:.3} ms", r.drag_tile_ms),
+            format!("{:.3} ms", r.drag_texel_ms),
         ]);
     }
     all

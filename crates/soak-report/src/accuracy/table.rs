@@ -131,7 +131,12 @@ bicubic Hermite between the nodes) against the exact inversion of the Gerstner m
 of the centre of buoyancy and Archimedes' torque (over ρgV) over the bounding diameter; the tiled \
 path (`TiledAtlas`) reads the same sampled sea, tiles under the waves in closed form from the \
 surface's second-order Taylor polynomial over each. Times are per evaluation with the sampling \
-included, beside the same body on calm water (per texel).\n\n";
+included, beside the same body on calm water (per texel). The drag columns move the body through \
+the swell (0.7 m/s, 0.46 rad/s; C_d = 0.8, skin friction 20 N·s/m³): the worst relative difference \
+of its drag (force, and torque over the bounding radius) from the exact inversion's, the fluid's \
+velocity read from the sampled sea at every texel (`SeaVelocity::PerTexel`) and by the tiled path \
+once per tile (`SeaVelocity::PerTile`, the default), and between the two; and the tiled path's \
+time with drag, per tile and per texel.\n\n";
 
 /// The sea rows as aligned text.
 fn sea_text(report: &Report) -> String {
