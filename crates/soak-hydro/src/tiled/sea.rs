@@ -150,8 +150,14 @@ impl TiledAtlas {
         // Over tiles, a tile's texels take the fluid's velocity to first
         // order about its centre (object axes); texel by texel, each its
         // own.
+        // A tile wider than the patch's spacing reads it at every texel:
+        // the linear part is then no longer the patch's velocity to within
+        // the interpolant's own error.
         let tile_fluid = |ti: usize| -> Option<TileFluid> {
             let d = drag.filter(|_| detail == SeaVelocity::PerTile)?;
+            if self.tiles[ti].radius > 0.5 * d.patch.spacing() {
+                return None;
+            }
             let centre = self.tiles[ti].centre;
             let (u, grad) = d.patch.velocity_gradient_at(&(d.ow + d.rot * centre));
             let fluid = LinearFluid {
