@@ -79,10 +79,10 @@ pub struct HydroOptions {
 /// velocity read at each; a tile wider than the patch's node spacing (a
 /// coarse atlas on short waves) reads it at every texel. The error falls
 /// as the square of the tile's size: on the two-wave swell the drag
-/// differs from the per-texel read's by 1e-4–7e-4 at 1024² and 1e-2–4e-2
-/// at 128² (`soak accuracy`'s moving bodies), within what the sampled sea
-/// itself costs, 1e-2–5e-2 between its velocities and the exact
-/// inversion's at the default 16 nodes per wavelength.
+/// differs from the per-texel read's by at most 2e-4 at 1024² and 6e-3 at
+/// 128² (`soak accuracy`'s moving bodies, 16 nodes per wavelength), well
+/// within what the sampled sea itself costs: 3e-2–5e-2 between its
+/// velocities and the exact inversion's.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SeaVelocity {

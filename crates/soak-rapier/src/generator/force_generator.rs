@@ -143,8 +143,8 @@ impl ForceGenerator {
 
     /// The same generator reading a sampled sea's velocity for the drag as
     /// `velocity` says: once per tile of each body's atlas, to first order
-    /// over the tile (the default: within 1e-4 of the per-texel read at
-    /// 1024², 6e-3 at 128², two to five times faster) or at every texel
+    /// over the tile (the default: within 2e-4 of the per-texel read at
+    /// 1024², 6e-3 at 128², 1.4 to 5 times faster) or at every texel
     /// ([`SeaVelocity::PerTexel`], the reference). See [`SeaVelocity`].
     pub fn with_sea_velocity(mut self, velocity: SeaVelocity) -> Self {
         self.sea_velocity = velocity;
