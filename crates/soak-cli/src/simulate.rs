@@ -175,13 +175,24 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
 }
 
 /// Writes the recorded samples as an animated glTF binary, the bodies drawn
-/// with their scene meshes.
+/// with their scene meshes, wet ones coloured by the liquid in them at the
+/// end.
 fn write_gltf(path: &std::path::Path, loaded: &LoadedScene, sim: &Simulation) -> anyhow::Result<()> {
     let meshes = (0..sim.bodies.len())
         .map(|i| loaded.body_mesh(i))
         .collect::<Result<Vec<_>, _>>()?;
     let names: Vec<String> = sim.bodies.iter().map(|b| b.name.clone()).collect();
-    let run = soak_rapier::export::Recording::from_samples(&names, meshes, sim.samples())?;
+    let mut run = soak_rapier::export::Recording::from_samples(&names, meshes, sim.samples())?;
+    // Wet bodies carry the liquid soaked into them at the end, per vertex.
+    for (i, b) in sim.bodies.iter().enumerate() {
+        let Some(sb) = b.id.and_then(|id| sim.soak.body(id)) else {
+            continue;
+        };
+        if let Some(w) = sb.wetting() {
+            let fill = soak_rapier::export::vertex_fill(sb.atlas(), w.liquid(), w.material().saturation);
+            run.set_liquid(i, fill)?;
+        }
+    }
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }

@@ -74,3 +74,58 @@ fn the_gltf_of_a_run_holds_its_recorded_poses() {
     assert!(checked > 100, "{checked} values checked");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A wet body's vertices carry the liquid soaked into it at the end, as
+/// vertex colours between dry grey and saturated blue (the crate of
+/// `wet_crate.toml` a second after it is dropped into the swell: its
+/// bottom soaked, its top dry).
+#[test]
+fn the_gltf_of_a_wet_run_colours_its_liquid() {
+    let scene: PathBuf = [
+        env!("CARGO_MANIFEST_DIR"),
+        "..",
+        "..",
+        "data",
+        "scenes",
+        "wet_crate.toml",
+    ]
+    .iter()
+    .collect();
+    let dir = std::env::temp_dir().join(format!("soak-gltf-wet-{}", std::process::id()));
+    let glb = dir.join("wet.glb");
+    let run = Command::new(env!("CARGO_BIN_EXE_soak"))
+        .arg("simulate")
+        .arg(&scene)
+        .args(["--duration", "1"])
+        .arg("--gltf")
+        .arg(&glb)
+        .output()
+        .expect("runs soak");
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let (doc, buffers, _) = gltf::import(&glb).expect("a valid glTF binary");
+    let node = doc
+        .nodes()
+        .find(|n| n.name() == Some("crate"))
+        .expect("the crate");
+    let primitive = node.mesh().unwrap().primitives().next().unwrap();
+    let reader = primitive.reader(|b| Some(&buffers[b.index()]));
+    let colours: Vec<[f32; 4]> = reader
+        .read_colors(0)
+        .expect("the wet crate has vertex colours")
+        .into_rgba_f32()
+        .collect();
+    let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+    assert_eq!(colours.len(), positions.len());
+    // The fill fraction from the red channel, 0.8 dry to 0.05 saturated.
+    let fill: Vec<f32> = colours.iter().map(|c| (0.8 - c[0]) / 0.75).collect();
+    assert!(fill.iter().all(|f| (-1e-6..=1.0 + 1e-6).contains(f)), "{fill:?}");
+    let (low, high): (Vec<_>, Vec<_>) = positions.iter().zip(&fill).partition(|(p, _)| p[1] < 0.0);
+    let mean = |v: &[(&[f32; 3], &f32)]| v.iter().map(|(_, f)| **f).sum::<f32>() / v.len() as f32;
+    assert!(
+        mean(&low) > mean(&high) + 0.05,
+        "the bottom wetter than the top: {} vs {}",
+        mean(&low),
+        mean(&high)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

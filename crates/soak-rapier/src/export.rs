@@ -25,14 +25,20 @@
 //!
 //! The meshes are written as they are given (f32 positions, triangles; no
 //! normals, which a viewer then computes flat, as the glTF specification
-//! asks). The liquid inside a hull or soaked into a surface is not written:
-//! glTF animates nodes and morph weights, not vertex colours or textures.
+//! asks). The liquid soaked into a wet body's surface can go with it
+//! ([`Recording::set_liquid`], per vertex, e.g. from [`vertex_fill`]):
+//! as vertex colours (`COLOR_0`, [`liquid_colour`]: light grey where dry
+//! to dark blue where saturated, linear in the fill fraction, so the
+//! fraction reads back from the red channel). It is one state, the last
+//! one: glTF animates nodes and morph weights,
+//! not vertex colours or textures. The liquid inside a hull is not
+//! written.
 
 use std::io::Write;
 
 use rapier3d::math::Pose;
 use serde_json::{Value, json};
-use soak_bake::Mesh;
+use soak_bake::{Atlas, Mesh};
 
 /// What an export refuses.
 #[derive(Debug, thiserror::Error)]
@@ -58,6 +64,15 @@ pub enum ExportError {
         /// The time pushed, s.
         t: f64,
     },
+    /// Liquid for a number of vertices other than the body's mesh has, or
+    /// a fill fraction outside `[0, 1]`.
+    #[error("body `{body}`: {message}")]
+    Liquid {
+        /// The body's name.
+        body: String,
+        /// What is wrong.
+        message: String,
+    },
     /// Writing the file.
     #[error("writing the glTF file: {0}")]
     Io(#[from] std::io::Error),
@@ -71,6 +86,8 @@ struct Track {
     times: Vec<f32>,
     translations: Vec<[f32; 3]>,
     rotations: Vec<[f32; 4]>,
+    /// Fill fraction per vertex, where the body is wet.
+    liquid: Option<Vec<f32>>,
 }
 
 /// Bodies, their meshes and their poses over time: an animated glTF scene.
@@ -94,8 +111,36 @@ impl Recording {
             times: Vec::new(),
             translations: Vec::new(),
             rotations: Vec::new(),
+            liquid: None,
         });
         self.tracks.len() - 1
+    }
+
+    /// Gives body `body` the liquid soaked into its surface: `fill`, the
+    /// fraction of saturation in `[0, 1]` at each vertex of its mesh (see
+    /// [`vertex_fill`]).
+    ///
+    /// # Errors
+    /// An unknown body, a length other than the mesh's vertex count, a
+    /// fraction outside `[0, 1]`.
+    pub fn set_liquid(&mut self, body: usize, fill: Vec<f32>) -> Result<(), ExportError> {
+        let track = self.tracks.get_mut(body).ok_or(ExportError::UnknownBody(body))?;
+        let wrong = |message: String| ExportError::Liquid {
+            body: track.name.clone(),
+            message,
+        };
+        if fill.len() != track.mesh.positions.len() {
+            return Err(wrong(format!(
+                "liquid for {} vertices, the mesh has {}",
+                fill.len(),
+                track.mesh.positions.len()
+            )));
+        }
+        if let Some((i, f)) = fill.iter().enumerate().find(|(_, f)| !(0.0..=1.0).contains(*f)) {
+            return Err(wrong(format!("vertex {i}: fill fraction {f} is not in [0, 1]")));
+        }
+        track.liquid = Some(fill);
+        Ok(())
     }
 
     /// Records body `body`'s pose at time `t` (s, after its last sample).
@@ -229,9 +274,20 @@ impl Recording {
                 "SCALAR",
                 json!({}),
             );
+            let mut attributes = json!({"POSITION": position});
+            if let Some(fill) = &track.liquid {
+                let colours: Vec<[f32; 4]> = fill.iter().map(|&f| liquid_colour(f)).collect();
+                attributes["COLOR_0"] = json!(add(
+                    floats(&mut colours.iter().flatten().copied()),
+                    FLOAT,
+                    colours.len(),
+                    "VEC4",
+                    json!({}),
+                ));
+            }
             meshes.push(json!({
                 "name": track.mesh.name,
-                "primitives": [{"attributes": {"POSITION": position}, "indices": indices, "mode": 4}],
+                "primitives": [{"attributes": attributes, "indices": indices, "mode": 4}],
             }));
             let mut node = json!({"name": track.name, "mesh": i});
             if let (Some(t), Some(r)) = (track.translations.first(), track.rotations.first()) {
@@ -305,4 +361,78 @@ impl Recording {
         out.flush()?;
         Ok(())
     }
+}
+
+/// The vertex colour of a fill fraction `f`: linear RGBA from a light grey
+/// (dry, 0.8 in each channel) to a dark blue (saturated; red 0.05), so
+/// `f = (0.8 − r) / 0.75`.
+pub fn liquid_colour(f: f32) -> [f32; 4] {
+    let f = f.clamp(0.0, 1.0);
+    let mix = |dry: f32, wet: f32| dry + f * (wet - dry);
+    [mix(0.8, 0.05), mix(0.8, 0.15), mix(0.8, 0.6), 1.0]
+}
+
+/// The fill fraction (liquid over `saturation`, clamped to `[0, 1]`) at
+/// each vertex of the mesh `atlas` was baked from, from `liquid`, the
+/// liquid per texel in atlas order (m, as
+/// [`SoakBody::liquid`](crate::SoakBody::liquid) gives it): each texel
+/// weighs on its triangle's three vertices by its area times its
+/// barycentric coordinate; a vertex no texel weighs on takes the mean of
+/// its triangles' other vertices, and is dry if none has any.
+pub fn vertex_fill(atlas: &Atlas, liquid: &[f64], saturation: f64) -> Vec<f32> {
+    let n = atlas.vertex_count();
+    let (mut sum, mut weight) = (vec![0.0f64; n], vec![0.0f64; n]);
+    let triangles = atlas.triangles();
+    for (((&t, b), &area), &h) in atlas
+        .triangle_ids()
+        .iter()
+        .zip(atlas.barycentrics())
+        .zip(atlas.areas())
+        .zip(liquid)
+    {
+        let Some(tri) = triangles.get(t as usize) else {
+            continue;
+        };
+        let f = if saturation > 0.0 {
+            (h / saturation).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let (l1, l2) = (f64::from(b[0]), f64::from(b[1]));
+        for (&v, l) in tri.iter().zip([1.0 - l1 - l2, l1, l2]) {
+            let w = f64::from(area) * l.max(0.0);
+            if let (Some(s), Some(wv)) = (sum.get_mut(v as usize), weight.get_mut(v as usize)) {
+                *s += w * f;
+                *wv += w;
+            }
+        }
+    }
+    let own: Vec<Option<f64>> = sum
+        .iter()
+        .zip(&weight)
+        .map(|(s, w)| (*w > 0.0).then(|| (s / w).clamp(0.0, 1.0)))
+        .collect();
+    // A vertex no texel weighs on (a pole, a corner of triangles too small
+    // for a texel) takes the mean of its triangles' other vertices'.
+    let (mut near, mut count) = (vec![0.0f64; n], vec![0u32; n]);
+    for tri in triangles {
+        for &v in tri {
+            if own.get(v as usize).is_some_and(Option::is_none) {
+                for &o in tri {
+                    if let Some(Some(f)) = own.get(o as usize) {
+                        near[v as usize] += f;
+                        count[v as usize] += 1;
+                    }
+                }
+            }
+        }
+    }
+    own.iter()
+        .enumerate()
+        .map(|(v, f)| match f {
+            Some(f) => *f as f32,
+            None if count[v] > 0 => (near[v] / f64::from(count[v])) as f32,
+            None => 0.0,
+        })
+        .collect()
 }
