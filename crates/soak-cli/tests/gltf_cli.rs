@@ -99,6 +99,8 @@ fn the_gltf_of_a_wet_run_colours_its_liquid() {
         .args(["--duration", "1"])
         .arg("--gltf")
         .arg(&glb)
+        .arg("--out")
+        .arg(&dir)
         .output()
         .expect("runs soak");
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
