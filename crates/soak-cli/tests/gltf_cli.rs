@@ -7,18 +7,16 @@ use std::process::Command;
 
 use gltf::animation::util::ReadOutputs;
 
+/// A scene file of `data/scenes`.
+fn scene(name: &str) -> PathBuf {
+    [env!("CARGO_MANIFEST_DIR"), "..", "..", "data", "scenes", name]
+        .iter()
+        .collect()
+}
+
 #[test]
 fn the_gltf_of_a_run_holds_its_recorded_poses() {
-    let scene: PathBuf = [
-        env!("CARGO_MANIFEST_DIR"),
-        "..",
-        "..",
-        "data",
-        "scenes",
-        "three_boxes.toml",
-    ]
-    .iter()
-    .collect();
+    let scene = scene("three_boxes.toml");
     let dir = std::env::temp_dir().join(format!("soak-gltf-{}", std::process::id()));
     let (csv, glb) = (dir.join("run.csv"), dir.join("run.glb"));
     let run = Command::new(env!("CARGO_BIN_EXE_soak"))
@@ -81,16 +79,7 @@ fn the_gltf_of_a_run_holds_its_recorded_poses() {
 /// bottom soaked, its top dry).
 #[test]
 fn the_gltf_of_a_wet_run_colours_its_liquid() {
-    let scene: PathBuf = [
-        env!("CARGO_MANIFEST_DIR"),
-        "..",
-        "..",
-        "data",
-        "scenes",
-        "wet_crate.toml",
-    ]
-    .iter()
-    .collect();
+    let scene = scene("wet_crate.toml");
     let dir = std::env::temp_dir().join(format!("soak-gltf-wet-{}", std::process::id()));
     let glb = dir.join("wet.glb");
     let run = Command::new(env!("CARGO_BIN_EXE_soak"))
