@@ -6,7 +6,8 @@
 //! and in pressure mode, and on the two-wave swell of `buoy_on_waves.toml`
 //! sampled (the default) and read exactly, and tiled; the sphere moving with drag,
 //! per texel and tiled, and on the swell (sampled) with and without drag
-//! (tiled, the fluid's velocity read once per tile and at every texel),
+//! (tiled, the fluid's velocity read once per tile and at every texel;
+//! and with the drag over a 64² bake of the same mesh),
 //! at 1024² and 128²; the boat at 1024², per texel and tiled; the sphere
 //! at 2048², beyond the cache.
 
@@ -15,8 +16,8 @@ use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::reference::{self, ClipPlane};
 use soak_hydro::{
-    BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HydroOptions, MassModel, MassProperties,
-    SeaSampling, SeaVelocity, TiledAtlas, Water, evaluate, streaming_read,
+    BodyState, BuoyancyMode, Drag, DragTexels, Gerstner, GerstnerWave, HydroOptions, MassModel,
+    MassProperties, SeaSampling, SeaVelocity, TiledAtlas, Water, evaluate, streaming_read,
 };
 
 /// `mesh` baked at `n`², and the mass properties of a solid of half the
@@ -72,7 +73,14 @@ fn hydro(c: &mut Criterion) {
     g.bench_function("tiled", |b| {
         b.iter(|| tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap())
     });
-    drag_rows(&mut g, &atlas, &tiled, &mass, &state);
+    drag_rows(
+        &mut g,
+        &atlas,
+        &tiled,
+        &DragTexels::bake(&mesh, 64).unwrap(),
+        &mass,
+        &state,
+    );
     g.bench_function("exact_clipping", |b| {
         b.iter(|| reference::submerged_part(&mesh, &pose, &ClipPlane::horizontal(0.0)))
     });
@@ -132,6 +140,7 @@ fn drag_rows(
     g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
     atlas: &Atlas,
     tiled: &TiledAtlas,
+    coarse: &DragTexels,
     mass: &MassProperties,
     state: &BodyState,
 ) {
@@ -154,6 +163,15 @@ fn drag_rows(
     g.bench_function("tiled_drag", |b| {
         b.iter(|| tiled.evaluate(atlas, &water, &moving, mass, 0.0, &opts).unwrap())
     });
+    // The drag over a 64² bake of the same mesh, the buoyancy over the
+    // body's own texels: against `tiled_drag`, what the coarse drag saves.
+    g.bench_function("tiled_drag_texels_64", |b| {
+        b.iter(|| {
+            tiled
+                .evaluate_with_drag(atlas, coarse, &water, &moving, mass, 0.0, &opts)
+                .unwrap()
+        })
+    });
     // On the swell, sampled (the default), with and without drag.
     let swell = swell();
     let still = HydroOptions { drag: None, ..opts };
@@ -170,6 +188,13 @@ fn drag_rows(
     });
     g.bench_function("swell_drag_tiled", |b| {
         b.iter(|| tiled.evaluate(atlas, &swell, &moving, mass, 0.0, &opts).unwrap())
+    });
+    g.bench_function("swell_drag_tiled_texels_64", |b| {
+        b.iter(|| {
+            tiled
+                .evaluate_with_drag(atlas, coarse, &swell, &moving, mass, 0.0, &opts)
+                .unwrap()
+        })
     });
     // The same with the fluid's velocity read at every texel rather than
     // once per tile (the default): what reading it per tile saves.
@@ -189,7 +214,8 @@ fn drag_rows(
 /// The sphere of [`hydro`] at 128² (8,000 texels, the resolution of the
 /// Rapier worlds' bodies), with and without drag.
 fn small(c: &mut Criterion) {
-    let (atlas, mass) = baked(&builtin::sphere(0.5, 64, 32), 128);
+    let mesh = builtin::sphere(0.5, 64, 32);
+    let (atlas, mass) = baked(&mesh, 128);
     let tiled = TiledAtlas::new(&atlas);
     let pose = Isometry3::from_parts(
         Vector3::new(0.0, 0.1, 0.0).into(),
@@ -205,7 +231,14 @@ fn small(c: &mut Criterion) {
     g.bench_function("tiled", |b| {
         b.iter(|| tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &opts).unwrap())
     });
-    drag_rows(&mut g, &atlas, &tiled, &mass, &state);
+    drag_rows(
+        &mut g,
+        &atlas,
+        &tiled,
+        &DragTexels::bake(&mesh, 64).unwrap(),
+        &mass,
+        &state,
+    );
     g.finish();
 }
 

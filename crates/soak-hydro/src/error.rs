@@ -92,4 +92,14 @@ pub enum HydroError {
     /// The water is invalid.
     #[error(transparent)]
     Water(#[from] WaterError),
+    /// The texels a body's drag is summed over are not of its mesh.
+    #[error(
+        "the drag texels' origin {drag:?} is not the body atlas' {body:?} (object frame, m): bake both from the same mesh"
+    )]
+    DragTexels {
+        /// The body atlas' origin.
+        body: [f64; 3],
+        /// The drag texels' origin.
+        drag: [f64; 3],
+    },
 }

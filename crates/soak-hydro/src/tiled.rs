@@ -15,7 +15,7 @@ use crate::hydrostatics::body_state::BodyState;
 use crate::hydrostatics::drag_kernel::{
     Added, DragLanes, DragMoments, Facing, FacingBounds, HBox, LocalDrag, add_drag_ranges, uniform_velocity,
 };
-use crate::hydrostatics::evaluation::{drag_sums, evaluate, patch_sums, sample_patch};
+use crate::hydrostatics::evaluation::{drag_sums, exact_sums, patch_sums, sample_patch};
 use crate::hydrostatics::finish::finish;
 use crate::hydrostatics::forces::HydroForces;
 use crate::hydrostatics::frame::{Frame, texel};
@@ -326,6 +326,113 @@ impl TiledAtlas {
     ) -> Result<(HydroForces, TileCounts), HydroError> {
         water.validate()?;
         state.check()?;
+        let e = self.evaluation(atlas, water, state, mass, t, options, true)?;
+        let forces = finish(&e.frame, water, state, mass, &e.sums, e.drag.as_ref(), options);
+        Ok((forces, e.counts))
+    }
+
+    /// [`TiledAtlas::evaluate`] with the drag summed over the texels of
+    /// another bake of the same mesh (`drag`, typically coarser: a 64²
+    /// bake of a 1024² body), the buoyancy over this atlas' own. Drag is a
+    /// smooth surface integral whose coefficients are empirical; a coarse
+    /// bake takes it to within a few parts in a thousand of the body's own
+    /// texels (`soak accuracy` reports how close, per resolution) for a
+    /// fraction of the work. Without [`HydroOptions::drag`] this is
+    /// [`TiledAtlas::evaluate`]. A sampled sea is sampled once, for both.
+    ///
+    /// # Errors
+    /// Those of [`TiledAtlas::evaluate`], and [`HydroError::DragTexels`]
+    /// when `drag`'s atlas is not of this body's mesh (another origin).
+    ///
+    /// # Example
+    /// ```
+    /// use nalgebra::{Isometry3, Vector3};
+    /// use soak_bake::{Atlas, BakeOptions, builtin};
+    /// use soak_hydro::{BodyState, Drag, DragTexels, HydroOptions, MassModel, TiledAtlas, Water};
+    ///
+    /// let mesh = builtin::sphere(0.5, 64, 32);
+    /// let atlas = Atlas::bake(&mesh, BakeOptions::square(512))?;
+    /// let tiled = TiledAtlas::new(&atlas);
+    /// let coarse = DragTexels::bake(&mesh, 64)?;
+    /// let mass = MassModel::Solid { density: 500.0 }.mass_properties(&atlas)?;
+    /// let state = BodyState {
+    ///     linear_velocity: Vector3::new(1.0, 0.0, 0.0),
+    ///     ..BodyState::at_rest(Isometry3::identity())
+    /// };
+    /// let options = HydroOptions { drag: Some(Drag::default()), ..HydroOptions::default() };
+    /// let water = Water::calm(0.0);
+    /// let fine = tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &options)?;
+    /// let fast = tiled.evaluate_with_drag(&atlas, &coarse, &water, &state, &mass, 0.0, &options)?;
+    /// assert_eq!(fast.buoyancy, fine.buoyancy);
+    /// let f = fine.drag_explicit.force;
+    /// assert!((fast.drag_explicit.force - f).norm() < 1e-2 * f.norm());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[allow(clippy::too_many_arguments)]
+    pub fn evaluate_with_drag(
+        &self,
+        atlas: &Atlas,
+        drag: &DragTexels,
+        water: &Water,
+        state: &BodyState,
+        mass: &MassProperties,
+        t: f64,
+        options: &HydroOptions,
+    ) -> Result<HydroForces, HydroError> {
+        if options.drag.is_none() {
+            return self.evaluate(atlas, water, state, mass, t, options);
+        }
+        drag.check(atlas)?;
+        water.validate()?;
+        state.check()?;
+        let sampled = sample_patch(atlas, water, state, t, options)?.map(|patch| Water {
+            surface: Box::new(patch),
+            density: water.density,
+            gravity: water.gravity,
+        });
+        let water = sampled.as_ref().unwrap_or(water);
+        let still = HydroOptions {
+            drag: None,
+            ..*options
+        };
+        // The two side by side: the body's buoyancy takes the threads the
+        // drag leaves it (each sums in a fixed order whatever the threads).
+        let mut both = par_map(2, |i| match i {
+            0 => self.evaluation(atlas, water, state, mass, t, &still, true),
+            _ => drag
+                .tiled
+                .evaluation(&drag.atlas, water, state, mass, t, options, false),
+        })
+        .into_iter();
+        let (Some(body), Some(coarse)) = (both.next(), both.next()) else {
+            unreachable!("two evaluations")
+        };
+        let (body, coarse) = (body?, coarse?);
+        Ok(finish(
+            &body.frame,
+            water,
+            state,
+            mass,
+            &body.sums,
+            coarse.drag.as_ref(),
+            options,
+        ))
+    }
+
+    /// The sums of one evaluation (validated water and state), the
+    /// buoyancy's only where `buoyancy` (with drag alone, a plane's tiles
+    /// are classified for the drag and nothing else is summed).
+    #[allow(clippy::too_many_arguments)]
+    fn evaluation(
+        &self,
+        atlas: &Atlas,
+        water: &Water,
+        state: &BodyState,
+        mass: &MassProperties,
+        t: f64,
+        options: &HydroOptions,
+        buoyancy: bool,
+    ) -> Result<Evaluation, HydroError> {
         let frame = Frame::new(atlas, water, state, mass, t);
         if frame.plane.is_none() {
             // A sampled sea (handed in, or sampled here as `evaluate` would):
@@ -340,7 +447,13 @@ impl TiledAtlas {
                 None => sample_patch(atlas, water, state, t, options)?,
             };
             let Some(patch) = handed.or(sampled.as_ref()) else {
-                return evaluate(atlas, water, state, mass, t, options).map(|f| (f, TileCounts::default()));
+                let (sums, drag) = exact_sums(atlas, water, state, &frame, t, options);
+                return Ok(Evaluation {
+                    frame,
+                    sums,
+                    drag,
+                    counts: TileCounts::default(),
+                });
             };
             let archimedes = options.buoyancy == BuoyancyMode::Archimedes;
             let drag_frame = options
@@ -365,20 +478,26 @@ impl TiledAtlas {
                     (sums, drag, TileCounts::default())
                 }
             };
-            return Ok((
-                finish(&frame, water, state, mass, &sums, drag.as_ref(), options),
+            return Ok(Evaluation {
+                frame,
+                sums,
+                drag,
                 counts,
-            ));
+            });
         }
-        let (sums, drag, counts) = self.sums(atlas, water, state, &frame, t, options);
-        Ok((
-            finish(&frame, water, state, mass, &sums, drag.as_ref(), options),
+        let (sums, drag, counts) = self.sums(atlas, water, state, &frame, t, options, buoyancy);
+        Ok(Evaluation {
+            frame,
+            sums,
+            drag,
             counts,
-        ))
+        })
     }
 
     /// The buoyancy and drag sums of [`TiledAtlas::evaluate_counted`]
-    /// under planar water (`frame.plane` is some).
+    /// under planar water (`frame.plane` is some); without `buoyancy`,
+    /// the drag's alone (the buoyancy sums stay zero).
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn sums(
         &self,
         atlas: &Atlas,
@@ -387,6 +506,7 @@ impl TiledAtlas {
         frame: &Frame,
         t: f64,
         options: &HydroOptions,
+        buoyancy: bool,
     ) -> (BuoyancySums, Option<DragSums>, TileCounts) {
         let (n, offset) = frame.plane.expect("planar water");
         let rot = frame.rot;
@@ -447,6 +567,7 @@ impl TiledAtlas {
             let mut under = Sums::default();
             let mut run: Option<std::ops::Range<usize>> = None;
             let mut submerge = |tiles: std::ops::Range<usize>, under: &mut Sums| match run.as_mut() {
+                _ if !buoyancy => {}
                 Some(open) if open.end == tiles.start => open.end = tiles.end,
                 _ => {
                     if let Some(done) = run.replace(tiles) {
@@ -454,7 +575,8 @@ impl TiledAtlas {
                     }
                 }
             };
-            let (mut cut, mut cut_wet) = (Vec::with_capacity(64), Vec::with_capacity(64));
+            let capacity = if buoyancy { 64 } else { 0 };
+            let (mut cut, mut cut_wet) = (Vec::with_capacity(capacity), Vec::with_capacity(capacity));
             for group in &self.groups[c * GROUP_CHUNK..((c + 1) * GROUP_CHUNK).min(self.groups.len())] {
                 let members = group.tiles.clone();
                 match classify(&group.bounds) {
@@ -483,7 +605,8 @@ impl TiledAtlas {
                                 Side::Cut { centre_wet } => {
                                     counts.cut += 1;
                                     let (start, end) = self.tiles[ti].range;
-                                    if centre_wet {
+                                    if !buoyancy {
+                                    } else if centre_wet {
                                         submerge(ti..ti + 1, &mut under);
                                         cut_wet.push(start as usize..end as usize);
                                     } else {
@@ -530,6 +653,82 @@ impl TiledAtlas {
             None => drag_sums(atlas, water, state, frame, &d, t, 0..atlas.len()),
         });
         (sums, drag, counts)
+    }
+}
+
+/// The sums of one evaluation, before [`finish`].
+struct Evaluation {
+    frame: Frame,
+    sums: BuoyancySums,
+    drag: Option<DragSums>,
+    counts: TileCounts,
+}
+
+/// The texels a body's drag is summed over when they are not its own
+/// atlas': another bake of the same mesh (same origin, same object
+/// frame), typically coarser, with its tiles. See
+/// [`TiledAtlas::evaluate_with_drag`].
+#[derive(Clone, Debug)]
+pub struct DragTexels {
+    atlas: Atlas,
+    tiled: TiledAtlas,
+}
+
+impl DragTexels {
+    /// The drag texels of `atlas` (a bake of the body's mesh), with its
+    /// tiles.
+    pub fn new(atlas: Atlas) -> Self {
+        let tiled = TiledAtlas::new(&atlas);
+        Self { atlas, tiled }
+    }
+
+    /// The tile side of [`DragTexels::bake`], texels: half the default,
+    /// as a coarse bake's tiles are wide on the surface (on a 1024² sphere
+    /// with a 64² drag bake, 10 % less time than with 8² tiles).
+    pub const TILE_SIZE: u32 = 4;
+
+    /// `mesh` baked at `resolution`² (tiles of [`DragTexels::TILE_SIZE`])
+    /// for its drag. A bake takes at least one texel per triangle: a mesh
+    /// of `n` triangles has `n` drag texels or more at any resolution.
+    ///
+    /// # Errors
+    /// Those of [`Atlas::bake`].
+    pub fn bake(mesh: &soak_bake::Mesh, resolution: u32) -> Result<Self, soak_bake::BakeError> {
+        let options = soak_bake::BakeOptions {
+            tile_size: Self::TILE_SIZE,
+            ..soak_bake::BakeOptions::square(resolution)
+        };
+        Atlas::bake(mesh, options).map(Self::new)
+    }
+
+    /// The atlas the drag is summed over.
+    pub fn atlas(&self) -> &Atlas {
+        &self.atlas
+    }
+
+    /// Follows a deforming mesh, as [`Atlas::refresh`] (new vertex
+    /// positions, object frame, m, same topology).
+    ///
+    /// # Errors
+    /// Those of [`Atlas::refresh`].
+    pub fn refresh(&mut self, positions: &[nalgebra::Point3<f64>]) -> Result<(), soak_bake::BakeError> {
+        self.atlas.refresh(positions)?;
+        self.tiled = TiledAtlas::new(&self.atlas);
+        Ok(())
+    }
+
+    /// Refuses drag texels of another mesh than `body`'s: their origins
+    /// (each bake's bounding-box centre) must be the same.
+    pub fn check(&self, body: &Atlas) -> Result<(), HydroError> {
+        let (a, b) = (body.origin(), self.atlas.origin());
+        let scale = body.bounding_radius().max(f64::MIN_POSITIVE);
+        if (a - b).norm() > 1e-9 * scale {
+            return Err(HydroError::DragTexels {
+                body: a.coords.into(),
+                drag: b.coords.into(),
+            });
+        }
+        Ok(())
     }
 }
 

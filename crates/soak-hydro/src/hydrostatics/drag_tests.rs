@@ -534,7 +534,7 @@ fn whole_bodies_match_the_reference() {
                         };
                         let per_texel = drag_sums(atlas, &water, &state, &frame, drag, 0.0, 0..atlas.len());
                         let tiled_sums = tiled
-                            .sums(atlas, &water, &state, &frame, 0.0, &options)
+                            .sums(atlas, &water, &state, &frame, 0.0, &options, true)
                             .1
                             .unwrap();
                         for (path, got) in [("per texel", &per_texel), ("tiled", &tiled_sums)] {
@@ -593,7 +593,7 @@ fn no_drag_where_nothing_is_wet_or_nothing_drags() {
         };
         let per_texel = drag_sums(&atlas, &water, &state, &frame, &drag, 0.0, 0..atlas.len());
         let tiled_sums = tiled
-            .sums(&atlas, &water, &state, &frame, 0.0, &options)
+            .sums(&atlas, &water, &state, &frame, 0.0, &options, true)
             .1
             .unwrap();
         for got in [per_texel, tiled_sums] {

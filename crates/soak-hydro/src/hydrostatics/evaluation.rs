@@ -136,11 +136,7 @@ pub fn evaluate(
                 Some(patch) => patch_sums(atlas, water, state, &frame, t, options, patch),
                 None => match sample_patch(atlas, water, state, t, options)? {
                     Some(patch) => patch_sums(atlas, water, state, &frame, t, options, &patch),
-                    None => {
-                        let both =
-                            general_sums(atlas, water, state, &frame, t, options, &Exact(&*water.surface));
-                        (both.b, options.drag.map(|_| both.d.sums()))
-                    }
+                    None => exact_sums(atlas, water, state, &frame, t, options),
                 },
             };
             return Ok(finish(&frame, water, state, mass, &sums, drag.as_ref(), options));
@@ -150,6 +146,20 @@ pub fn evaluate(
         .drag
         .map(|drag| drag_sums(atlas, water, state, &frame, &drag, t, 0..atlas.len()));
     Ok(finish(&frame, water, state, mass, &sums, drag.as_ref(), options))
+}
+
+/// The sums of every texel under a surface that is not a plane, read
+/// exactly at each (no sampled patch).
+pub(crate) fn exact_sums(
+    atlas: &Atlas,
+    water: &Water,
+    state: &BodyState,
+    frame: &Frame,
+    t: f64,
+    options: &HydroOptions,
+) -> (BuoyancySums, Option<DragSums>) {
+    let both = general_sums(atlas, water, state, frame, t, options, &Exact(&*water.surface));
+    (both.b, options.drag.map(|_| both.d.sums()))
 }
 
 /// How the texels of a pass over a surface that is not a plane read it.
