@@ -34,7 +34,9 @@ pub use self::mass::{
     shell, volume_moments,
 };
 pub use self::resolution::{AUTO_RESOLUTIONS, ResolutionChoice, ResolutionError, bake_to_tolerance};
-pub use self::tiled::{DragTexels, SEA_TILE_TOLERANCE, TileCounts, TileMoments, TiledAtlas};
+pub use self::tiled::{
+    DragTexels, SEA_TILE_TOLERANCE, TileCounts, TileMoments, TiledAtlas, evaluate_with_drag,
+};
 pub use self::water::{
     AIR_DENSITY, Gerstner, GerstnerWave, HeightField, MAX_PATCH_NODES, Plane, STANDARD_GRAVITY, Surface,
     SurfaceKind, SurfacePatch, Unbounded, WATER_DENSITY, Water,

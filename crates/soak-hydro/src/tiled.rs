@@ -732,6 +732,50 @@ impl DragTexels {
     }
 }
 
+/// [`evaluate`](crate::evaluate) (every texel) with the drag summed over
+/// `drag`'s texels, every one of them too: the per-texel reference of
+/// [`TiledAtlas::evaluate_with_drag`], which gives the same but for
+/// rounding. Without [`HydroOptions::drag`] this is
+/// [`evaluate`](crate::evaluate).
+///
+/// # Errors
+/// Those of [`evaluate`](crate::evaluate), and [`HydroError::DragTexels`]
+/// when `drag`'s atlas is not of this body's mesh.
+pub fn evaluate_with_drag(
+    atlas: &Atlas,
+    drag: &DragTexels,
+    water: &Water,
+    state: &BodyState,
+    mass: &MassProperties,
+    t: f64,
+    options: &HydroOptions,
+) -> Result<HydroForces, HydroError> {
+    if options.drag.is_none() {
+        return crate::evaluate(atlas, water, state, mass, t, options);
+    }
+    drag.check(atlas)?;
+    let sampled = crate::sampled_water(atlas, water, state, t, options)?;
+    let water = sampled.as_ref().unwrap_or(water);
+    let still = HydroOptions {
+        drag: None,
+        ..*options
+    };
+    let body = crate::evaluate(atlas, water, state, mass, t, &still)?;
+    // The drag of an evaluation is its drag sums' alone (with the state,
+    // the mass and the step): the coarse evaluation's, whatever its
+    // buoyancy.
+    let alone = HydroOptions {
+        buoyancy: BuoyancyMode::Off,
+        ..*options
+    };
+    let coarse = crate::evaluate(&drag.atlas, water, state, mass, t, &alone)?;
+    Ok(HydroForces {
+        drag: coarse.drag,
+        drag_explicit: coarse.drag_explicit,
+        ..body
+    })
+}
+
 /// The drag of one chunk of the tiled path's groups (object axes about the
 /// atlas origin): runs of tiles whose skin friction, or whose quadratic
 /// drag, takes the closed form of their moments, and the per-texel kernel

@@ -7,7 +7,7 @@ use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, DragTexels, Gerstner, GerstnerWave, HydroError, HydroForces, HydroOptions,
-    MassModel, MassProperties, TiledAtlas, Water,
+    MassModel, MassProperties, TiledAtlas, Water, evaluate_with_drag,
 };
 
 fn swell() -> Water {
@@ -183,5 +183,31 @@ fn drag_texels_of_another_mesh_are_refused() {
     assert!(e.to_string().contains("same mesh"), "{e}");
     for n in [16, 48, 200] {
         assert!(DragTexels::bake(&mesh, n).unwrap().check(&b.atlas).is_ok());
+    }
+}
+
+/// The tiled evaluation with drag texels against its per-texel reference
+/// (every texel of the body for the buoyancy, every drag texel for the
+/// drag): the same drag but for rounding on calm water, and within the
+/// tiled sea's own tolerance on the swell.
+#[test]
+fn tiled_drag_texels_match_the_per_texel_reference() {
+    let mesh = builtin::cuboid(1.0, 0.6, 0.8);
+    let b = body(&mesh, 256);
+    let drag = DragTexels::bake(&mesh, 64).unwrap();
+    let options = HydroOptions {
+        drag: Some(DRAG),
+        ..HydroOptions::default()
+    };
+    for (water, t, tolerance) in [(Water::calm(0.0), 0.0, 1e-9), (swell(), 2.3, 5e-3)] {
+        for state in states(0.6) {
+            let tiled = b
+                .tiled
+                .evaluate_with_drag(&b.atlas, &drag, &water, &state, &b.mass, t, &options)
+                .unwrap();
+            let texels = evaluate_with_drag(&b.atlas, &drag, &water, &state, &b.mass, t, &options).unwrap();
+            let d = drag_difference(&tiled, &texels, b.atlas.bounding_radius());
+            assert!(d < tolerance, "{d:.2e} (tolerance {tolerance:.0e})");
+        }
     }
 }

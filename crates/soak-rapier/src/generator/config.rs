@@ -7,7 +7,7 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
 use soak_graph::Flooding;
-use soak_hydro::{BuoyancyMode, Drag, MassModel};
+use soak_hydro::{BuoyancyMode, Drag, DragTexels, MassModel};
 use soak_wet::Wetting;
 
 /// The effects a body takes part in, each `None` when off: buoyancy and
@@ -27,6 +27,13 @@ pub struct Effects {
     pub buoyancy: Option<BuoyancyMode>,
     /// Drag, if any.
     pub drag: Option<Drag>,
+    /// The texels the drag is summed over, when not the body's own atlas':
+    /// a coarser bake of the same mesh ([`DragTexels::bake`], e.g. 64² for
+    /// a 1024² body), shared by the bodies of one mesh. The buoyancy stays
+    /// the body's own atlas'. On the CPU backends only: the GPU backend
+    /// sums the drag over the body's own texels (there a texel costs
+    /// little). `None`: the body's own texels.
+    pub drag_texels: Option<Arc<DragTexels>>,
     /// Flooding: a liquid graph behind the hull's permeability, made for
     /// the body's atlas ([`Flooding::for_atlas`]). Each step the liquid
     /// advances by the world's `dt` with the body's pose, and its mass
@@ -55,6 +62,37 @@ impl Effects {
     /// The same effects with drag.
     pub fn with_drag(mut self, drag: Drag) -> Self {
         self.drag = Some(drag);
+        self
+    }
+
+    /// The same effects with the drag summed over `texels` (a bake of the
+    /// body's mesh; see [`Effects::drag_texels`]).
+    ///
+    /// # Example
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use soak_bake::{Atlas, BakeOptions, builtin};
+    /// use soak_hydro::{Drag, DragTexels, MassModel, Water};
+    /// use soak_rapier::{BodyDesc, Effects, ForceGenerator};
+    ///
+    /// let mesh = builtin::sphere(0.5, 48, 24);
+    /// let mut world = PhysicsWorld::new();
+    /// let handle = world.bodies.insert(RigidBodyBuilder::dynamic().linvel(Vector::new(1.0, 0.0, 0.0)));
+    /// let mut soak = ForceGenerator::new(Water::calm(0.0));
+    /// let effects = Effects::buoyancy()
+    ///     .with_drag(Drag::default())
+    ///     .with_drag_texels(DragTexels::bake(&mesh, 64)?.into());
+    /// soak.register(&mut world.bodies, &world.colliders, handle, BodyDesc {
+    ///     name: "buoy".into(),
+    ///     atlas: Atlas::bake(&mesh, BakeOptions::square(512))?.into(),
+    ///     mass_model: MassModel::Solid { density: 500.0 },
+    ///     effects,
+    /// })?;
+    /// soak.step(&mut world)?;
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_drag_texels(mut self, texels: Arc<DragTexels>) -> Self {
+        self.drag_texels = Some(texels);
         self
     }
 

@@ -182,9 +182,15 @@ impl ForceGenerator {
                 .map(|((k, state, options), sea)| {
                     let b = &bodies[*k];
                     let water = sea.as_ref().unwrap_or(water);
-                    let r = match &b.tiled {
-                        Some(tiled) => tiled.evaluate(&b.atlas, water, state, &b.mass, t, options),
-                        None => soak_hydro::evaluate(&b.atlas, water, state, &b.mass, t, options),
+                    let r = match (&b.tiled, &b.effects.drag_texels) {
+                        (Some(tiled), None) => tiled.evaluate(&b.atlas, water, state, &b.mass, t, options),
+                        (Some(tiled), Some(drag)) => {
+                            tiled.evaluate_with_drag(&b.atlas, drag, water, state, &b.mass, t, options)
+                        }
+                        (None, None) => soak_hydro::evaluate(&b.atlas, water, state, &b.mass, t, options),
+                        (None, Some(drag)) => {
+                            soak_hydro::evaluate_with_drag(&b.atlas, drag, water, state, &b.mass, t, options)
+                        }
                     };
                     r.map_err(|e| e.to_string())
                 })

@@ -443,6 +443,12 @@ impl ForceGenerator {
         if let Some(w) = &desc.effects.wetting {
             check_wetting(&desc.name, &desc.atlas, w)?;
         }
+        if let Some(texels) = &desc.effects.drag_texels {
+            texels.check(&desc.atlas).map_err(|source| SoakError::Hydro {
+                name: desc.name.clone(),
+                source,
+            })?;
+        }
         push_mass(&desc.name, body, colliders, &mass)?;
         let tiled = (self.backend != Backend::PerTexel && desc.effects.needs_hydrostatics())
             .then(|| shared_tiles(&self.bodies, &desc.atlas));
@@ -534,8 +540,8 @@ impl ForceGenerator {
     }
 
     /// Follows a deforming mesh: new vertex positions (local frame, m, same
-    /// topology) refresh the atlas from its barycentrics (no re-bake) and the
-    /// mass properties.
+    /// topology) refresh the atlas (and the drag texels, if any) from its
+    /// barycentrics (no re-bake) and the mass properties.
     pub fn deform(
         &mut self,
         id: SoakId,
@@ -549,6 +555,19 @@ impl ForceGenerator {
             name: b.name.clone(),
             source,
         })?;
+        // The drag texels follow the same vertices (a copy of their own:
+        // other bodies may share them).
+        let drag_texels = match &b.effects.drag_texels {
+            Some(texels) => {
+                let mut texels = soak_hydro::DragTexels::clone(texels);
+                texels.refresh(positions).map_err(|source| SoakError::Bake {
+                    name: b.name.clone(),
+                    source,
+                })?;
+                Some(Arc::new(texels))
+            }
+            None => None,
+        };
         let mass = b
             .mass_model
             .mass_properties(&atlas)
@@ -574,6 +593,7 @@ impl ForceGenerator {
         }
         b.shape = Shape::of(&atlas);
         b.atlas = Arc::new(atlas);
+        b.effects.drag_texels = drag_texels;
         b.model_mass = mass;
         b.mass = total;
         Ok(())

@@ -296,6 +296,18 @@ impl LoadedScene {
             if let Some(t) = b.tolerance {
                 positive(&key("tolerance"), t)?;
             }
+            match b.drag_resolution {
+                Some(n) if n == 0 || n > soak_bake::MAX_RESOLUTION => {
+                    return Err(self.invalid(
+                        &key("drag_resolution"),
+                        format!("{n} is outside 1..={}", soak_bake::MAX_RESOLUTION),
+                    ));
+                }
+                Some(_) if b.drag.is_none() => {
+                    return Err(self.invalid(&key("drag_resolution"), "applies only to a body with `drag`"));
+                }
+                _ => {}
+            }
             match b.mass {
                 MassSpec::Solid { density } => positive(&key("mass.density"), density)?,
                 MassSpec::Shell { areal_density } => positive(&key("mass.areal_density"), areal_density)?,

@@ -21,6 +21,7 @@
 //! position = [0.0, 0.5, 0.0]
 //! rotation_deg = [0.0, 0.0, 0.0]
 //! drag = { coefficient = 0.5, linear = 5.0 }
+//! drag_resolution = 64       # optional: the drag over a 64² bake of the mesh (the buoyancy stays 256²)
 //! # Surface wetting, opt-in per body (see `WettingSpec`):
 //! wetting = { material = "wood", diffusion = 2e-5, mode = "conservative", initial = 0.0 }
 //!

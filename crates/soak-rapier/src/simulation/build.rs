@@ -8,7 +8,7 @@ use std::sync::Arc;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions};
-use soak_hydro::{Gerstner, HeightField, MassModel, Plane, Unbounded, Water};
+use soak_hydro::{DragTexels, Gerstner, HeightField, MassModel, Plane, Unbounded, Water};
 
 use super::{SimBody, Simulation};
 use crate::convert;
@@ -141,6 +141,7 @@ impl Simulation {
         let mut bodies = Vec::new();
         let mut holes = Vec::new();
         let mut atlases: HashMap<AtlasKey, (Arc<Atlas>, u32)> = HashMap::new();
+        let mut drag_bakes: HashMap<(String, bool, u32), Arc<DragTexels>> = HashMap::new();
         for (i, b) in scene.bodies.iter().enumerate() {
             let body_err = |message: String| SceneError::Body {
                 path: loaded.path.clone(),
@@ -239,9 +240,28 @@ impl Simulation {
                     .as_ref()
                     .map(|spec| flooding(loaded, i, &mesh, &atlas, spec).map_err(body_err))
                     .transpose()?;
+                // Drag texels are shared like atlases, by mesh and side.
+                let drag_texels = match b.drag_resolution {
+                    Some(n) => {
+                        let key = (b.mesh.clone(), b.unwrap, n);
+                        match drag_bakes.get(&key) {
+                            Some(known) => Some(Arc::clone(known)),
+                            None => {
+                                let made = Arc::new(
+                                    DragTexels::bake(&mesh, n)
+                                        .map_err(|e| body_err(format!("drag texels: {e}")))?,
+                                );
+                                drag_bakes.insert(key, Arc::clone(&made));
+                                Some(made)
+                            }
+                        }
+                    }
+                    None => None,
+                };
                 let effects = Effects {
                     buoyancy: Some(b.buoyancy),
                     drag: b.drag,
+                    drag_texels,
                     flooding,
                     wetting,
                 };
