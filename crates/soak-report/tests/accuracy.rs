@@ -135,6 +135,25 @@ fn quick_report_holds_its_promises() {
         "image links relative to the markdown"
     );
 
+    // The drag-texel rows: every mesh at every drag bake below the atlas,
+    // the drag over the bake within a tenth of the body's own for the
+    // sphere and the box (the boat's 32² bake is coarser), the drag
+    // texels at least the triangles (one each) and fewer than the body's.
+    assert_eq!(report.drag_texels.len(), 9, "3 meshes × 3 drag bakes below 256²");
+    for r in &report.drag_texels {
+        let name = format!("{} {}²", r.mesh, r.drag_resolution);
+        assert!(r.calm_error.is_finite() && r.sea_error.is_finite(), "{name}");
+        if !r.mesh.starts_with("boat") {
+            assert!(r.calm_error < 0.1 && r.sea_error < 0.1, "{name}: {r:?}");
+        }
+        assert!(r.drag_texels > 0 && r.drag_texels < 40_000, "{name}: {r:?}");
+        assert!(r.still_ms > 0.0 && r.own_ms > 0.0 && r.coarse_ms > 0.0, "{name}");
+    }
+    assert!(
+        table.contains("## Drag over a coarser bake")
+            && table.contains("| sphere 64×32 | 256² | 64² | 3968 |")
+    );
+
     // The text table names every table mesh and the speed-up.
     let text = text_table(&report);
     for needle in [

@@ -15,7 +15,8 @@
 //! each path: per-texel sums, tiled sums, exact clipping, the per-triangle
 //! game baseline; GPU is a column filled with the `gpu` feature. The sea
 //! rows put the sampled read of a Gerstner sea against the exact inversion
-//! at every texel, per sampling setting.
+//! at every texel, per sampling setting; the drag-texel rows put the drag
+//! over a coarser bake of each mesh against the drag over its own texels.
 //!
 //! ```no_run
 //! use soak_report::accuracy::{compute, markdown, text_table};
@@ -27,6 +28,7 @@
 //! ```
 
 mod cases;
+mod drag_texels;
 mod error;
 mod figures;
 mod measure;
@@ -35,6 +37,7 @@ mod sea;
 mod table;
 mod timing;
 
+pub use drag_texels::DragTexelRow;
 pub use error::AccuracyError;
 pub use figures::{cost_figure, sphere_figure, write_figures};
 pub use measure::compute;

@@ -125,6 +125,9 @@ pub struct Report {
     pub sweeps: Vec<Sweep>,
     /// The sampled sea against the exact inversion, per sampling setting.
     pub sea: Vec<super::sea::SeaRow>,
+    /// The drag over coarser bakes against the drag over the body's own
+    /// texels, per drag resolution.
+    pub drag_texels: Vec<super::drag_texels::DragTexelRow>,
     /// Files written.
     pub files: Vec<PathBuf>,
     /// Wall time of the whole run, s.
