@@ -17,7 +17,7 @@ use soak_shade::render::{
 use soak_shade::{Gamma, Liquid, WetMaterial};
 use soak_wet::scenes::{Beach, BeachOptions};
 
-use crate::render::{FrameOptions, SceneRenderer, View};
+use soak_view::{FrameOptions, SceneRenderer, View};
 
 const SIZE: (u32, u32) = (640, 360);
 
