@@ -11,8 +11,8 @@
 //! - `soak accuracy`, `soak stress`, `soak bench`: the accuracy report
 //!   (the thesis' Fig. 7.10 extended), the stability matrix and the
 //!   scaling bench;
-//! - `soak simulate SCENE.toml`, `soak render SCENE.toml`: scene files run
-//!   headless, and rendered;
+//! - `soak simulate SCENE.toml`, `soak render SCENE.toml`, `soak view
+//!   SCENE.toml`: scene files run headless, rendered, and shown live;
 //! - `soak segment MESH`, `soak sweep`: a hull's liquid graph, and the wet
 //!   shading's material sweep.
 //!
@@ -32,6 +32,7 @@ mod simulate;
 mod stills;
 mod stress;
 mod sweep;
+mod view;
 
 use clap::{Parser, Subcommand};
 
@@ -65,6 +66,8 @@ enum Command {
     Render(render::Args),
     /// Render the material sweep of the thesis' Fig. 6.3: materials × liquids, dry to saturated.
     Sweep(sweep::Args),
+    /// Show a scene file live in a window: orbit camera, play/pause, views, overlay, picking, reload on save.
+    View(view::Args),
 }
 
 fn main() -> std::process::ExitCode {
@@ -95,5 +98,6 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Bench(args) => bench::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Sweep(args) => sweep::run(&args),
+        Command::View(args) => view::run(&args),
     }
 }

@@ -43,7 +43,7 @@ impl From<View> for DebugView {
 }
 
 /// What a frame shows and how it is framed.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct FrameOptions {
     /// Width, height in pixels.
     pub size: (u32, u32),

@@ -1,0 +1,126 @@
+//! `soak view SCENE.toml`: a scene live in a window (`soak_view::run`).
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+
+use crate::render::View;
+
+/// The scenes `soak view demo:NAME` shows, as shipped with `soak`.
+const DEMO_SCENES: [(&str, &str); 5] = [
+    ("buoy_on_waves", include_str!("../scenes/buoy_on_waves.toml")),
+    ("rain_and_splash", include_str!("../scenes/rain_and_splash.toml")),
+    ("sinking_boat", include_str!("../scenes/sinking_boat.toml")),
+    ("three_boxes", include_str!("../scenes/three_boxes.toml")),
+    ("wet_crate", include_str!("../scenes/wet_crate.toml")),
+];
+
+/// `soak view SCENE.toml`
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Scene file (TOML), reloaded when saved; or `demo:NAME` for a scene
+    /// shipped with soak (`demo:sinking_boat`, `demo:buoy_on_waves`,
+    /// `demo:wet_crate`, `demo:three_boxes`, `demo:rain_and_splash`).
+    pub scene: String,
+    /// Window width, pixels.
+    #[arg(long, default_value_t = 960)]
+    pub width: u32,
+    /// Window height, pixels.
+    #[arg(long, default_value_t = 540)]
+    pub height: u32,
+    /// What the frames show at first (keys 1–4 change it).
+    #[arg(long, value_enum, default_value_t = View::Shaded)]
+    pub view: View,
+    /// Draw weight and buoyancy as arrows (key F).
+    #[arg(long)]
+    pub forces: bool,
+    /// Start paused (Space plays).
+    #[arg(long)]
+    pub paused: bool,
+    /// Simulated seconds per second of wall clock (keys + and -).
+    #[arg(long, default_value_t = 1.0)]
+    pub time_scale: f64,
+    /// Hide the overlay (key H).
+    #[arg(long)]
+    pub no_overlay: bool,
+    /// Advance this many steps before the window opens, then pause: the
+    /// frame `soak render --frame N` draws.
+    #[arg(long)]
+    pub steps: Option<u64>,
+    /// Close after this many frames (tests, recordings).
+    #[arg(long)]
+    pub frames: Option<u64>,
+    /// Write the last frame presented, read back from the window, as a PNG.
+    #[arg(long, value_name = "PNG")]
+    pub screenshot: Option<PathBuf>,
+}
+
+/// `soak view`.
+pub fn run(args: &Args) -> Result<()> {
+    if !(args.time_scale.is_finite() && args.time_scale > 0.0) {
+        bail!("--time-scale must be a positive number, not {}", args.time_scale);
+    }
+    if args.width == 0 || args.height == 0 || args.width > 8192 || args.height > 8192 {
+        bail!("--width and --height must be within 1..=8192 pixels");
+    }
+    let (path, _temporary) = match args.scene.strip_prefix("demo:") {
+        Some(name) => {
+            let Some((_, text)) = DEMO_SCENES.iter().find(|(n, _)| *n == name) else {
+                let names: Vec<&str> = DEMO_SCENES.iter().map(|(n, _)| *n).collect();
+                bail!("no demo scene `{name}`; there are {}", names.join(", "));
+            };
+            // Written out so that it can be read (and edited, and reloaded).
+            let dir = std::env::temp_dir().join(format!("soak-view-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+            let path = dir.join(format!("{name}.toml"));
+            std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))?;
+            println!(
+                "demo scene `{name}` written to {} (edit it: the view reloads)",
+                path.display()
+            );
+            (path, Some(TempDir(dir)))
+        }
+        None => (PathBuf::from(&args.scene), None),
+    };
+    let options = soak_view::ViewOptions {
+        size: (args.width, args.height),
+        view: args.view.into(),
+        forces: args.forces,
+        play: !args.paused,
+        time_scale: args.time_scale,
+        overlay: !args.no_overlay,
+        watch: true,
+        steps: args.steps,
+        frames: args.frames,
+        screenshot: args.screenshot.clone(),
+    };
+    let report = soak_view::run(&path, options)?;
+    println!(
+        "{} frame(s) on {}: {:.0} ms each (at most {:.0}); input to frame {:.0} ms (at most {:.0}); \
+         steps {:.1} ms, {:.2} simulated seconds per second; t = {:.2} s; {} reload(s), {} refused",
+        report.frames,
+        report.adapter,
+        report.frame_ms[0],
+        report.frame_ms[1],
+        report.input_to_frame_ms[0],
+        report.input_to_frame_ms[1],
+        report.step_ms,
+        report.speed,
+        report.time,
+        report.reloads[0],
+        report.reloads[1],
+    );
+    if let Some(shot) = &args.screenshot {
+        println!("wrote {}", shot.display());
+    }
+    Ok(())
+}
+
+/// A temporary folder removed when dropped.
+struct TempDir(PathBuf);
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
