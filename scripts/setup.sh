@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Installs the system packages soak needs on a Debian machine (idempotent):
 # Mesa's software Vulkan (lavapipe) and GL (llvmpipe) drivers, so the wgpu
-# code runs headless without a GPU.
+# code runs headless without a GPU; a virtual X server (Xvfb, with xauth
+# for xvfb-run) and xdotool, so the tests open `soak view`'s window and
+# drive it with the mouse.
 set -euo pipefail
-packages=(mesa-vulkan-drivers libvulkan1 libegl1 libegl-mesa0 libgl1-mesa-dri)
+packages=(mesa-vulkan-drivers libvulkan1 libegl1 libegl-mesa0 libgl1-mesa-dri xvfb xauth xdotool)
 need=()
 for pkg in "${packages[@]}"; do
   dpkg -s "$pkg" >/dev/null 2>&1 || need+=("$pkg")

@@ -50,6 +50,9 @@ pub struct Args {
     /// Close after this many frames (tests, recordings).
     #[arg(long)]
     pub frames: Option<u64>,
+    /// Close after this many seconds of wall clock.
+    #[arg(long)]
+    pub seconds: Option<f64>,
     /// Write the last frame presented, read back from the window, as a PNG.
     #[arg(long, value_name = "PNG")]
     pub screenshot: Option<PathBuf>,
@@ -59,6 +62,9 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     if !(args.time_scale.is_finite() && args.time_scale > 0.0) {
         bail!("--time-scale must be a positive number, not {}", args.time_scale);
+    }
+    if args.seconds.is_some_and(|s| !(s.is_finite() && s > 0.0)) {
+        bail!("--seconds must be a positive number");
     }
     if args.width == 0 || args.height == 0 || args.width > 8192 || args.height > 8192 {
         bail!("--width and --height must be within 1..=8192 pixels");
@@ -92,6 +98,7 @@ pub fn run(args: &Args) -> Result<()> {
         watch: true,
         steps: args.steps,
         frames: args.frames,
+        seconds: args.seconds,
         screenshot: args.screenshot.clone(),
     };
     let report = soak_view::run(&path, options)?;
@@ -110,6 +117,9 @@ pub fn run(args: &Args) -> Result<()> {
         report.reloads[0],
         report.reloads[1],
     );
+    for reason in &report.refused {
+        println!("reload refused: {reason}");
+    }
     if let Some(shot) = &args.screenshot {
         println!("wrote {}", shot.display());
     }

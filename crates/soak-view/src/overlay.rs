@@ -4,24 +4,24 @@
 use font8x8::UnicodeFonts as _;
 use image::RgbaImage;
 
-/// Pixels per font pixel.
-const SCALE: u32 = 2;
-/// Glyph cell side, pixels.
-const CELL: u32 = 8 * SCALE;
 /// Margin inside the box, pixels.
 const PAD: u32 = 6;
 
 /// Draws `lines` at the top left of `image`: light text on a dark box
-/// blended at 70 %; characters the font lacks are drawn as `?`. Lines
-/// that do not fit are cut at the image's edge.
+/// blended at 70 %, the font doubled where the lines fit so; characters
+/// the font lacks are drawn as `?`. Lines that do not fit are cut at the
+/// image's edge.
 pub(crate) fn draw(image: &mut RgbaImage, lines: &[String]) {
     if lines.is_empty() {
         return;
     }
     let (w, h) = image.dimensions();
     let widest = lines.iter().map(|l| l.chars().count()).max().unwrap_or(0) as u32;
-    let box_w = (widest * CELL + 2 * PAD).min(w);
-    let box_h = (lines.len() as u32 * (CELL + 2) + 2 * PAD).min(h);
+    // Pixels per font pixel, and the glyph cell's side.
+    let scale = if widest * 16 + 2 * PAD <= w { 2 } else { 1 };
+    let cell = 8 * scale;
+    let box_w = (widest * cell + 2 * PAD).min(w);
+    let box_h = (lines.len() as u32 * (cell + 2) + 2 * PAD).min(h);
     for y in 0..box_h {
         for x in 0..box_w {
             let p = image.get_pixel_mut(x, y);
@@ -31,9 +31,9 @@ pub(crate) fn draw(image: &mut RgbaImage, lines: &[String]) {
         }
     }
     for (row, line) in lines.iter().enumerate() {
-        let y0 = PAD + row as u32 * (CELL + 2);
+        let y0 = PAD + row as u32 * (cell + 2);
         for (col, ch) in line.chars().enumerate() {
-            let x0 = PAD + col as u32 * CELL;
+            let x0 = PAD + col as u32 * cell;
             let glyph = font8x8::BASIC_FONTS
                 .get(ch)
                 .or_else(|| font8x8::BASIC_FONTS.get('?'))
@@ -43,9 +43,9 @@ pub(crate) fn draw(image: &mut RgbaImage, lines: &[String]) {
                     if bits & (1 << gx) == 0 {
                         continue;
                     }
-                    for sy in 0..SCALE {
-                        for sx in 0..SCALE {
-                            let (x, y) = (x0 + gx * SCALE + sx, y0 + gy as u32 * SCALE + sy);
+                    for sy in 0..scale {
+                        for sx in 0..scale {
+                            let (x, y) = (x0 + gx * scale + sx, y0 + gy as u32 * scale + sy);
                             if x < box_w && y < box_h {
                                 image.put_pixel(x, y, image::Rgba([235, 240, 245, 255]));
                             }

@@ -67,6 +67,8 @@ pub struct ViewOptions {
     pub steps: Option<u64>,
     /// Close after this many frames.
     pub frames: Option<u64>,
+    /// Close after this long (wall clock), whatever the frames.
+    pub seconds: Option<f64>,
     /// Write the last frame presented (read back from the window's
     /// surface) as a PNG here when the viewer closes.
     pub screenshot: Option<PathBuf>,
@@ -84,6 +86,7 @@ impl Default for ViewOptions {
             watch: true,
             steps: None,
             frames: None,
+            seconds: None,
             screenshot: None,
         }
     }
@@ -109,10 +112,14 @@ pub struct ViewReport {
     pub adapter: String,
     /// The scene reloads, and those refused (the previous scene kept).
     pub reloads: [u64; 2],
+    /// Why each refused reload was refused (the file and line where the
+    /// scene's error has them), as the overlay showed it.
+    pub refused: Vec<String>,
 }
 
 /// Shows the scene in `path` in a window until it is closed (or
-/// [`ViewOptions::frames`] have been presented).
+/// [`ViewOptions::frames`] have been presented, or
+/// [`ViewOptions::seconds`] have passed).
 ///
 /// Keys: Space plays and pauses, `.` (or →) steps once, `+`/`-` double
 /// and halve the time scale, `R` restarts, `1`–`4` show the shaded,
@@ -360,6 +367,8 @@ struct App {
     watched: Instant,
     /// The last frame presented, as read back (only with a screenshot).
     last_frame: Option<image::RgbaImage>,
+    /// When the first frame began.
+    opened: Option<Instant>,
     report: ViewReport,
     frame_ms: Vec<f64>,
     input_ms: Vec<f64>,
@@ -386,6 +395,7 @@ impl App {
             notice: None,
             watched: Instant::now(),
             last_frame: None,
+            opened: None,
             report: ViewReport::default(),
             frame_ms: Vec::new(),
             input_ms: Vec::new(),
@@ -553,6 +563,7 @@ impl App {
             }
             Err(e) => {
                 self.report.reloads[1] += 1;
+                self.report.refused.push(e.to_string());
                 self.notice = Some(format!("reload failed, the previous scene runs: {e}"));
             }
         }
@@ -628,16 +639,17 @@ impl App {
         } else if control.play {
             let mut s = format!("playing x{}", control.time_scale);
             if stats.behind {
-                s += &format!(
-                    ", SLOWER THAN REAL TIME: x{:.2}",
-                    stats.speed / control.time_scale.max(1e-9) * control.time_scale
-                );
+                s += &format!(" - SLOWER: the world runs at x{:.2}", stats.speed);
             }
             s
         } else {
             "paused".to_string()
         };
-        let adapter = self.gpu.as_ref().map_or("", |g| g.adapter.as_str());
+        // The adapter's name without its details.
+        let adapter = self
+            .gpu
+            .as_ref()
+            .map_or("", |g| g.adapter.split(" (").next().unwrap_or_default());
         let mut lines = vec![
             format!("t = {t:.2} s  {state}"),
             format!(
@@ -645,7 +657,7 @@ impl App {
                 stats.step_ms
             ),
             format!(
-                "view {:?}{}  (1-4 views, F forces, Space, . step, +/- speed, R, H)",
+                "view {:?}{}  keys 1-4 F Space . + - R H Q",
                 self.options.view,
                 if self.options.forces { " + forces" } else { "" }
             ),
@@ -742,7 +754,13 @@ impl App {
             self.input_ms.push(at.elapsed().as_secs_f64() * 1e3);
         }
         self.report.frames += 1;
-        if self.options.frames.is_some_and(|n| self.report.frames >= n) {
+        let opened = *self.opened.get_or_insert(start);
+        if self.options.frames.is_some_and(|n| self.report.frames >= n)
+            || self
+                .options
+                .seconds
+                .is_some_and(|s| opened.elapsed().as_secs_f64() >= s)
+        {
             event_loop.exit();
         }
     }
