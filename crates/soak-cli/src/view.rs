@@ -75,11 +75,17 @@ pub fn run(args: &Args) -> Result<()> {
                 let names: Vec<&str> = DEMO_SCENES.iter().map(|(n, _)| *n).collect();
                 bail!("no demo scene `{name}`; there are {}", names.join(", "));
             };
-            // Written out so that it can be read (and edited, and reloaded).
+            // Written out so that it can be read (and edited, and reloaded),
+            // beside the liquid graph the sinking boat names.
             let dir = std::env::temp_dir().join(format!("soak-view-{}", std::process::id()));
-            std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
-            let path = dir.join(format!("{name}.toml"));
-            std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))?;
+            let path = dir.join("scenes").join(format!("{name}.toml"));
+            let graph = dir.join("graphs").join("boat.toml");
+            for (file, text) in [(&path, *text), (&graph, include_str!("../graphs/boat.toml"))] {
+                let parent = file.parent().unwrap_or(&dir);
+                std::fs::create_dir_all(parent)
+                    .with_context(|| format!("cannot create {}", parent.display()))?;
+                std::fs::write(file, text).with_context(|| format!("cannot write {}", file.display()))?;
+            }
             println!(
                 "demo scene `{name}` written to {} (edit it: the view reloads)",
                 path.display()

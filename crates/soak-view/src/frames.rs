@@ -10,8 +10,8 @@ use soak_hydro::Gerstner;
 use soak_rapier::scene::{LoadedScene, WaterKind};
 use soak_rapier::{Simulation, convert};
 use soak_shade::render::{
-    Albedo, Arrow, Camera, DebugView, DirectionalLight, RenderObject, RenderScene, RenderWater, Renderer,
-    adapter_label, headless_device, liquid_image_from_texels, speckled, wood_planks,
+    Albedo, Arrow, Camera, DebugView, DirectionalLight, LiquidImage, RenderObject, RenderScene, RenderWater,
+    Renderer, adapter_label, headless_device, liquid_image_from_texels, speckled, wood_planks,
 };
 use soak_shade::{Gamma, Liquid, WetMaterial};
 
@@ -71,6 +71,11 @@ pub struct SceneRenderer {
     /// Per body, the liquid-graph node nearest each triangle (segments view).
     segments: Vec<Option<Arc<Vec<u32>>>>,
     adapter: String,
+    /// How long a wet body's liquid texture is drawn before it is made
+    /// again from its wetting state (`None`: every frame).
+    liquid_every: Option<std::time::Duration>,
+    /// Per body, its last liquid texture and when it was made.
+    liquids: Vec<Option<(std::time::Instant, Arc<LiquidImage>)>>,
 }
 
 impl SceneRenderer {
@@ -136,7 +141,18 @@ impl SceneRenderer {
             segments: vec![None; loaded.scene.bodies.len()],
             radius,
             adapter,
+            liquid_every: None,
+            liquids: vec![None; loaded.scene.bodies.len()],
         })
+    }
+
+    /// Makes a wet body's liquid texture again from its wetting state at
+    /// most every `every` (wall clock), drawing the last one in between:
+    /// for a viewer, whose frames follow one another faster than liquid
+    /// soaks in, and for which a 1024² texture made every frame would cost
+    /// as much as the frame. `None` (the default) makes it every frame.
+    pub fn set_liquid_every(&mut self, every: Option<std::time::Duration>) {
+        self.liquid_every = every;
     }
 
     /// The options frames are made with.
@@ -218,20 +234,29 @@ impl SceneRenderer {
             if let Some(id) = b.id
                 && let (Some(body), Some(wetting)) = (sim.soak.body(id), sim.soak.wetting(id))
             {
-                let atlas = body.atlas();
-                let saturation = wetting.material().saturation;
-                let values: Vec<f32> = wetting
-                    .liquid()
-                    .iter()
-                    .map(|h| (h / saturation).clamp(0.0, 1.0) as f32)
-                    .collect();
-                object = object.with_liquid(liquid_image_from_texels(
-                    atlas.width(),
-                    atlas.height(),
-                    atlas.texels(),
-                    &values,
-                    3,
-                ));
+                let fresh = match (&self.liquids[i], self.liquid_every) {
+                    (Some((made, image)), Some(every)) if made.elapsed() < every => Some(Arc::clone(image)),
+                    _ => None,
+                };
+                let image = fresh.unwrap_or_else(|| {
+                    let atlas = body.atlas();
+                    let saturation = wetting.material().saturation;
+                    let values: Vec<f32> = wetting
+                        .liquid()
+                        .iter()
+                        .map(|h| (h / saturation).clamp(0.0, 1.0) as f32)
+                        .collect();
+                    let image = Arc::new(liquid_image_from_texels(
+                        atlas.width(),
+                        atlas.height(),
+                        atlas.texels(),
+                        &values,
+                        3,
+                    ));
+                    self.liquids[i] = Some((std::time::Instant::now(), Arc::clone(&image)));
+                    image
+                });
+                object = object.with_liquid(image);
             }
             // The segments view colours a body with a liquid graph by
             // compartment (the node nearest each triangle) and draws the

@@ -38,6 +38,15 @@ use crate::overlay;
 /// simulation waits for it between steps.
 pub const STARVED: Duration = Duration::from_millis(40);
 
+/// How long a wet body's liquid texture is drawn before it is made again
+/// (a 1024² one costs about as much as a frame on a software adapter).
+const LIQUID_EVERY: Duration = Duration::from_millis(500);
+
+/// How long after an input the frames are drawn at half the window's
+/// resolution (and scaled up), so that the camera follows the mouse on a
+/// software adapter too.
+const INTERACTIVE: Duration = Duration::from_millis(300);
+
 /// How often the scene file's modification time is read.
 const WATCH_EVERY: Duration = Duration::from_millis(400);
 
@@ -146,7 +155,20 @@ pub fn run(path: &Path, options: ViewOptions) -> Result<ViewReport, ViewError> {
         let shared = Arc::clone(&shared);
         std::thread::Builder::new()
             .name("soak-view simulation".into())
-            .spawn(move || simulate(&shared))
+            .spawn(move || {
+                // The world steps on all cores but one, which is left to
+                // the window (on a software adapter the rasteriser's).
+                let threads =
+                    std::thread::available_parallelism().map_or(1, |n| n.get().saturating_sub(1).max(1));
+                match rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .thread_name(|i| format!("soak-view world {i}"))
+                    .build()
+                {
+                    Ok(pool) => pool.install(|| simulate(&shared)),
+                    Err(_) => simulate(&shared),
+                }
+            })
             .map_err(|e| ViewError::Window(format!("cannot start the simulation thread: {e}")))?
     };
     let event_loop = EventLoop::new().map_err(|e| ViewError::Window(e.to_string()))?;
@@ -186,6 +208,9 @@ struct Control {
     quit: bool,
     /// When the window thread began to wait for the world, if it does.
     wanted_since: Option<Instant>,
+    /// The window thread needs the world now (to open, reload): no step
+    /// starts until it has had it.
+    hold: bool,
 }
 
 /// What the simulation thread reports.
@@ -224,6 +249,7 @@ impl Shared {
                 restart: false,
                 quit: false,
                 wanted_since: None,
+                hold: false,
             }),
             stats: Mutex::new(Stats::default()),
         }
@@ -233,6 +259,16 @@ impl Shared {
 /// A lock that a panic elsewhere does not poison for good.
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// `f` on the world as soon as the step in progress (if any) ends: the
+/// simulation thread starts no step meanwhile (the world's lock is not
+/// fair, and it would take it back between two steps).
+fn with_world<R>(shared: &Shared, f: impl FnOnce(&mut Live) -> R) -> R {
+    lock(&shared.control).hold = true;
+    let r = f(&mut lock(&shared.live));
+    lock(&shared.control).hold = false;
+    r
 }
 
 /// The simulation thread: steps at the clock's pace while playing.
@@ -268,8 +304,9 @@ fn simulate(shared: &Shared) {
             std::thread::sleep(Duration::from_millis(4));
             continue;
         }
-        // Waiting for the window thread to take a frame's state.
-        if control.wanted_since.is_some_and(|t| t.elapsed() > STARVED) {
+        // Waiting for the window thread to take a frame's state, or for
+        // it to be done with the world.
+        if control.hold || control.wanted_since.is_some_and(|t| t.elapsed() > STARVED) {
             std::thread::sleep(Duration::from_millis(1));
             continue;
         }
@@ -361,6 +398,8 @@ struct App {
     dragged: f64,
     /// When the oldest input not yet shown arrived.
     input: Option<Instant>,
+    /// When the last input arrived.
+    last_input: Option<Instant>,
     /// Overlay lines about reloads.
     notice: Option<String>,
     modified: Option<SystemTime>,
@@ -392,6 +431,7 @@ impl App {
             shift: false,
             dragged: 0.0,
             input: None,
+            last_input: None,
             notice: None,
             watched: Instant::now(),
             last_frame: None,
@@ -494,16 +534,11 @@ impl App {
         };
         surface.configure(&device, &config);
         let label = adapter_label(&info);
-        let renderer = {
-            let live = lock(&self.shared.live);
-            SceneRenderer::with_device(
-                &live.loaded,
-                self.frame_options((config.width, config.height)),
-                &device,
-                &queue,
-                label.clone(),
-            )?
-        };
+        let options = self.frame_options((config.width, config.height));
+        let mut renderer = with_world(&self.shared, |live| {
+            SceneRenderer::with_device(&live.loaded, options, &device, &queue, label.clone())
+        })?;
+        renderer.set_liquid_every(Some(LIQUID_EVERY));
         Ok(Gpu {
             window,
             surface,
@@ -532,24 +567,28 @@ impl App {
             .and_then(|loaded| Ok((Simulation::from_scene(&loaded)?, loaded)));
         let rebuilt = built.and_then(|(sim, loaded)| {
             let renderer = match &self.gpu {
-                Some(gpu) => Some(SceneRenderer::with_device(
-                    &loaded,
-                    self.frame_options((gpu.config.width, gpu.config.height)),
-                    &gpu.device,
-                    &gpu.queue,
-                    gpu.adapter.clone(),
-                )?),
+                Some(gpu) => {
+                    let mut renderer = SceneRenderer::with_device(
+                        &loaded,
+                        self.frame_options((gpu.config.width, gpu.config.height)),
+                        &gpu.device,
+                        &gpu.queue,
+                        gpu.adapter.clone(),
+                    )?;
+                    renderer.set_liquid_every(Some(LIQUID_EVERY));
+                    Some(renderer)
+                }
                 None => None,
             };
             Ok((sim, loaded, renderer))
         });
         match rebuilt {
             Ok((sim, loaded, renderer)) => {
-                let mut live = lock(&self.shared.live);
-                live.sim = sim;
-                live.loaded = loaded;
-                live.generation += 1;
-                drop(live);
+                with_world(&self.shared, |live| {
+                    live.sim = sim;
+                    live.loaded = loaded;
+                    live.generation += 1;
+                });
                 if let (Some(gpu), Some(renderer)) = (self.gpu.as_mut(), renderer) {
                     gpu.renderer = renderer;
                 }
@@ -699,13 +738,32 @@ impl App {
         } else {
             Vec::new()
         };
+        let moving = self.last_input.is_some_and(|t| t.elapsed() < INTERACTIVE);
         let Some(gpu) = self.gpu.as_mut() else {
             return;
         };
+        let full = (gpu.config.width, gpu.config.height);
+        let size = if moving {
+            ((full.0 / 2).max(1), (full.1 / 2).max(1))
+        } else {
+            full
+        };
+        if gpu.renderer.options().size != size {
+            let options = FrameOptions {
+                size,
+                ..gpu.renderer.options().clone()
+            };
+            if let Err(e) = gpu.renderer.set_options(options) {
+                return self.fail(event_loop, e);
+            }
+        }
         let mut image = match gpu.renderer.render(&scene) {
             Ok(image) => image,
             Err(e) => return self.fail(event_loop, e),
         };
+        if image.dimensions() != full {
+            image = image::imageops::resize(&image, full.0, full.1, image::imageops::FilterType::Nearest);
+        }
         overlay::draw(&mut image, &lines);
         let frame = match gpu.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(f) | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
@@ -796,7 +854,7 @@ impl App {
         }
         drop(control);
         self.apply_frame_options();
-        self.input.get_or_insert_with(Instant::now);
+        self.touched();
     }
 
     /// Hands the view and arrows to the renderer (the next state taken
@@ -888,10 +946,10 @@ impl ApplicationHandler for App {
                 if let Some(orbit) = self.orbit.as_mut() {
                     if self.right || (self.left.is_some() && self.shift) {
                         orbit.pan(dx, dy, height);
-                        self.input.get_or_insert_with(Instant::now);
+                        self.touched();
                     } else if self.left.is_some() {
                         orbit.turn(dx, dy);
-                        self.input.get_or_insert_with(Instant::now);
+                        self.touched();
                     }
                 }
                 if self.left.is_some() {
@@ -905,7 +963,7 @@ impl ApplicationHandler for App {
                 };
                 if let Some(orbit) = self.orbit.as_mut() {
                     orbit.zoom(steps);
-                    self.input.get_or_insert_with(Instant::now);
+                    self.touched();
                 }
             }
             _ => {}
@@ -945,6 +1003,13 @@ impl ApplicationHandler for App {
 }
 
 impl App {
+    /// Notes an input: the next frame shows it.
+    fn touched(&mut self) {
+        let now = Instant::now();
+        self.input.get_or_insert(now);
+        self.last_input = Some(now);
+    }
+
     /// Selects the body under the cursor (or none).
     fn select(&mut self) {
         let (Some(orbit), Some(drawn), Some(gpu)) = (&self.orbit, &self.drawn, &self.gpu) else {
@@ -958,7 +1023,7 @@ impl App {
         );
         let spheres: Vec<(Point3<f64>, f64)> = drawn.bodies.iter().map(|b| b.1).collect();
         self.selected = pick(&origin, &direction, &spheres);
-        self.input.get_or_insert_with(Instant::now);
+        self.touched();
     }
 }
 

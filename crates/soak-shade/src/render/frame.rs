@@ -197,7 +197,8 @@ fn upload_objects(
     scene: &RenderScene,
     subsurface: Option<&super::subsurface::Subsurface>,
 ) -> Vec<GpuObject> {
-    let prepared: Vec<(MeshBuffer, Option<wgpu::TextureView>)> = scene
+    type Views = (Option<wgpu::TextureView>, Option<wgpu::TextureView>);
+    let prepared: Vec<(MeshBuffer, Views)> = scene
         .objects
         .iter()
         .map(|o| {
@@ -205,14 +206,15 @@ fn upload_objects(
                 Albedo::Texture { image, .. } => Some(uploader.cached_albedo(image)),
                 Albedo::Constant(_) => None,
             };
-            (uploader.cached_mesh(o), albedo)
+            let liquid = o.liquid.as_ref().map(|image| uploader.cached_liquid(image));
+            (uploader.cached_mesh(o), (albedo, liquid))
         })
         .collect();
     scene
         .objects
         .iter()
         .zip(prepared)
-        .map(|(o, (mesh, albedo))| uploader.upload_object(pipelines, o, mesh, albedo, subsurface))
+        .map(|(o, (mesh, views))| uploader.upload_object(pipelines, o, mesh, views, subsurface))
         .collect()
 }
 

@@ -1,5 +1,5 @@
 //! Scene resources on the GPU: per-object uniforms and bind groups, mesh
-//! and albedo uploads (cached per `Arc` across frames), liquid textures, and
+//! albedo and liquid uploads (cached per `Arc` across frames), and
 //! the subsurface term's targets.
 
 use std::collections::HashMap;
@@ -46,6 +46,14 @@ struct CachedAlbedo {
     used: bool,
 }
 
+/// A liquid texture uploaded for an `Arc<LiquidImage>`, kept while frames
+/// draw the same `Arc` (a viewer redrawing one state).
+struct CachedLiquid {
+    image: Weak<LiquidImage>,
+    view: wgpu::TextureView,
+    used: bool,
+}
+
 /// A mesh ready to draw.
 pub(super) struct MeshBuffer {
     pub(super) buffer: wgpu::Buffer,
@@ -85,6 +93,7 @@ pub(super) struct Uploader {
     linear_sampler: wgpu::Sampler,
     meshes: HashMap<MeshKey, CachedMesh>,
     albedos: HashMap<usize, CachedAlbedo>,
+    liquids: HashMap<usize, CachedLiquid>,
 }
 
 impl Uploader {
@@ -132,6 +141,7 @@ impl Uploader {
             linear_sampler,
             meshes: HashMap::new(),
             albedos: HashMap::new(),
+            liquids: HashMap::new(),
         }
     }
 
@@ -143,6 +153,9 @@ impl Uploader {
         for c in self.albedos.values_mut() {
             c.used = false;
         }
+        for c in self.liquids.values_mut() {
+            c.used = false;
+        }
     }
 
     /// Ends a frame: keeps what it used if it succeeded (`ok`), drops the
@@ -150,6 +163,7 @@ impl Uploader {
     pub(super) fn end_frame(&mut self, ok: bool) {
         self.meshes.retain(|_, c| ok && c.used);
         self.albedos.retain(|_, c| ok && c.used);
+        self.liquids.retain(|_, c| ok && c.used);
     }
 
     pub(super) fn cached_mesh(&mut self, o: &RenderObject) -> MeshBuffer {
@@ -223,12 +237,33 @@ impl Uploader {
         view
     }
 
+    /// The liquid texture of `image`, uploaded once per `Arc`.
+    pub(super) fn cached_liquid(&mut self, image: &Arc<LiquidImage>) -> wgpu::TextureView {
+        let key = Arc::as_ptr(image) as usize;
+        if let Some(c) = self.liquids.get_mut(&key)
+            && c.image.upgrade().is_some_and(|i| Arc::ptr_eq(&i, image))
+        {
+            c.used = true;
+            return c.view.clone();
+        }
+        let view = self.upload_liquid(image);
+        self.liquids.insert(
+            key,
+            CachedLiquid {
+                image: Arc::downgrade(image),
+                view: view.clone(),
+                used: true,
+            },
+        );
+        view
+    }
+
     pub(super) fn upload_object(
         &self,
         pipelines: &Pipelines,
         o: &RenderObject,
         mesh: MeshBuffer,
-        albedo_view: Option<wgpu::TextureView>,
+        (albedo_view, liquid_view): (Option<wgpu::TextureView>, Option<wgpu::TextureView>),
         subsurface: Option<&Subsurface>,
     ) -> GpuObject {
         let device = &self.device;
@@ -245,7 +280,6 @@ impl Uploader {
             Albedo::Constant(c) => *c,
             Albedo::Texture { tint, .. } => *tint,
         };
-        let liquid_view = o.liquid.as_ref().map(|img| self.upload_liquid(img));
         let sss = subsurface.filter(|_| o.mesh.uvs.is_some() && !o.mesh.triangles.is_empty());
         let (mean_texel_area, targets) = match sss {
             Some(s) => {
