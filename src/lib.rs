@@ -45,6 +45,11 @@ pub use soak_hydro as hydro;
 pub use soak_rapier as rapier;
 #[doc(inline)]
 pub use soak_shade as shade;
+/// The live window of `soak view`, and the frames of `soak render`
+/// (the `view` feature).
+#[cfg(feature = "view")]
+#[doc(inline)]
+pub use soak_view as view;
 #[doc(inline)]
 pub use soak_wet as wet;
 
