@@ -20,6 +20,14 @@ pub enum ViewError {
     /// No GPU device.
     #[error("no GPU adapter for rendering: {0}")]
     Gpu(#[from] soak_shade::render::GpuError),
+    /// A world of your own was given another number of meshes than bodies.
+    #[error("{meshes} meshes for {bodies} bodies: give the mesh of each body, in order")]
+    Meshes {
+        /// Bodies of the simulation.
+        bodies: usize,
+        /// Meshes given.
+        meshes: usize,
+    },
     /// The window could not be opened or drawn to.
     #[error("the window: {0}")]
     Window(String),

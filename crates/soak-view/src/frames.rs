@@ -101,20 +101,11 @@ impl SceneRenderer {
         queue: &wgpu::Queue,
         adapter: String,
     ) -> Result<Self, ViewError> {
-        let renderer = Renderer::new(device, queue, options.size.0, options.size.1)?;
         let mut meshes = Vec::new();
         let mut albedos = Vec::new();
-        let mut radius = Vec::new();
         for (i, b) in loaded.scene.bodies.iter().enumerate() {
-            let mesh = loaded.body_mesh(i)?;
-            let r = mesh
-                .positions
-                .iter()
-                .map(|p| p.coords.norm())
-                .fold(0.0_f64, f64::max);
-            radius.push(r);
             albedos.push(albedo_for(&b.name, &b.mesh, i, b.fixed));
-            meshes.push(Arc::new(mesh));
+            meshes.push(Arc::new(loaded.body_mesh(i)?));
         }
         let w = &loaded.scene.water;
         let g = Vector3::from(loaded.scene.gravity).norm().max(1e-9);
@@ -131,19 +122,101 @@ impl SceneRenderer {
             WaterKind::HeightField => (None, w.level.or(Some(0.0))),
             WaterKind::Air => (None, None),
         };
-        Ok(Self {
+        let renderer = Renderer::new(device, queue, options.size.0, options.size.1)?;
+        Ok(Self::assemble(
+            renderer,
+            meshes,
+            albedos,
+            (sea, level),
+            options,
+            adapter,
+        ))
+    }
+
+    /// Frames of a world of your own ([`Simulation::from_parts`]): `meshes`
+    /// holds the mesh of each of `sim.bodies` (its local frame, the frame
+    /// its atlas was baked in), the water drawn is the generator's (a
+    /// plane at its level, a Gerstner sea as it moves; other surfaces as a
+    /// plane at their level at the origin at time 0), on a device of the
+    /// caller's.
+    ///
+    /// # Errors
+    /// [`ViewError::Meshes`] when there is not one mesh per body; those of
+    /// [`Renderer::new`].
+    pub fn for_world(
+        sim: &Simulation,
+        meshes: Vec<Arc<Mesh>>,
+        options: FrameOptions,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        adapter: String,
+    ) -> Result<Self, ViewError> {
+        if meshes.len() != sim.bodies.len() {
+            return Err(ViewError::Meshes {
+                bodies: sim.bodies.len(),
+                meshes: meshes.len(),
+            });
+        }
+        let albedos = sim
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(i, b)| albedo_for(&b.name, "", i, b.id.is_none()))
+            .collect();
+        let water = sim.soak.water();
+        let sea = water
+            .surface
+            .as_any()
+            .and_then(|a| a.downcast_ref::<Gerstner>())
+            .cloned();
+        let level = match (&sea, water.surface.kind(0.0)) {
+            (Some(_), _) | (None, soak_hydro::SurfaceKind::Unbounded) => None,
+            (None, soak_hydro::SurfaceKind::Plane { normal, offset }) => Some(offset / normal.y.max(1e-9)),
+            (None, soak_hydro::SurfaceKind::General) => Some(water.surface.height(0.0, 0.0, 0.0)),
+        };
+        let renderer = Renderer::new(device, queue, options.size.0, options.size.1)?;
+        Ok(Self::assemble(
+            renderer,
+            meshes,
+            albedos,
+            (sea, level),
+            options,
+            adapter,
+        ))
+    }
+
+    /// The renderer of `meshes` with their looks over the water drawn.
+    fn assemble(
+        renderer: Renderer,
+        meshes: Vec<Arc<Mesh>>,
+        albedos: Vec<Albedo>,
+        (sea, level): (Option<Gerstner>, Option<f64>),
+        options: FrameOptions,
+        adapter: String,
+    ) -> Self {
+        let radius = meshes
+            .iter()
+            .map(|m| {
+                m.positions
+                    .iter()
+                    .map(|p| p.coords.norm())
+                    .fold(0.0_f64, f64::max)
+            })
+            .collect();
+        let n = meshes.len();
+        Self {
             renderer,
             meshes,
             albedos,
             sea,
             level,
             options,
-            segments: vec![None; loaded.scene.bodies.len()],
+            segments: vec![None; n],
             radius,
             adapter,
             liquid_every: None,
-            liquids: vec![None; loaded.scene.bodies.len()],
-        })
+            liquids: vec![None; n],
+        }
     }
 
     /// Makes a wet body's liquid texture again from its wetting state at

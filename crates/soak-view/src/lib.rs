@@ -26,4 +26,4 @@ mod viewer;
 
 pub use error::ViewError;
 pub use frames::{FrameOptions, SceneRenderer, View};
-pub use viewer::{STARVED, ViewOptions, ViewReport, run};
+pub use viewer::{STARVED, ViewOptions, ViewReport, run, run_world};

@@ -19,6 +19,7 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant, SystemTime};
 
 use nalgebra::Point3;
+use soak_bake::Mesh;
 use soak_rapier::scene::LoadedScene;
 use soak_rapier::{Simulation, convert};
 use soak_shade::render::{RenderScene, adapter_label};
@@ -142,7 +143,48 @@ pub struct ViewReport {
 /// adapter that can draw to it, a screenshot that cannot be written.
 pub fn run(path: &Path, options: ViewOptions) -> Result<ViewReport, ViewError> {
     let loaded = LoadedScene::from_file(path)?;
-    let mut sim = Simulation::from_scene(&loaded)?;
+    let sim = Simulation::from_scene(&loaded)?;
+    show(sim, Source::Scene(Box::new(loaded)), Some(path), options)
+}
+
+/// Shows a world of your own, as [`run`] shows a scene file: your Rapier
+/// world with soak's generator, made a [`Simulation`] by
+/// [`Simulation::from_parts`], and the mesh of each of its bodies (in
+/// order; each in its body's local frame). The water drawn is the
+/// generator's. `R` cannot rebuild such a world (it says so), and there is
+/// no file to watch.
+///
+/// # Errors
+/// [`ViewError::Meshes`] when there is not one mesh per body; a step that
+/// fails in [`ViewOptions::steps`]; no window, no adapter that draws to it,
+/// a screenshot that cannot be written.
+pub fn run_world(
+    sim: Simulation,
+    meshes: Vec<Arc<Mesh>>,
+    options: ViewOptions,
+) -> Result<ViewReport, ViewError> {
+    if meshes.len() != sim.bodies.len() {
+        return Err(ViewError::Meshes {
+            bodies: sim.bodies.len(),
+            meshes: meshes.len(),
+        });
+    }
+    show(sim, Source::World(meshes), None, options)
+}
+
+/// What the world was made from: a scene file (which can make it again),
+/// or the meshes of a world of your own.
+enum Source {
+    Scene(Box<LoadedScene>),
+    World(Vec<Arc<Mesh>>),
+}
+
+fn show(
+    mut sim: Simulation,
+    source: Source,
+    path: Option<&Path>,
+    options: ViewOptions,
+) -> Result<ViewReport, ViewError> {
     let mut options = options;
     if let Some(steps) = options.steps {
         for _ in 0..steps {
@@ -150,7 +192,7 @@ pub fn run(path: &Path, options: ViewOptions) -> Result<ViewReport, ViewError> {
         }
         options.play = false;
     }
-    let shared = Arc::new(Shared::new(sim, loaded, &options));
+    let shared = Arc::new(Shared::new(sim, source, &options));
     let worker = {
         let shared = Arc::clone(&shared);
         std::thread::Builder::new()
@@ -171,13 +213,17 @@ pub fn run(path: &Path, options: ViewOptions) -> Result<ViewReport, ViewError> {
             })
             .map_err(|e| ViewError::Window(format!("cannot start the simulation thread: {e}")))?
     };
-    let event_loop = EventLoop::new().map_err(|e| ViewError::Window(e.to_string()))?;
-    event_loop.set_control_flow(ControlFlow::Poll);
+    let event_loop = event_loop();
     let mut app = App::new(path, options, Arc::clone(&shared));
-    let run = event_loop.run_app(&mut app);
+    let run = event_loop.and_then(|event_loop| {
+        event_loop.set_control_flow(ControlFlow::Poll);
+        event_loop
+            .run_app(&mut app)
+            .map_err(|e| ViewError::Window(e.to_string()))
+    });
     lock(&shared.control).quit = true;
     let _ = worker.join();
-    run.map_err(|e| ViewError::Window(e.to_string()))?;
+    run?;
     if let Some(e) = app.error.take() {
         return Err(e);
     }
@@ -189,10 +235,21 @@ pub fn run(path: &Path, options: ViewOptions) -> Result<ViewReport, ViewError> {
     Ok(report)
 }
 
-/// The world and the scene it was built from.
+/// The event loop, on any thread where the platform allows it (a test's).
+fn event_loop() -> Result<EventLoop<()>, ViewError> {
+    let mut builder = EventLoop::builder();
+    #[cfg(all(unix, not(target_os = "macos")))]
+    {
+        use winit::platform::x11::EventLoopBuilderExtX11 as _;
+        builder.with_any_thread(true);
+    }
+    builder.build().map_err(|e| ViewError::Window(e.to_string()))
+}
+
+/// The world and what it was made from.
 struct Live {
     sim: Simulation,
-    loaded: LoadedScene,
+    source: Source,
     /// Bumped by each step, restart and reload: a frame's state is new when
     /// it differs.
     generation: u64,
@@ -235,11 +292,11 @@ struct Shared {
 }
 
 impl Shared {
-    fn new(sim: Simulation, loaded: LoadedScene, options: &ViewOptions) -> Self {
+    fn new(sim: Simulation, source: Source, options: &ViewOptions) -> Self {
         Self {
             live: Mutex::new(Live {
                 sim,
-                loaded,
+                source,
                 generation: 0,
             }),
             control: Mutex::new(Control {
@@ -283,7 +340,12 @@ fn simulate(shared: &Shared) {
         }
         if control.restart {
             let mut live = lock(&shared.live);
-            let rebuilt = Simulation::from_scene(&live.loaded);
+            let rebuilt = match &live.source {
+                Source::Scene(loaded) => {
+                    Simulation::from_scene(loaded).map_err(|e| format!("restart failed: {e}"))
+                }
+                Source::World(_) => Err("a world of your own cannot be built again: no restart".to_string()),
+            };
             let mut stats = lock(&shared.stats);
             match rebuilt {
                 Ok(sim) => {
@@ -292,7 +354,7 @@ fn simulate(shared: &Shared) {
                     stats.error = None;
                     stats.ended = false;
                 }
-                Err(e) => stats.error = Some(format!("restart failed: {e}")),
+                Err(e) => stats.error = Some(e),
             }
             lock(&shared.control).restart = false;
             anchor = None;
@@ -384,7 +446,8 @@ struct Drawn {
 }
 
 struct App {
-    path: PathBuf,
+    /// The scene file, watched; `None` for a world of your own.
+    path: Option<PathBuf>,
     options: ViewOptions,
     shared: Arc<Shared>,
     gpu: Option<Gpu>,
@@ -415,10 +478,10 @@ struct App {
 }
 
 impl App {
-    fn new(path: &Path, options: ViewOptions, shared: Arc<Shared>) -> Self {
+    fn new(path: Option<&Path>, options: ViewOptions, shared: Arc<Shared>) -> Self {
         Self {
-            path: path.to_path_buf(),
-            modified: modified(path),
+            path: path.map(Path::to_path_buf),
+            modified: path.and_then(modified),
             options,
             shared,
             gpu: None,
@@ -462,7 +525,10 @@ impl App {
     /// Opens the window and the device that draws to it.
     fn open(&mut self, event_loop: &ActiveEventLoop) -> Result<Gpu, ViewError> {
         let (w, h) = self.options.size;
-        let title = format!("soak view: {}", self.path.display());
+        let title = match &self.path {
+            Some(path) => format!("soak view: {}", path.display()),
+            None => "soak view".to_string(),
+        };
         let window = event_loop
             .create_window(
                 Window::default_attributes()
@@ -535,8 +601,13 @@ impl App {
         surface.configure(&device, &config);
         let label = adapter_label(&info);
         let options = self.frame_options((config.width, config.height));
-        let mut renderer = with_world(&self.shared, |live| {
-            SceneRenderer::with_device(&live.loaded, options, &device, &queue, label.clone())
+        let mut renderer = with_world(&self.shared, |live| match &live.source {
+            Source::Scene(loaded) => {
+                SceneRenderer::with_device(loaded, options, &device, &queue, label.clone())
+            }
+            Source::World(meshes) => {
+                SceneRenderer::for_world(&live.sim, meshes.clone(), options, &device, &queue, label.clone())
+            }
         })?;
         renderer.set_liquid_every(Some(LIQUID_EVERY));
         Ok(Gpu {
@@ -553,16 +624,19 @@ impl App {
     /// Reloads the scene when its file changed: the new scene replaces the
     /// running one, or the error is shown and the running one kept.
     fn watch(&mut self) {
+        let Some(path) = self.path.clone() else {
+            return;
+        };
         if !self.options.watch || self.watched.elapsed() < WATCH_EVERY {
             return;
         }
         self.watched = Instant::now();
-        let now = modified(&self.path);
+        let now = modified(&path);
         if now == self.modified {
             return;
         }
         self.modified = now;
-        let built = LoadedScene::from_file(&self.path)
+        let built = LoadedScene::from_file(&path)
             .map_err(ViewError::from)
             .and_then(|loaded| Ok((Simulation::from_scene(&loaded)?, loaded)));
         let rebuilt = built.and_then(|(sim, loaded)| {
@@ -586,7 +660,7 @@ impl App {
             Ok((sim, loaded, renderer)) => {
                 with_world(&self.shared, |live| {
                     live.sim = sim;
-                    live.loaded = loaded;
+                    live.source = Source::Scene(Box::new(loaded));
                     live.generation += 1;
                 });
                 if let (Some(gpu), Some(renderer)) = (self.gpu.as_mut(), renderer) {
@@ -598,7 +672,7 @@ impl App {
                 self.drawn = None;
                 self.selected = None;
                 self.report.reloads[0] += 1;
-                self.notice = Some(format!("reloaded {}", self.path.display()));
+                self.notice = Some(format!("reloaded {}", path.display()));
             }
             Err(e) => {
                 self.report.reloads[1] += 1;

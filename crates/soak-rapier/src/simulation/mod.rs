@@ -123,6 +123,35 @@ impl std::fmt::Debug for Simulation {
 }
 
 impl Simulation {
+    /// A simulation of a world of your own: your Rapier world, the force
+    /// generator driving it, and the bodies to report (and to draw: see
+    /// `soak_view::run_world`), run for `duration` seconds (s). Nothing is
+    /// scheduled in it: holes, splashes and weather belong to scene files
+    /// (do them on the generator between steps). Samples are recorded at
+    /// every step once [`Simulation::record`] is on.
+    pub fn from_parts(
+        world: PhysicsWorld,
+        soak: ForceGenerator,
+        bodies: Vec<SimBody>,
+        duration: f64,
+    ) -> Self {
+        let n = bodies.len();
+        Self {
+            world,
+            soak,
+            bodies,
+            duration,
+            holes: Vec::new(),
+            splashes: Vec::new(),
+            weather: None,
+            record_every: 1,
+            recording: false,
+            samples: Vec::new(),
+            non_finite: vec![false; n],
+            steps: 0,
+        }
+    }
+
     /// Records a sample of every body each `output.every` steps from now on.
     pub fn record(&mut self, on: bool) {
         self.recording = on;
