@@ -10,6 +10,12 @@
 //! reloaded when its file is saved (a scene that does not load is named in
 //! the overlay, with its line, and the running one kept).
 //!
+//! A world of your own is shown the same way ([`run_world`]): your Rapier
+//! world and soak's generator made a
+//! [`Simulation`](soak_rapier::Simulation) by
+//! [`Simulation::from_parts`](soak_rapier::Simulation::from_parts), with
+//! the mesh of each of its bodies.
+//!
 //! ```no_run
 //! use soak_view::{ViewOptions, run};
 //!
