@@ -123,6 +123,9 @@ pub fn run(args: &Args) -> Result<()> {
         report.reloads[0],
         report.reloads[1],
     );
+    if let Some(name) = &report.selected {
+        println!("selected: {name}");
+    }
     for reason in &report.refused {
         println!("reload refused: {reason}");
     }

@@ -146,21 +146,22 @@ fn an_edited_scene_reloads_and_a_broken_edit_is_named_while_the_last_good_one_ru
     let scene = dir.join("boxes.toml");
     let good = std::fs::read_to_string(data("scenes/three_boxes.toml")).unwrap();
     std::fs::write(&scene, &good).unwrap();
-    // Edits while the window runs: a value out of range, then a good scene
-    // again with one body moved.
+    // Edits while the window runs: a good scene with a longer duration
+    // (reloaded: the world starts again), then a value out of range
+    // (refused: the reloaded world keeps running).
     let edits = {
         let scene = scene.clone();
         let good = good.clone();
         std::thread::spawn(move || {
             std::thread::sleep(Duration::from_secs(3));
-            let broken = good.replacen("density = ", "density = -", 1);
-            std::fs::write(&scene, broken).unwrap();
+            let longer = good.replacen("duration = 30.0", "duration = 300.0", 1);
+            std::fs::write(&scene, &longer).unwrap();
             std::thread::sleep(Duration::from_secs(3));
-            std::fs::write(&scene, good.replacen("duration = 30.0", "duration = 31.0", 1)).unwrap();
+            std::fs::write(&scene, longer.replacen("density = ", "density = -", 1)).unwrap();
         })
     };
     let script = format!(
-        "\"$SOAK\" view '{}' --seconds 10 --width 320 --height 180 --time-scale 4",
+        "\"$SOAK\" view '{}' --seconds 11 --width 320 --height 180 --time-scale 4",
         scene.display()
     );
     let Some(out) = on_xvfb(&script) else {
@@ -178,11 +179,25 @@ fn an_edited_scene_reloads_and_a_broken_edit_is_named_while_the_last_good_one_ru
         refused.contains("boxes.toml") && refused.contains("line") && refused.contains("density"),
         "{refused}"
     );
+    // The reloaded world ran on after the refused edit: about 8 s of the
+    // clock at four times real time since the reload, 4 s of them after
+    // the refusal (a world that had stopped at the refusal would be at
+    // about 12 s).
+    let t: f64 = stdout
+        .split("; t = ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no time in {stdout}"));
+    assert!(t > 16.0, "the world stopped at t = {t} s: {stdout}");
     std::fs::remove_dir_all(dir).ok();
 }
 
+/// A pixel of the sinking boat's planks in its frame at step 60 (640×360).
+const BOAT: (u32, u32) = (330, 150);
+
 #[test]
-fn mouse_drags_reach_the_window_and_turn_the_camera() {
+fn mouse_drags_reach_the_window_and_turn_the_camera_and_a_click_selects() {
     if !have("xvfb-run") || !have("xdotool") {
         return;
     }
@@ -199,9 +214,13 @@ fn mouse_drags_reach_the_window_and_turn_the_camera() {
     let script = format!(
         "{still} && ({moved} & pid=$!; sleep 2; xdotool mousemove 320 180; \
          for i in 1 2 3 4 5; do xdotool mousedown 1; sleep 0.05; xdotool mousemove_relative 25 4; \
-         sleep 0.2; xdotool mouseup 1; sleep 0.2; done; wait $pid)",
+         sleep 0.2; xdotool mouseup 1; sleep 0.2; done; wait $pid) && \
+         ({picked} & pid=$!; sleep 2; xdotool mousemove {x} {y} click 1; wait $pid)",
         still = view("still.png", "--frames 3"),
-        moved = view("moved.png", "--seconds 6")
+        moved = view("moved.png", "--seconds 6"),
+        picked = view("picked.png", "--seconds 4"),
+        x = BOAT.0,
+        y = BOAT.1,
     );
     let Some(out) = on_xvfb(&script) else {
         return;
@@ -218,6 +237,10 @@ fn mouse_drags_reach_the_window_and_turn_the_camera() {
         "{stdout}"
     );
     let (still, moved) = (load(&dir.join("still.png")), load(&dir.join("moved.png")));
+    // A click on the boat selects it.
+    assert!(stdout.contains("selected: boat"), "{stdout}");
+    let p = still.get_pixel(BOAT.0, BOAT.1);
+    assert!(p[0] > p[2], "the click aims at the boat's planks, not at {p:?}");
     let differ = still.pixels().zip(moved.pixels()).filter(|(a, b)| a != b).count();
     assert!(
         differ > 640 * 360 / 10,

@@ -125,6 +125,8 @@ pub struct ViewReport {
     /// Why each refused reload was refused (the file and line where the
     /// scene's error has them), as the overlay showed it.
     pub refused: Vec<String>,
+    /// The body selected at the end, by name.
+    pub selected: Option<String>,
 }
 
 /// Shows the scene in `path` in a window until it is closed (or
@@ -1060,6 +1062,11 @@ impl ApplicationHandler for App {
         };
         let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
         self.report.frame_ms = [mean(&self.frame_ms), max(&self.frame_ms)];
+        self.report.selected = self
+            .selected
+            .zip(self.drawn.as_ref())
+            .and_then(|(i, d)| d.bodies.get(i))
+            .map(|b| b.0.clone());
         self.report.input_to_frame_ms = [mean(&self.input_ms), max(&self.input_ms)];
         if let (Some(path), None) = (&self.options.screenshot, &self.error) {
             let result = match &self.last_frame {
