@@ -122,15 +122,7 @@ impl SceneRenderer {
             WaterKind::HeightField => (None, w.level.or(Some(0.0))),
             WaterKind::Air => (None, None),
         };
-        let renderer = Renderer::new(device, queue, options.size.0, options.size.1)?;
-        Ok(Self::assemble(
-            renderer,
-            meshes,
-            albedos,
-            (sea, level),
-            options,
-            adapter,
-        ))
+        Self::assemble((device, queue), meshes, albedos, (sea, level), options, adapter)
     }
 
     /// Frames of a world of your own ([`Simulation::from_parts`]): `meshes`
@@ -174,26 +166,20 @@ impl SceneRenderer {
             (None, soak_hydro::SurfaceKind::Plane { normal, offset }) => Some(offset / normal.y.max(1e-9)),
             (None, soak_hydro::SurfaceKind::General) => Some(water.surface.height(0.0, 0.0, 0.0)),
         };
-        let renderer = Renderer::new(device, queue, options.size.0, options.size.1)?;
-        Ok(Self::assemble(
-            renderer,
-            meshes,
-            albedos,
-            (sea, level),
-            options,
-            adapter,
-        ))
+        Self::assemble((device, queue), meshes, albedos, (sea, level), options, adapter)
     }
 
-    /// The renderer of `meshes` with their looks over the water drawn.
+    /// The renderer of `meshes` with their looks over the water drawn, on
+    /// `device`.
     fn assemble(
-        renderer: Renderer,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
         meshes: Vec<Arc<Mesh>>,
         albedos: Vec<Albedo>,
         (sea, level): (Option<Gerstner>, Option<f64>),
         options: FrameOptions,
         adapter: String,
-    ) -> Self {
+    ) -> Result<Self, ViewError> {
+        let renderer = Renderer::new(device, queue, options.size.0, options.size.1)?;
         let radius = meshes
             .iter()
             .map(|m| {
@@ -204,7 +190,7 @@ impl SceneRenderer {
             })
             .collect();
         let n = meshes.len();
-        Self {
+        Ok(Self {
             renderer,
             meshes,
             albedos,
@@ -216,7 +202,7 @@ impl SceneRenderer {
             adapter,
             liquid_every: None,
             liquids: vec![None; n],
-        }
+        })
     }
 
     /// Makes a wet body's liquid texture again from its wetting state at
