@@ -383,13 +383,8 @@ impl TiledAtlas {
             return self.evaluate(atlas, water, state, mass, t, options);
         }
         drag.check(atlas)?;
-        water.validate()?;
-        state.check()?;
-        let sampled = sample_patch(atlas, water, state, t, options)?.map(|patch| Water {
-            surface: Box::new(patch),
-            density: water.density,
-            gravity: water.gravity,
-        });
+        // Validates the water and the state, and samples a sea once for both.
+        let sampled = crate::sampled_water(atlas, water, state, t, options)?;
         let water = sampled.as_ref().unwrap_or(water);
         let still = HydroOptions {
             drag: None,
