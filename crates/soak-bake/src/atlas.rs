@@ -61,6 +61,9 @@ pub struct Atlas {
     pub(crate) texels_per_triangle: Vec<u32>,
     pub(crate) vertex_count: usize,
     pub(crate) bounding_radius: f64,
+    /// The first triangle of the caps of an open mesh ([`crate::cap_openings`]).
+    #[serde(default)]
+    pub(crate) first_opening: Option<u32>,
 }
 
 /// Rounded-free summary of an atlas: counts and the integral invariants.
@@ -89,6 +92,32 @@ pub struct AtlasSummary {
 }
 
 impl Atlas {
+    /// Whether sample `i` lies on a cap that closes an opening of an open
+    /// mesh ([`crate::cap_openings`]): part of the closed shape that
+    /// displaces water, but not of the body's walls.
+    #[inline]
+    pub fn is_opening(&self, i: usize) -> bool {
+        self.first_opening.is_some_and(|f| self.triangle_ids[i] >= f)
+    }
+
+    /// The first cap triangle, if the mesh was open (see [`Atlas::is_opening`]).
+    pub fn first_opening_triangle(&self) -> Option<u32> {
+        self.first_opening
+    }
+
+    /// Whether the baked mesh had openings closed by caps.
+    pub fn has_openings(&self) -> bool {
+        self.first_opening.is_some()
+    }
+
+    /// The samples on caps, in order (see [`Atlas::is_opening`]).
+    pub fn opening_samples(&self) -> Vec<u32> {
+        (0..self.len())
+            .filter(|&i| self.is_opening(i))
+            .map(|i| i as u32)
+            .collect()
+    }
+
     /// Number of samples.
     #[inline]
     pub fn len(&self) -> usize {

@@ -254,6 +254,7 @@ pub(crate) fn bake_unchecked(mesh: &Mesh, options: BakeOptions) -> Atlas {
         texels_per_triangle,
         vertex_count: mesh.positions.len(),
         bounding_radius: radius2.sqrt(),
+        first_opening: mesh.first_opening_triangle(),
     }
 }
 

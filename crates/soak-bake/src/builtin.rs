@@ -1,7 +1,9 @@
 //! Procedural meshes with bijective UV atlases: the test and demo fixtures.
 //!
-//! Every generator returns a closed, outward-wound mesh whose UV charts are
-//! packed at a common texel density. They are reachable by name wherever a
+//! Every generator returns an outward-wound mesh whose UV charts are packed
+//! at a common texel density; all are closed but the open containers
+//! ([`open_box`], [`bucket`], [`open_boat`]), whose rims
+//! [`cap_openings`](crate::cap_openings) closes. They are reachable by name wherever a
 //! mesh is accepted, as `builtin:NAME[:PARAM...]` (see [`parse`]).
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -165,6 +167,32 @@ pub fn cuboid(sx: f64, sy: f64, sz: f64) -> Mesh {
     b.finish(format!("builtin:box:{sx}x{sy}x{sz}"))
 }
 
+/// Open-topped box of outer sizes `sx`×`sy`×`sz` (m), centred at the origin:
+/// the cuboid without its top (+y) face, a single surface (no wall
+/// thickness), one rim at `y = sy/2`.
+pub fn open_box(sx: f64, sy: f64, sz: f64) -> Mesh {
+    let mut mesh = cuboid(sx, sy, sz);
+    let hy = sy / 2.0;
+    mesh.triangles.retain(|t| {
+        !t.iter()
+            .all(|&v| (mesh.positions[v as usize].y - hy).abs() <= 1e-12 * (1.0 + hy.abs()))
+    });
+    mesh.name = format!("builtin:open_box:{sx}x{sy}x{sz}");
+    mesh
+}
+
+/// Bucket about the y axis: a cylinder of `radius` and `height` (m),
+/// centred at the origin, without its top disk: side and bottom, a single
+/// surface, one rim at `y = height/2`.
+pub fn bucket(radius: f64, height: f64, segments: usize) -> Mesh {
+    let segments = segments.max(3);
+    let h = height / 2.0;
+    let mut b = Builder::default();
+    b.revolution(&[(radius, h), (radius, -h)], segments);
+    b.disk(radius, -h, segments, Point3::origin());
+    b.finish(format!("builtin:bucket:{radius}:{height}:{segments}"))
+}
+
 /// Closed cylinder about the y axis, centred at the origin: a side chart and two cap charts.
 pub fn cylinder(radius: f64, height: f64, segments: usize) -> Mesh {
     let segments = segments.max(3);
@@ -248,6 +276,18 @@ pub fn torus(major: f64, minor: f64, segments: usize, sides: usize) -> Mesh {
 /// `depth`), closed by a flat deck lid so it is watertight: a hull chart and a
 /// deck chart. The bow points to +x and rises slightly; the stern is fuller.
 pub fn boat(length: f64, beam: f64, depth: f64) -> Mesh {
+    boat_hull(length, beam, depth, true)
+}
+
+/// [`boat`] without its deck: a rowing boat's open hull (a single surface),
+/// one rim along the gunwale at `y = depth`.
+pub fn open_boat(length: f64, beam: f64, depth: f64) -> Mesh {
+    let mut mesh = boat_hull(length, beam, depth, false);
+    mesh.name = format!("builtin:open_boat:{length}x{beam}x{depth}");
+    mesh
+}
+
+fn boat_hull(length: f64, beam: f64, depth: f64, deck: bool) -> Mesh {
     let stations = 40;
     let half_sections = 12;
     let half_width = |s: f64| if s >= 0.0 { 1.0 - s * s } else { 1.0 - s.powi(4) };
@@ -292,6 +332,9 @@ pub fn boat(length: f64, beam: f64, depth: f64) -> Mesh {
         }
     }
     b.orient_chart(first, inside);
+    if !deck {
+        return b.finish(format!("builtin:boat:{length}x{beam}x{depth}"));
+    }
 
     // Deck lid, planar in (x, z).
     let (_, first) = b.begin_chart();
@@ -367,7 +410,16 @@ pub fn dumbbell(radius: f64, neck_radius: f64, separation: f64, segments: usize)
 
 /// The builtin names [`parse`] accepts.
 pub const NAMES: &[&str] = &[
-    "sphere", "box", "cylinder", "capsule", "torus", "boat", "dumbbell",
+    "sphere",
+    "box",
+    "cylinder",
+    "capsule",
+    "torus",
+    "boat",
+    "dumbbell",
+    "open_box",
+    "bucket",
+    "open_boat",
 ];
 
 /// Builds a mesh from a `builtin:` name.
@@ -381,6 +433,9 @@ pub const NAMES: &[&str] = &[
 /// | `builtin:torus[:R[:r[:SEGMENTS[:SIDES]]]]` | major, minor radius | `0.5:0.15:64:32` |
 /// | `builtin:boat[:LxBxD]` | length, beam, depth | `4x1.2x0.6` |
 /// | `builtin:dumbbell[:R[:r[:SEP[:SEGMENTS]]]]` | sphere radius, neck radius, centre distance | `0.3:0.08:1.2:48` |
+/// | `builtin:open_box[:SXxSYxSZ]` (open) | outer sizes | `1x0.5x1` |
+/// | `builtin:bucket[:R[:H[:SEGMENTS]]]` (open) | radius, height | `0.3:0.6:64` |
+/// | `builtin:open_boat[:LxBxD]` (open) | length, beam, depth | `4x1.2x0.6` |
 pub fn parse(name: &str) -> Result<Mesh, LoadError> {
     let err = |reason: String| LoadError::Builtin {
         name: name.to_string(),
@@ -427,9 +482,9 @@ pub fn parse(name: &str) -> Result<Mesh, LoadError> {
         .ok_or_else(|| err(format!("size `{s}` is not S or AxBxC with positive numbers")))
     };
     let max_params = match kind {
-        "sphere" | "cylinder" | "capsule" => 3,
+        "sphere" | "cylinder" | "capsule" | "bucket" => 3,
         "torus" | "dumbbell" => 4,
-        "box" | "boat" => 1,
+        "box" | "boat" | "open_box" | "open_boat" => 1,
         other => {
             return Err(err(format!(
                 "unknown builtin `{other}` (known: {})",
@@ -481,6 +536,19 @@ pub fn parse(name: &str) -> Result<Mesh, LoadError> {
             let [l, b, d] = sizes(0, [4.0, 1.2, 0.6])?;
             boat(l, b, d)
         }
+        "open_boat" => {
+            let [l, b, d] = sizes(0, [4.0, 1.2, 0.6])?;
+            open_boat(l, b, d)
+        }
+        "open_box" => {
+            let [a, b, c] = sizes(0, [1.0, 0.5, 1.0])?;
+            open_box(a, b, c)
+        }
+        "bucket" => bucket(
+            num(0, 0.3, "radius")?,
+            num(1, 0.6, "height")?,
+            count(2, 64, 3, "segments")?,
+        ),
         "dumbbell" => {
             let (r, neck, sep) = (
                 num(0, 0.3, "radius")?,

@@ -84,6 +84,21 @@ pub enum MeshProblem {
         /// Second vertex of the edge.
         b: u32,
     },
+    /// Two rims (boundary loops) of an open mesh touch at a vertex, so the
+    /// rim through it cannot be followed.
+    #[error("two rims meet at vertex {vertex}: the open mesh's boundary is not manifold there")]
+    RimNotManifold {
+        /// The vertex where the rims meet.
+        vertex: u32,
+    },
+    /// A rim of an open mesh cannot be capped.
+    #[error("rim {rim} cannot be capped: it {reason}")]
+    RimNotCappable {
+        /// The rim, in the order [`crate::boundary_loops`] gives them.
+        rim: usize,
+        /// Why.
+        reason: String,
+    },
     /// An edge is shared by more than two triangles.
     #[error(
         "edge between vertices {a} and {b} is shared by {count} triangles (non-manifold), first triangle {triangle}"

@@ -2,6 +2,8 @@
 
 use nalgebra::{Point2, Point3, Vector3};
 
+use crate::open::Opening;
+
 /// A triangle mesh with optional per-vertex texture coordinates.
 ///
 /// Positions are in object space, in metres; triangles wind counter-clockwise
@@ -17,6 +19,10 @@ pub struct Mesh {
     pub uvs: Option<Vec<Point2<f64>>>,
     /// Triangles as triples of vertex indices.
     pub triangles: Vec<[u32; 3]>,
+    /// The caps [`crate::cap_openings`] closed this mesh's rims with, in the
+    /// order of their triangles (which come after the mesh's own); empty for
+    /// a mesh that was closed to begin with.
+    pub openings: Vec<Opening>,
 }
 
 impl Mesh {
@@ -32,7 +38,14 @@ impl Mesh {
             positions,
             uvs,
             triangles,
+            openings: Vec::new(),
         }
+    }
+
+    /// The first cap triangle (all triangles from it on close openings), if
+    /// the mesh has openings.
+    pub fn first_opening_triangle(&self) -> Option<u32> {
+        self.openings.iter().map(|o| o.first_triangle).min()
     }
 
     /// The three corner positions of triangle `t`.

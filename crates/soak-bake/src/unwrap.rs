@@ -189,7 +189,8 @@ pub fn unwrap(mesh: &Mesh, options: UnwrapOptions) -> Result<(Mesh, UnwrapReport
         }
     }
     let (uvs, scale) = pack_charts(&coords, &chart_of_vertex, final_charts.len(), options.padding);
-    let out = Mesh::new(mesh.name.clone(), positions, Some(uvs), triangles);
+    let mut out = Mesh::new(mesh.name.clone(), positions, Some(uvs), triangles);
+    out.openings = mesh.openings.clone();
 
     // Texel density per triangle: UV area over surface area, relative to the mean.
     let mut total_area = 0.0;
