@@ -400,8 +400,16 @@ impl Flooding {
                 permeability: &wall.permeability,
                 texel_nodes: &wall.texel_nodes,
             };
-            self.exchange
-                .gather(&view, &self.heads, pose, water, t, dt, self.options.viscosity)?;
+            self.exchange.gather(
+                &view,
+                &self.heads,
+                pose,
+                water,
+                t,
+                dt,
+                self.options.viscosity,
+                self.options.discharge_coefficient,
+            )?;
             let flow = self.exchange.apply(
                 &mut self.graph,
                 &self.y,

@@ -21,6 +21,9 @@ pub struct FlowOptions {
     pub tolerance: f64,
     /// Seed of the random neighbour and node orders.
     pub seed: u64,
+    /// Discharge coefficient `C_d` of openings (holes, open rims) in
+    /// `Q = C_d A √(2 g Δh)`, in (0, 1]. Default 0.6, a sharp-edged orifice.
+    pub discharge_coefficient: f64,
 }
 
 impl Default for FlowOptions {
@@ -30,6 +33,7 @@ impl Default for FlowOptions {
             passes: 1,
             tolerance: 1e-9,
             seed: 0,
+            discharge_coefficient: 0.6,
         }
     }
 }
@@ -59,6 +63,13 @@ impl FlowOptions {
                 name: "tolerance",
                 value: self.tolerance,
                 requirement: "must be a finite number ≥ 0 (m)",
+            });
+        }
+        if !(self.discharge_coefficient > 0.0 && self.discharge_coefficient <= 1.0) {
+            return Err(FlowError::Parameter {
+                name: "discharge coefficient",
+                value: self.discharge_coefficient,
+                requirement: "must be in (0, 1]",
             });
         }
         Ok(())

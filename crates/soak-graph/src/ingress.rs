@@ -27,6 +27,10 @@
 //!   path, capped by their room and by the volume that raises them to the
 //!   sea. What still finds no room does not enter.
 //!
+//! An opening texel (a hole, an open rim's cap; see [`Permeability`]'s
+//! *Openings*) passes the orifice flow `C_d a √(2 g |Δh|) Δt` instead, with
+//! the same sign and the same caps.
+//!
 //! An unbounded fluid (no free surface, infinite depth) has no hydrostatic
 //! head: the wall passes nothing.
 
@@ -82,6 +86,7 @@ impl Exchange {
         t: f64,
         dt: f64,
         viscosity: f64,
+        discharge: f64,
     ) -> Result<(), FlowError> {
         let n = heads.len();
         self.inflow.clear();
@@ -95,7 +100,10 @@ impl Exchange {
         let k = water.density * water.gravity / viscosity * dt;
         let values = wall.permeability.values();
         let areas = wall.atlas.areas();
-        for &i in wall.permeability.permeable() {
+        let orifice = discharge * (2.0 * water.gravity).sqrt() * dt;
+        let darcy = wall.permeability.permeable().iter().map(|&i| (i, false));
+        let open = wall.permeability.openings().iter().map(|&i| (i, true));
+        for (i, opening) in darcy.chain(open) {
             let i = i as usize;
             let node = wall.texel_nodes.node(i);
             let p = pose * wall.atlas.position(i);
@@ -112,7 +120,11 @@ impl Exchange {
             }
             let inside = (heads[node] - p.y).max(0.0);
             let drive = d.max(0.0) - inside;
-            let v = values[i] * areas[i] as f64 * k * drive;
+            let v = if opening {
+                areas[i] as f64 * orifice * drive.abs().sqrt() * drive.signum()
+            } else {
+                values[i] * areas[i] as f64 * k * drive
+            };
             if v > 0.0 {
                 self.inflow[node] += v;
                 self.sea[node] = self.sea[node].max(p.y + d);

@@ -284,6 +284,44 @@ pub struct LiquidGraph {
 }
 
 impl LiquidGraph {
+    /// The one-compartment graph of a hollow body's inside, for an open
+    /// mesh's cavity ([`soak_bake::cap_openings`]) or a hull holed at run
+    /// time: a node named `"inside"` whose vessel spans the atlas' height
+    /// (its bottom at the lowest texel, its top at the highest, object `y`),
+    /// at the enclosed volume's centroid in `x` and `z`, holding up to the
+    /// enclosed volume less `walls` (m³, the volume the walls take up inside
+    /// the surface; 0 for thin walls).
+    ///
+    /// # Errors
+    /// An atlas that encloses no volume, or `walls` negative, not finite or
+    /// not below the enclosed volume.
+    pub fn cavity(atlas: &soak_bake::Atlas, walls: f64) -> Result<Self, GraphError> {
+        let moments = soak_hydro::volume_moments(atlas);
+        let volume = moments.volume;
+        let capacity = volume - walls;
+        if !(volume > 0.0 && walls.is_finite() && walls >= 0.0 && capacity > 0.0) {
+            return Err(GraphError::NodeValue {
+                node: 0,
+                name: "inside".into(),
+                field: "capacity",
+                value: capacity,
+                requirement: "the enclosed volume less the walls' must be > 0 (m³)",
+            });
+        }
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for i in 0..atlas.len() {
+            let y = atlas.position(i).y;
+            lo = lo.min(y);
+            hi = hi.max(y);
+        }
+        let c = moments.origin + moments.first / volume;
+        let position = Point3::new(c.x, 0.5 * (lo + hi), c.z);
+        Self::new(
+            vec![Node::new("inside", position, capacity).with_height(hi - lo)],
+            vec![],
+        )
+    }
+
     /// A graph from its nodes and edges `(a, b, pipe)` (node indices),
     /// validated ([`LiquidGraph::validate`]).
     ///

@@ -7,8 +7,26 @@ use soak_bake::Atlas;
 
 use crate::error::PermeabilityError;
 
-/// κ = k/L per texel, m. Serialises as the list of values; deserialising
-/// validates them.
+/// κ = k/L per texel, m, and the texels that are **openings**. Serialises
+/// as the list of values (with the openings beside them when there are
+/// any); deserialising validates them.
+///
+/// # Openings
+///
+/// A texel can instead be an opening: a hole in the wall, or the cap over
+/// an open container's rim ([`soak_bake::cap_openings`]), through which
+/// liquid flows freely rather than seeping. Each opening texel of area `a`
+/// at depth `d` passes the orifice flow
+///
+/// ```text
+/// V = C_d a √(2 g |Δh|) Δt · sign(Δh),    Δh = max(d, 0) − max(h_n − y, 0)
+/// ```
+///
+/// (`C_d` the discharge coefficient of [`FlowOptions`](crate::FlowOptions),
+/// `h_n` the inside head): summed over an opening that lies under water it
+/// is the orifice law `Q = C_d A √(2 g Δh)`; over one the surface cuts
+/// (a rim partly under water) it is the weir law's integral
+/// `Q = C_d ∫ b(z) √(2 g (H − z)) dz`.
 ///
 /// # Units
 ///
@@ -37,15 +55,56 @@ use crate::error::PermeabilityError;
 /// [`Permeability::set`]). It keeps the list of permeable texels so the
 /// per-step loop only visits those.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(into = "Vec<f64>", try_from = "Vec<f64>")]
+#[serde(into = "Repr", try_from = "Repr")]
 pub struct Permeability {
     values: Vec<f64>,
     permeable: Vec<u32>,
+    /// Opening texels, ascending.
+    openings: Vec<u32>,
 }
 
-impl From<Permeability> for Vec<f64> {
+/// The serialised form: the values alone (as before openings existed), or
+/// the values and the openings.
+#[derive(Serialize, Deserialize)]
+#[serde(untagged)]
+enum Repr {
+    Values(Vec<f64>),
+    Full { values: Vec<f64>, openings: Vec<u32> },
+}
+
+impl From<Permeability> for Repr {
     fn from(p: Permeability) -> Self {
-        p.values
+        if p.openings.is_empty() {
+            Repr::Values(p.values)
+        } else {
+            Repr::Full {
+                values: p.values,
+                openings: p.openings,
+            }
+        }
+    }
+}
+
+impl TryFrom<Repr> for Permeability {
+    type Error = PermeabilityError;
+    fn try_from(repr: Repr) -> Result<Self, Self::Error> {
+        let mut p = Self::try_from(match &repr {
+            Repr::Values(v) | Repr::Full { values: v, .. } => v.clone(),
+        })?;
+        if let Repr::Full { mut openings, .. } = repr {
+            let len = p.values.len();
+            if let Some(&texel) = openings.iter().find(|&&i| i as usize >= len) {
+                return Err(PermeabilityError::NoSuchTexel {
+                    texel: texel as usize,
+                    len,
+                });
+            }
+            openings.sort_unstable();
+            openings.dedup();
+            p.openings = openings;
+            p.reindex();
+        }
+        Ok(p)
     }
 }
 
@@ -58,6 +117,7 @@ impl TryFrom<Vec<f64>> for Permeability {
         let mut p = Self {
             values,
             permeable: Vec::new(),
+            openings: Vec::new(),
         };
         p.reindex();
         Ok(p)
@@ -78,7 +138,16 @@ impl Permeability {
         Self {
             values: vec![0.0; atlas.len()],
             permeable: Vec::new(),
+            openings: Vec::new(),
         }
+    }
+
+    /// A watertight wall whose caps ([`Atlas::is_opening`]: the rims of an
+    /// open mesh closed by [`soak_bake::cap_openings`]) are openings.
+    pub fn open_mesh(atlas: &Atlas) -> Self {
+        let mut p = Self::watertight(atlas);
+        p.openings = atlas.opening_samples();
+        p
     }
 
     /// The same κ (m) on every texel of `atlas` (a fabric).
@@ -90,6 +159,7 @@ impl Permeability {
         let mut p = Self {
             values: vec![kappa; atlas.len()],
             permeable: Vec::new(),
+            openings: Vec::new(),
         };
         p.reindex();
         Ok(p)
@@ -179,6 +249,61 @@ impl Permeability {
         Ok(count)
     }
 
+    /// Makes every texel of `atlas` within `radius` (m) of `centre` (object
+    /// space, m) an opening (a hole torn in the wall; see *Openings*).
+    /// Returns how many texels it covered (0 when the region misses the
+    /// surface: a radius below the texel spacing may).
+    ///
+    /// # Errors
+    /// A non-finite centre or radius, a negative radius, or a channel made
+    /// for another atlas.
+    pub fn open(
+        &mut self,
+        atlas: &Atlas,
+        centre: Point3<f64>,
+        radius: f64,
+    ) -> Result<usize, PermeabilityError> {
+        self.fits(atlas)?;
+        if !(centre.iter().all(|c| c.is_finite()) && radius.is_finite() && radius >= 0.0) {
+            return Err(PermeabilityError::Region {
+                centre: [centre.x, centre.y, centre.z],
+                radius,
+            });
+        }
+        let r2 = radius * radius;
+        let hit: Vec<u32> = (0..atlas.len() as u32)
+            .filter(|&i| (atlas.position(i as usize) - centre).norm_squared() <= r2)
+            .collect();
+        let count = hit.len();
+        self.open_texels(hit)?;
+        Ok(count)
+    }
+
+    /// Makes the given texels openings.
+    ///
+    /// # Errors
+    /// An index out of range (nothing changes).
+    pub fn open_texels(&mut self, texels: impl IntoIterator<Item = u32>) -> Result<(), PermeabilityError> {
+        let len = self.values.len();
+        let texels: Vec<u32> = texels.into_iter().collect();
+        if let Some(&texel) = texels.iter().find(|&&i| i as usize >= len) {
+            return Err(PermeabilityError::NoSuchTexel {
+                texel: texel as usize,
+                len,
+            });
+        }
+        self.openings.extend(texels);
+        self.openings.sort_unstable();
+        self.openings.dedup();
+        self.reindex();
+        Ok(())
+    }
+
+    /// Indices of the opening texels, ascending (see *Openings*).
+    pub fn openings(&self) -> &[u32] {
+        &self.openings
+    }
+
     /// Sets texel `texel`'s κ, m.
     ///
     /// # Errors
@@ -233,14 +358,15 @@ impl Permeability {
         self.values.is_empty()
     }
 
-    /// Indices of the texels with κ > 0, ascending.
+    /// Indices of the texels with κ > 0 that are not openings, ascending:
+    /// the ones Darcy's law applies to.
     pub fn permeable(&self) -> &[u32] {
         &self.permeable
     }
 
-    /// Whether no texel lets liquid through.
+    /// Whether no texel lets liquid through (no κ > 0, no opening).
     pub fn is_watertight(&self) -> bool {
-        self.permeable.is_empty()
+        self.permeable.is_empty() && self.openings.is_empty()
     }
 
     /// Σ κ_i a_i over `atlas`, m³: the Darcy conductance of the whole
@@ -253,8 +379,9 @@ impl Permeability {
     }
 
     fn reindex(&mut self) {
+        let openings = &self.openings;
         self.permeable = (0..self.values.len() as u32)
-            .filter(|&i| self.values[i as usize] > 0.0)
+            .filter(|&i| self.values[i as usize] > 0.0 && openings.binary_search(&i).is_err())
             .collect();
     }
 }

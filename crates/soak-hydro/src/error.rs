@@ -52,6 +52,19 @@ pub enum WaterError {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum HydroError {
+    /// A solid mass model for an open mesh's atlas: its walls are a single
+    /// surface that encloses no volume.
+    #[error(
+        "a solid mass model needs a closed mesh: this atlas is of an open mesh whose walls enclose no volume \
+         (use walls of a density and a thickness, or a shell)"
+    )]
+    OpenSolid,
+    /// A wall thickness is non-finite or not positive.
+    #[error("wall thickness {value} m must be finite and positive")]
+    Thickness {
+        /// The thickness given, m.
+        value: f64,
+    },
     /// A density is non-finite or not positive.
     #[error("{what} density {value} must be finite and positive")]
     Density {

@@ -237,6 +237,16 @@ pub enum MassModel {
         /// Areal density per texel, kg/m².
         areal_density: Vec<f32>,
     },
+    /// Thin walls of a material of `density` (kg/m³) and `thickness` (m):
+    /// a shell of areal density `density × thickness`, the model of an open
+    /// container's single-sided mesh (a bucket, a rowing boat). The walls'
+    /// own volume is left out of the displacement (thin walls).
+    Walls {
+        /// Density of the wall material, kg/m³.
+        density: f64,
+        /// Wall thickness, m.
+        thickness: f64,
+    },
 }
 
 impl MassModel {
@@ -245,11 +255,19 @@ impl MassModel {
         match self {
             MassModel::Solid { density } => {
                 check_density("solid", *density)?;
+                if atlas.has_openings() {
+                    return Err(HydroError::OpenSolid);
+                }
                 Ok(volume_moments(atlas).solid(*density))
             }
             MassModel::Shell { areal_density } => {
                 check_density("areal", *areal_density)?;
                 Ok(shell(atlas, |_| *areal_density))
+            }
+            MassModel::Walls { density, thickness } => {
+                check_density("wall", *density)?;
+                check_thickness(*thickness)?;
+                Ok(shell(atlas, |_| density * thickness))
             }
             MassModel::ShellTexture { areal_density } => {
                 if areal_density.len() != atlas.len() {
@@ -272,6 +290,14 @@ impl MassModel {
     }
 }
 
+pub(crate) fn check_thickness(value: f64) -> Result<(), HydroError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(HydroError::Thickness { value })
+    }
+}
+
 fn check_density(what: &'static str, value: f64) -> Result<(), HydroError> {
     if value.is_finite() && value > 0.0 {
         Ok(())
@@ -282,11 +308,15 @@ fn check_density(what: &'static str, value: f64) -> Result<(), HydroError> {
 
 /// Thin-shell mass properties with areal density `sigma(i)` (kg/m²) at texel `i`.
 ///
-/// A shell puts mass `σ_i a_i` at each texel (`a_i` its area).
+/// A shell puts mass `σ_i a_i` at each texel (`a_i` its area); the caps of
+/// an open mesh's atlas ([`Atlas::is_opening`]) carry none.
 pub fn shell(atlas: &Atlas, sigma: impl Fn(usize) -> f64 + Sync) -> MassProperties {
     let s = chunked_sum(atlas.len(), Sums([0.0; 10]), |r| {
         let mut s = [0.0f64; 10];
         for i in r {
+            if atlas.is_opening(i) {
+                continue;
+            }
             let (x, _) = texel(atlas, i);
             let m = sigma(i) * atlas.areas()[i] as f64;
             s[0] += m;

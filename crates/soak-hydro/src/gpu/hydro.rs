@@ -68,6 +68,9 @@ pub(crate) struct Entry {
     pub len: usize,
     pub segments: Vec<Segment>,
     pub deformable: Option<Deformable>,
+    /// For an open mesh's atlas: 1 on the walls, 0 on the caps (which
+    /// carry no mass).
+    pub walls: Option<Vec<f32>>,
 }
 
 /// A buffer that grows (never shrinks) to what a call needs.
@@ -380,6 +383,11 @@ impl GpuHydro {
                 len: n,
                 segments,
                 deformable,
+                walls: atlas.has_openings().then(|| {
+                    (0..n)
+                        .map(|i| if atlas.is_opening(i) { 0.0 } else { 1.0 })
+                        .collect()
+                }),
             });
             Ok(GpuAtlasId(slot))
         })

@@ -22,6 +22,10 @@ fn check_density(what: &'static str, value: f64) -> Result<(), GpuHydroError> {
     }
 }
 
+fn check_thickness(value: f64) -> Result<(), GpuHydroError> {
+    crate::mass::check_thickness(value).map_err(Into::into)
+}
+
 impl GpuHydro {
     /// Volume moments of the solid bounded by the atlas, about its origin:
     /// [`crate::volume_moments`] on the device.
@@ -46,15 +50,36 @@ impl GpuHydro {
         id: GpuAtlasId,
         model: &MassModel,
     ) -> Result<MassProperties, GpuHydroError> {
+        let walls = self.entry(id)?.walls.clone();
+        let uniform = |sigma: f64| -> Result<MassProperties, GpuHydroError> {
+            match &walls {
+                None => {
+                    let s = self.mass_sums(id, SHELL_UNIFORM, sigma as f32, None)?;
+                    self.shell(id, &s)
+                }
+                Some(w) => {
+                    let texture: Vec<f32> = w.iter().map(|&m| m * sigma as f32).collect();
+                    let s = self.mass_sums(id, SHELL_TEXTURE, 0.0, Some(&texture))?;
+                    self.shell(id, &s)
+                }
+            }
+        };
         match model {
             MassModel::Solid { density } => {
                 check_density("solid", *density)?;
+                if walls.is_some() {
+                    return Err(HydroError::OpenSolid.into());
+                }
                 Ok(self.volume_moments(id)?.solid(*density))
             }
             MassModel::Shell { areal_density } => {
                 check_density("areal", *areal_density)?;
-                let s = self.mass_sums(id, SHELL_UNIFORM, *areal_density as f32, None)?;
-                self.shell(id, &s)
+                uniform(*areal_density)
+            }
+            MassModel::Walls { density, thickness } => {
+                check_density("wall", *density)?;
+                check_thickness(*thickness)?;
+                uniform(density * thickness)
             }
             MassModel::ShellTexture { areal_density } => {
                 let texels = self.entry(id)?.len;
@@ -74,7 +99,15 @@ impl GpuHydro {
                     }
                     .into());
                 }
-                let s = self.mass_sums(id, SHELL_TEXTURE, 0.0, Some(areal_density))?;
+                let masked: Vec<f32>;
+                let texture = match &walls {
+                    None => areal_density.as_slice(),
+                    Some(w) => {
+                        masked = areal_density.iter().zip(w).map(|(d, m)| d * m).collect();
+                        masked.as_slice()
+                    }
+                };
+                let s = self.mass_sums(id, SHELL_TEXTURE, 0.0, Some(texture))?;
                 self.shell(id, &s)
             }
         }
