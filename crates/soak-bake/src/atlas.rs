@@ -118,6 +118,15 @@ impl Atlas {
             .collect()
     }
 
+    /// Area of the walls (every sample but the caps'), m²: the whole
+    /// [`Atlas::area`] for a closed mesh.
+    pub fn wall_area(&self) -> f64 {
+        (0..self.len())
+            .filter(|&i| !self.is_opening(i))
+            .map(|i| self.areas[i] as f64)
+            .sum()
+    }
+
     /// Number of samples.
     #[inline]
     pub fn len(&self) -> usize {

@@ -217,6 +217,20 @@ impl Flooding {
         Ok(f)
     }
 
+    /// An open container's water: the cavity of `atlas` (an open mesh's,
+    /// [`soak_bake::cap_openings`]) as one compartment
+    /// ([`LiquidGraph::cavity`], `walls` m³ of its room taken by the walls),
+    /// behind a watertight wall whose caps are openings
+    /// ([`Permeability::open_mesh`]): water comes in over the rims when
+    /// they go under and pours out when the container tips.
+    ///
+    /// # Errors
+    /// As [`LiquidGraph::cavity`] and [`Flooding::new`].
+    pub fn open_container(atlas: &Atlas, walls: f64, options: FlowOptions) -> Result<Self, FlowError> {
+        let graph = LiquidGraph::cavity(atlas, walls).map_err(FlowError::Graph)?;
+        Self::for_atlas(atlas, graph, Permeability::open_mesh(atlas), options)
+    }
+
     /// [`Flooding::new`] with each texel of `atlas` draining into its nearest node.
     ///
     /// # Errors

@@ -113,6 +113,15 @@ pub enum SoakError {
         /// The density given, kg/m³.
         density: f64,
     },
+    /// An impact rule that cannot hold: no flooding to take the holes, or
+    /// a threshold or radius out of range.
+    #[error("body `{name}`: impact holes: {reason}")]
+    ImpactHoles {
+        /// The soak body's name.
+        name: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// A flooding setting was given for a body without flooding.
     #[error("body `{name}` has no flooding")]
     NoFlooding {

@@ -48,6 +48,38 @@ pub struct Effects {
     /// generator's environment and diffuses. It changes neither the body's
     /// mass nor its forces.
     pub wetting: Option<Wetting>,
+    /// Holes torn by hard contacts (a cannonball, a rock): see
+    /// [`ImpactHoles`]. Needs flooding, whose wall takes the holes.
+    pub impact_holes: Option<ImpactHoles>,
+}
+
+/// The rule that tears a hole where something hits a body hard: after each
+/// step, every contact pair of the body's colliders whose impulse over the
+/// step (the sum of its contact impulses, N·s) exceeds `impulse` opens
+/// every texel within `radius` (m) of the pair's deepest contact point on
+/// the body ([`ForceGenerator::open_hole`](super::ForceGenerator::open_hole)):
+/// water flows through it freely from the next step. A body resting on
+/// another presses with `m g Δt` per step, far below a blow's impulse.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImpactHoles {
+    /// The impulse over one step that tears the wall, N·s (> 0).
+    pub impulse: f64,
+    /// The hole's radius, m (> 0).
+    pub radius: f64,
+}
+
+impl ImpactHoles {
+    /// Why the rule is invalid, if it is.
+    pub fn problem(&self) -> Option<String> {
+        if !(self.impulse.is_finite() && self.impulse > 0.0) {
+            return Some(format!("impulse {} N·s must be finite and > 0", self.impulse));
+        }
+        if !(self.radius.is_finite() && self.radius > 0.0) {
+            return Some(format!("radius {} m must be finite and > 0", self.radius));
+        }
+        None
+    }
 }
 
 impl Effects {
@@ -141,6 +173,13 @@ impl Effects {
     /// ```
     pub fn with_flooding(mut self, flooding: Flooding) -> Self {
         self.flooding = Some(flooding);
+        self
+    }
+
+    /// The same effects with holes torn by hard contacts ([`ImpactHoles`];
+    /// needs flooding).
+    pub fn with_impact_holes(mut self, rule: ImpactHoles) -> Self {
+        self.impact_holes = Some(rule);
         self
     }
 

@@ -5,13 +5,13 @@
 //! Rapier), [`ForceGenerator::wet`], [`ForceGenerator::splash`], and
 //! [`ForceGenerator::step`], which does a whole step.
 
-use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
 use rapier3d::prelude::{ColliderSet, IntegrationParameters, PhysicsWorld, RigidBodySet};
 use rayon::prelude::*;
 use soak_hydro::{BodyState, BuoyancyMode, HydroForces, HydroOptions, Water, Wrench};
 
 use super::config::SoakId;
-use super::force_generator::ForceGenerator;
+use super::force_generator::{ForceGenerator, Impact};
 use super::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
 use super::rapier_body::apply_wrench;
 use crate::convert;
@@ -338,6 +338,67 @@ impl ForceGenerator {
         self.wet(&world.bodies, dt)?;
         world.step();
         self.advance(dt);
+        self.tear(world)?;
+        Ok(())
+    }
+
+    /// Opens the holes the last Rapier step's hard contacts call for
+    /// ([`ImpactHoles`](super::ImpactHoles)), recording them in
+    /// [`ForceGenerator::impacts`]. [`ForceGenerator::step`] calls it after
+    /// the world's step; call it yourself after stepping the world when
+    /// driving the parts one by one.
+    ///
+    /// # Errors
+    /// A missing Rapier body.
+    pub fn tear(&mut self, world: &PhysicsWorld) -> Result<(), SoakError> {
+        self.impacts.clear();
+        for k in 0..self.bodies.len() {
+            let b = &self.bodies[k];
+            let Some(rule) = b.effects.impact_holes else {
+                continue;
+            };
+            let rb = world
+                .bodies
+                .get(b.handle)
+                .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
+            let body_pose = convert::pose(rb.position());
+            // Each pair over the threshold, at its deepest contact, in the
+            // order Rapier keeps the body's colliders and their pairs.
+            let mut blows: Vec<(Point3<f64>, f64)> = Vec::new();
+            for &ch in rb.colliders() {
+                let Some(collider) = world.colliders.get(ch) else {
+                    continue;
+                };
+                let collider_pose = convert::pose(collider.position());
+                for pair in world.narrow_phase.contact_pairs_with(ch) {
+                    let impulse = pair.total_impulse_magnitude() as f64;
+                    if impulse.is_nan() || impulse <= rule.impulse {
+                        continue;
+                    }
+                    let Some((_, contact)) = pair.find_deepest_contact() else {
+                        continue;
+                    };
+                    let local = if pair.collider1 == ch {
+                        contact.local_p1
+                    } else {
+                        contact.local_p2
+                    };
+                    let world_point =
+                        collider_pose * Point3::new(local.x as f64, local.y as f64, local.z as f64);
+                    blows.push((body_pose.inverse_transform_point(&world_point), impulse));
+                }
+            }
+            for (centre, impulse) in blows {
+                let texels = self.open_hole(SoakId(k), centre, rule.radius)?;
+                self.impacts.push(Impact {
+                    body: SoakId(k),
+                    time: self.time,
+                    centre: [centre.x, centre.y, centre.z],
+                    impulse,
+                    texels,
+                });
+            }
+        }
         Ok(())
     }
 }

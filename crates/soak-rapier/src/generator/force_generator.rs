@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use nalgebra::{Point3, Vector3};
 use rapier3d::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
+use serde::Serialize;
 use soak_graph::Flooding;
 use soak_hydro::{
     HydroForces, MassModel, MassProperties, SeaSampling, SeaVelocity, TiledAtlas, Water, Wrench,
@@ -71,8 +72,24 @@ pub struct ForceGenerator {
     pub(super) steps: u64,
     pub(super) firewall: Firewall,
     pub(super) environment: Environment,
+    pub(super) impacts: Vec<Impact>,
     #[cfg(feature = "gpu")]
     pub(super) gpu: Option<crate::gpu::GpuBackend>,
+}
+
+/// A hole a hard contact opened ([`ImpactHoles`](super::ImpactHoles)).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Impact {
+    /// The body holed.
+    pub body: SoakId,
+    /// Simulated time at the end of the step the blow came in, s.
+    pub time: f64,
+    /// The hole's centre in the body's frame, m.
+    pub centre: [f64; 3],
+    /// The contact pair's impulse over the step, N·s.
+    pub impulse: f64,
+    /// Texels opened.
+    pub texels: usize,
 }
 
 impl ForceGenerator {
@@ -88,6 +105,7 @@ impl ForceGenerator {
             steps: 0,
             firewall: Firewall::default(),
             environment: Environment::default(),
+            impacts: Vec::new(),
             #[cfg(feature = "gpu")]
             gpu: None,
         }
@@ -268,6 +286,44 @@ impl ForceGenerator {
             })
     }
 
+    /// Opens a hole in a flooding body's wall: every texel within `radius`
+    /// (m) of `centre` (the mesh's own frame, m) becomes an opening, through
+    /// which water flows freely (the orifice law, see
+    /// [`soak_graph::Permeability`]) from the next step. Returns the texels
+    /// it covers (0 when the region misses the surface, or for a sealed
+    /// liquid graph, which has no wall). A hole opened during a run is part
+    /// of the saved state.
+    ///
+    /// # Errors
+    /// An unknown id, a body without flooding, an invalid region.
+    pub fn open_hole(
+        &mut self,
+        id: SoakId,
+        centre: impl Into<Point3<f64>>,
+        radius: f64,
+    ) -> Result<usize, SoakError> {
+        let centre = centre.into();
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        let flooding = b
+            .effects
+            .flooding
+            .as_mut()
+            .ok_or_else(|| SoakError::NoFlooding { name: b.name.clone() })?;
+        let Some(p) = flooding.permeability_mut() else {
+            return Ok(0);
+        };
+        p.open(&b.atlas, centre, radius)
+            .map_err(|source| SoakError::Permeability {
+                name: b.name.clone(),
+                source,
+            })
+    }
+
+    /// The holes hard contacts opened in the last step ([`ImpactHoles`](super::ImpactHoles)).
+    pub fn impacts(&self) -> &[Impact] {
+        &self.impacts
+    }
+
     /// Sets the fixed mass a flooding body carries with its liquid (ballast,
     /// cargo; local frame), or none, and hands the total to Rapier at once.
     ///
@@ -442,6 +498,21 @@ impl ForceGenerator {
             })?;
         if let Some(w) = &desc.effects.wetting {
             check_wetting(&desc.name, &desc.atlas, w)?;
+        }
+        if let Some(rule) = &desc.effects.impact_holes {
+            let reason = rule.problem().or_else(|| {
+                desc.effects
+                    .flooding
+                    .as_ref()
+                    .is_none_or(|f| f.permeability().is_none())
+                    .then(|| "needs flooding with a wall (a liquid graph made for the atlas)".to_string())
+            });
+            if let Some(reason) = reason {
+                return Err(SoakError::ImpactHoles {
+                    name: desc.name.clone(),
+                    reason,
+                });
+            }
         }
         if let Some(texels) = &desc.effects.drag_texels {
             texels.check(&desc.atlas).map_err(|source| SoakError::Hydro {

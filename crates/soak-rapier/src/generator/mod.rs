@@ -22,6 +22,6 @@ mod rapier_body;
 mod state;
 
 pub use body::SoakBody;
-pub use config::{Backend, BodyDesc, Effects, SoakId};
-pub use force_generator::ForceGenerator;
+pub use config::{Backend, BodyDesc, Effects, ImpactHoles, SoakId};
+pub use force_generator::{ForceGenerator, Impact};
 pub use state::{BodyRunState, GeneratorState};

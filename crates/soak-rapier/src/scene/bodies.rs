@@ -48,6 +48,15 @@ pub enum MassSpec {
         /// kg/m²
         areal_density: f64,
     },
+    /// Thin walls of a material (an open container's single-sided mesh):
+    /// a shell of `density × thickness` kg/m², whose walls take
+    /// `area × thickness` of the cavity's room.
+    Walls {
+        /// kg/m³
+        density: f64,
+        /// m
+        thickness: f64,
+    },
 }
 
 /// A collider for contacts with other bodies (massless: soak sets the mass).
@@ -80,6 +89,12 @@ pub struct BodySpec {
     /// Generate a physics atlas instead of using the mesh's UVs.
     #[serde(default)]
     pub unwrap: bool,
+    /// An open mesh (a bucket, a rowing boat): its rims are capped
+    /// ([`soak_bake::cap_openings`]), the closed shape displaces water, and
+    /// water flows in and out over the caps into a liquid graph (the
+    /// cavity's one compartment unless `graph` gives another).
+    #[serde(default)]
+    pub open: bool,
     /// Mass model.
     pub mass: MassSpec,
     /// Initial position of the mesh origin, m.
@@ -114,9 +129,12 @@ pub struct BodySpec {
     /// Liquid graph inside the body (water that enters through permeable
     /// texels): a graph file relative to the scene, or `{ auto = true }`.
     pub graph: Option<GraphSpec>,
-    /// Permeable regions (holes) of the wall; needs `graph`.
+    /// Permeable regions (holes) of the wall; needs `graph` (or `open`).
     #[serde(default)]
     pub permeability: Vec<HoleSpec>,
+    /// Holes torn where a hard contact hits the body: `{ impulse = N·s,
+    /// radius = m }` (see [`crate::ImpactHoles`]); needs `graph` (or `open`).
+    pub impact_holes: Option<crate::ImpactHoles>,
     /// Surface wetting: the body's liquid texture soaks up the water it is
     /// dipped in, dries and diffuses. Off when absent (and then nothing is
     /// allocated for it).

@@ -11,6 +11,18 @@ pub enum GraphSpec {
     File(String),
     /// Automatic segmentation of the mesh (Shape Diameter Function).
     Auto(AutoGraphSpec),
+    /// `{ cavity = true }`: the hollow inside as one compartment
+    /// ([`soak_graph::LiquidGraph::cavity`]), for a hull that takes water
+    /// only where it is holed or open.
+    Cavity(CavitySpec),
+}
+
+/// The keyword table `{ cavity = true }`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CavitySpec {
+    /// Must be `true`.
+    pub cavity: bool,
 }
 
 fn default_clusters() -> usize {
@@ -34,7 +46,8 @@ pub struct AutoGraphSpec {
     pub porosity: f64,
 }
 
-/// A permeable region: every texel within `radius` of `centre`.
+/// A permeable region: every texel within `radius` of `centre` (an opening
+/// when it has no `kappa`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HoleSpec {
@@ -42,8 +55,9 @@ pub struct HoleSpec {
     pub centre: [f64; 3],
     /// Radius, m.
     pub radius: f64,
-    /// Permeability over wall thickness κ = k/L, m.
-    pub kappa: f64,
+    /// Permeability over wall thickness κ = k/L, m; absent: an opening, a
+    /// hole through which water flows freely (the orifice law).
+    pub kappa: Option<f64>,
     /// Time the region opens (a hole punched during the run), s.
     #[serde(default)]
     pub at: f64,

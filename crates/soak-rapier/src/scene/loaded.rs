@@ -87,7 +87,10 @@ impl LoadedScene {
         } else {
             self.resolve(&b.mesh).to_string_lossy().into_owned()
         };
-        let mesh = soak_bake::load_mesh(&source).map_err(|e| body_err(&b.name, e.to_string()))?;
+        let mut mesh = soak_bake::load_mesh(&source).map_err(|e| body_err(&b.name, e.to_string()))?;
+        if b.open {
+            mesh = soak_bake::cap_openings(&mesh).map_err(|e| body_err(&b.name, e.to_string()))?;
+        }
         if !b.unwrap {
             return Ok(mesh);
         }
@@ -311,6 +314,10 @@ impl LoadedScene {
             match b.mass {
                 MassSpec::Solid { density } => positive(&key("mass.density"), density)?,
                 MassSpec::Shell { areal_density } => positive(&key("mass.areal_density"), areal_density)?,
+                MassSpec::Walls { density, thickness } => {
+                    positive(&key("mass.density"), density)?;
+                    positive(&key("mass.thickness"), thickness)?;
+                }
             }
             finite(&key("position"), &b.position)?;
             finite(&key("rotation_deg"), &b.rotation_deg)?;
@@ -330,15 +337,37 @@ impl LoadedScene {
                     ));
                 }
             }
-            if !b.permeability.is_empty() && b.graph.is_none() {
-                return Err(self.invalid(&key("permeability"), "needs a `graph` for the water to go into"));
+            if let Some(GraphSpec::Cavity(c)) = &b.graph
+                && !c.cavity
+            {
+                return Err(self.invalid(&key("graph.cavity"), "must be true (or give a graph file)"));
+            }
+            let floods = b.graph.is_some() || b.open;
+            if !b.permeability.is_empty() && !floods {
+                return Err(self.invalid(
+                    &key("permeability"),
+                    "needs a `graph` (or `open = true`) for the water to go into",
+                ));
+            }
+            if let Some(rule) = &b.impact_holes {
+                if let Some(reason) = rule.problem() {
+                    return Err(self.invalid(&key("impact_holes"), reason));
+                }
+                if !floods {
+                    return Err(self.invalid(
+                        &key("impact_holes"),
+                        "needs a `graph` (or `open = true`) for the water to go into",
+                    ));
+                }
             }
             for (k, h) in b.permeability.iter().enumerate() {
                 let hk = |f: &str| key(&format!("permeability[{k}].{f}"));
                 finite(&hk("centre"), &h.centre)?;
                 positive(&hk("radius"), h.radius)?;
-                if !(h.kappa.is_finite() && h.kappa >= 0.0) {
-                    return Err(self.invalid(&hk("kappa"), format!("must be ≥ 0 m, not {}", h.kappa)));
+                if let Some(kappa) = h.kappa
+                    && !(kappa.is_finite() && kappa >= 0.0)
+                {
+                    return Err(self.invalid(&hk("kappa"), format!("must be ≥ 0 m, not {kappa}")));
                 }
                 if !(h.at.is_finite() && h.at >= 0.0) {
                     return Err(self.invalid(&hk("at"), format!("must be a time ≥ 0 s, not {}", h.at)));

@@ -66,7 +66,7 @@ use crate::generator::Backend;
 
 pub use self::bodies::{Auto, BodySpec, ColliderSpec, DEFAULT_TOLERANCE, MassSpec, ResolutionSpec};
 pub use self::key_path::line_of;
-pub use self::liquid_graph::{AutoGraphSpec, GraphSpec, HoleSpec};
+pub use self::liquid_graph::{AutoGraphSpec, CavitySpec, GraphSpec, HoleSpec};
 pub use self::loaded::LoadedScene;
 pub use self::water::{WaterKind, WaterSpec};
 pub use self::wetting::{

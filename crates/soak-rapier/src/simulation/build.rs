@@ -229,16 +229,22 @@ impl Simulation {
                 let mass_model = match b.mass {
                     MassSpec::Solid { density } => MassModel::Solid { density },
                     MassSpec::Shell { areal_density } => MassModel::Shell { areal_density },
+                    MassSpec::Walls { density, thickness } => MassModel::Walls { density, thickness },
+                };
+                // The room thin walls take inside the surface.
+                let walls_volume = match b.mass {
+                    MassSpec::Walls { thickness, .. } => atlas.wall_area() * thickness,
+                    _ => 0.0,
                 };
                 let wetting = b
                     .wetting
                     .as_ref()
                     .map(|spec| wetting_of(loaded, i, spec, &atlas))
                     .transpose()?;
-                let flooding = b
-                    .graph
-                    .as_ref()
-                    .map(|spec| flooding(loaded, i, &mesh, &atlas, spec).map_err(body_err))
+                let cavity = crate::scene::GraphSpec::Cavity(crate::scene::CavitySpec { cavity: true });
+                let graph = b.graph.as_ref().or(b.open.then_some(&cavity));
+                let flooding = graph
+                    .map(|spec| flooding(loaded, i, &mesh, &atlas, spec, walls_volume).map_err(body_err))
                     .transpose()?;
                 // Drag texels are shared like atlases, by mesh and side.
                 let drag_texels = match b.drag_resolution {
@@ -264,6 +270,7 @@ impl Simulation {
                     drag_texels,
                     flooding,
                     wetting,
+                    impact_holes: b.impact_holes,
                 };
                 let desc = BodyDesc {
                     name: b.name.clone(),
@@ -360,10 +367,16 @@ fn flooding(
     mesh: &soak_bake::Mesh,
     atlas: &Atlas,
     spec: &crate::scene::GraphSpec,
+    walls_volume: f64,
 ) -> Result<soak_graph::Flooding, String> {
     use soak_graph::{Flooding, FlowOptions, LiquidGraph, Permeability, SegmentGraphOptions, TexelNodes};
-    let wall = Permeability::watertight(atlas);
+    // An open mesh's caps are openings; every other wall starts watertight.
+    let wall = Permeability::open_mesh(atlas);
     match spec {
+        crate::scene::GraphSpec::Cavity(_) => {
+            let graph = LiquidGraph::cavity(atlas, walls_volume).map_err(|e| e.to_string())?;
+            Flooding::for_atlas(atlas, graph, wall, FlowOptions::default()).map_err(|e| e.to_string())
+        }
         crate::scene::GraphSpec::File(file) => {
             let path = loaded.resolve(file);
             let graph = soak_graph::load_graph(&path).map_err(|e| e.to_string())?;

@@ -190,7 +190,10 @@ impl Simulation {
         let t = self.soak.time();
         for (id, hole, punched) in self.holes.iter_mut() {
             if !*punched && t >= hole.at {
-                self.soak.punch(*id, hole.centre, hole.radius, hole.kappa)?;
+                match hole.kappa {
+                    Some(kappa) => self.soak.punch(*id, hole.centre, hole.radius, kappa)?,
+                    None => self.soak.open_hole(*id, hole.centre, hole.radius)?,
+                };
                 *punched = true;
             }
         }
