@@ -66,9 +66,11 @@ pub enum ColliderSpec {
     /// No contacts.
     #[default]
     None,
-    /// The convex hull of the mesh.
+    /// The convex hull of the mesh (over an open mesh's mouth too: a lid
+    /// for contacts).
     ConvexHull,
-    /// The triangle mesh itself (fixed bodies only in practice).
+    /// The triangle mesh itself; an open mesh's walls without its caps, so
+    /// things fall into an open boat.
     Trimesh,
 }
 

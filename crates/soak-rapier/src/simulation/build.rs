@@ -173,9 +173,17 @@ impl Simulation {
                     ColliderBuilder::convex_hull(&points())
                         .ok_or_else(|| body_err("no convex hull".into()))?,
                 ),
+                // An open mesh's caps are not solid: the trimesh is its walls.
                 ColliderSpec::Trimesh => Some(
-                    ColliderBuilder::trimesh(points(), mesh.triangles.clone())
-                        .map_err(|e| body_err(format!("trimesh collider: {e}")))?,
+                    ColliderBuilder::trimesh(
+                        points(),
+                        mesh.triangles[..mesh
+                            .first_opening_triangle()
+                            .unwrap_or(mesh.triangles.len() as u32)
+                            as usize]
+                            .to_vec(),
+                    )
+                    .map_err(|e| body_err(format!("trimesh collider: {e}")))?,
                 ),
             };
             if let Some(c) = collider {
