@@ -71,8 +71,12 @@ pub(crate) fn run_cell(
     // joined by a pipe, behind a hull permeable all over. κ is set so that
     // the hull would take in its whole capacity in about 10 natural times
     // half submerged (Darcy: the inflow is about κ ρ g V_s / μ).
-    let capacity = 0.3 * f.volume;
-    if cell.level >= Level::Ingress {
+    // An open container's ingress is its cavity, filled over the rims
+    // (thin walls: the whole enclosed volume).
+    let capacity = if f.atlas.has_openings() { f.volume } else { 0.3 * f.volume };
+    if cell.level >= Level::Ingress && f.atlas.has_openings() {
+        effects = effects.with_flooding(Flooding::open_container(&f.atlas, 0.0, FlowOptions::default())?);
+    } else if cell.level >= Level::Ingress {
         let o = f.atlas.origin();
         let half = 0.3 * f.radius;
         let nodes = vec![
@@ -123,8 +127,16 @@ pub(crate) fn run_cell(
         BodyDesc {
             name: cell.name(),
             atlas: f.atlas.clone().into(),
-            mass_model: MassModel::Solid {
-                density: cell.density * RHO_W,
+            // An open container's walls weigh what a solid of the cell's
+            // density filling its closed shape would.
+            mass_model: if f.atlas.has_openings() {
+                MassModel::Shell {
+                    areal_density: cell.density * RHO_W * f.volume / f.atlas.wall_area(),
+                }
+            } else {
+                MassModel::Solid {
+                    density: cell.density * RHO_W,
+                }
             },
             effects,
         },

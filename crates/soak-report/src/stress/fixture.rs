@@ -35,6 +35,15 @@ impl Fixture {
                 source,
             })?
             .map_positions(|p| p * scale);
+        let m = if mesh.is_open() {
+            soak_bake::cap_openings(&m).map_err(|e| StressError::Bake {
+                mesh: mesh.label(),
+                scale,
+                source: e.into(),
+            })?
+        } else {
+            m
+        };
         let atlas = Atlas::bake(&m, BakeOptions::square(resolution)).map_err(|source| StressError::Bake {
             mesh: mesh.label(),
             scale,

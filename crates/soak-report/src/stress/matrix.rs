@@ -13,9 +13,11 @@ pub const SCALES: [f64; 3] = [1e-3, 1.0, 1e3];
 
 /// A mesh of the matrix.
 ///
-/// The builtins at modest tessellations (a 32² atlas cannot use more) and a
+/// The builtins at modest tessellations (a 32² atlas cannot use more), a
 /// sliver: a box 200 times longer than it is thick, whose long faces are
-/// triangles of aspect ratio 200 that cover almost no texel centre.
+/// triangles of aspect ratio 200 that cover almost no texel centre, and
+/// three open containers (single-sided meshes whose rims are capped; water
+/// comes over them from the `+ingress` level on).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Shape {
     /// `builtin:sphere:0.5:24:12`.
@@ -32,11 +34,17 @@ pub enum Shape {
     Boat,
     /// `builtin:box:2x0.01x0.01`: a 200:1 rod.
     Sliver,
+    /// `builtin:open_box` (1 × 0.5 × 1, open at the top), capped.
+    OpenBox,
+    /// `builtin:bucket:0.3:0.6:24`, capped.
+    Bucket,
+    /// `builtin:open_boat` (a rowing boat without a deck), capped.
+    OpenBoat,
 }
 
 impl Shape {
     /// Every mesh of the matrix, in its order.
-    pub const ALL: [Shape; 7] = [
+    pub const ALL: [Shape; 10] = [
         Shape::Sphere,
         Shape::Box,
         Shape::Cylinder,
@@ -44,7 +52,15 @@ impl Shape {
         Shape::Torus,
         Shape::Boat,
         Shape::Sliver,
+        Shape::OpenBox,
+        Shape::Bucket,
+        Shape::OpenBoat,
     ];
+
+    /// Whether the mesh is open (its rims capped before baking).
+    pub fn is_open(self) -> bool {
+        matches!(self, Shape::OpenBox | Shape::Bucket | Shape::OpenBoat)
+    }
 
     /// The short name in cell names and tables.
     pub fn label(self) -> &'static str {
@@ -56,6 +72,9 @@ impl Shape {
             Shape::Torus => "torus",
             Shape::Boat => "boat",
             Shape::Sliver => "sliver",
+            Shape::OpenBox => "open_box",
+            Shape::Bucket => "bucket",
+            Shape::OpenBoat => "open_boat",
         }
     }
 
@@ -69,6 +88,9 @@ impl Shape {
             Shape::Torus => "builtin:torus:0.5:0.15:24:12",
             Shape::Boat => "builtin:boat",
             Shape::Sliver => "builtin:box:2x0.01x0.01",
+            Shape::OpenBox => "builtin:open_box",
+            Shape::Bucket => "builtin:bucket:0.3:0.6:24",
+            Shape::OpenBoat => "builtin:open_boat",
         }
     }
 }
@@ -171,8 +193,8 @@ fn fmt_scale(s: f64) -> String {
     if s == 1.0 { "1m".into() } else { format!("{s:e}m") }
 }
 
-/// The full product: 7 meshes × 3 waters × 4 levels × 3 scales × 7
-/// densities × 3 rates = 5,292 cells.
+/// The full product: 10 meshes × 3 waters × 4 levels × 3 scales × 7
+/// densities × 3 rates = 7,560 cells.
 pub fn full_matrix() -> Vec<Cell> {
     let mut cells = Vec::new();
     for mesh in Shape::ALL {
@@ -198,7 +220,7 @@ pub fn full_matrix() -> Vec<Cell> {
     cells
 }
 
-/// Every mesh × water × effects (84 cells), each with one (density, time
+/// Every mesh × water × effects (120 cells), each with one (density, time
 /// step, scale) taken in turn from a list that pairs the extremes: the
 /// lightest and the heaviest bodies, the neutral one, the smallest and
 /// largest scales, the shortest and longest steps all appear, on every mesh
@@ -242,8 +264,8 @@ mod tests {
     #[test]
     fn the_matrices_have_their_sizes_and_names_round_trip() {
         let full = full_matrix();
-        assert_eq!(full.len(), 5292);
-        assert_eq!(quick_matrix().len(), 84);
+        assert_eq!(full.len(), 7560);
+        assert_eq!(quick_matrix().len(), 120);
         let mut names: Vec<String> = full.iter().map(Cell::name).collect();
         names.sort();
         names.dedup();
