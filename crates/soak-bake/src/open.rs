@@ -144,8 +144,20 @@ fn segments_cross(a: Point2<f64>, b: Point2<f64>, c: Point2<f64>, d: Point2<f64>
     (d1 * d2 < 0.0) && (d3 * d4 < 0.0)
 }
 
-/// Ear clipping of a simple counter-clockwise polygon; `None` when no ear
-/// can be found (the polygon is not simple).
+/// Triangulates a simple counter-clockwise polygon by ear clipping (the
+/// ear with the best-shaped triangle first), as corner indices; `None` when
+/// no ear can be found (the polygon is not simple, or degenerate).
+///
+/// # Example
+/// ```
+/// use nalgebra::Point2;
+/// let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+/// assert_eq!(soak_bake::triangulate(&square).map(|t| t.len()), Some(2));
+/// ```
+pub fn triangulate(poly: &[Point2<f64>]) -> Option<Vec<[usize; 3]>> {
+    ear_clip(poly)
+}
+
 fn ear_clip(poly: &[Point2<f64>]) -> Option<Vec<[usize; 3]>> {
     let mut idx: Vec<usize> = (0..poly.len()).collect();
     let mut out = Vec::with_capacity(poly.len().saturating_sub(2));

@@ -5,7 +5,9 @@ use std::time::Instant;
 
 use anyhow::Context;
 use serde::Serialize;
-use soak_bake::{Atlas, AtlasImage, BakeOptions, UnwrapOptions, UnwrapReport, load_mesh, unwrap};
+use soak_bake::{
+    Atlas, AtlasImage, BakeOptions, Opening, UnwrapOptions, UnwrapReport, cap_openings, load_mesh, unwrap,
+};
 
 /// Arguments of `soak bake`.
 #[derive(clap::Args)]
@@ -18,6 +20,9 @@ pub struct Args {
     /// Replace the mesh's UVs with a generated physics atlas.
     #[arg(long)]
     unwrap: bool,
+    /// An open mesh (a bucket, a rowing boat): cap its rims (listed) and bake the closed shape.
+    #[arg(long)]
+    open: bool,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -47,10 +52,19 @@ struct Summary {
     bake_ms: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     unwrap: Option<UnwrapReport>,
+    /// The rims an open mesh's caps close (`--open`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    openings: Vec<Opening>,
+    /// Texels on the caps.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    opening_texels: Option<usize>,
 }
 
 pub fn run(args: &Args) -> anyhow::Result<()> {
     let mut mesh = load_mesh(&args.mesh)?;
+    if args.open {
+        mesh = cap_openings(&mesh)?;
+    }
     let mut report = None;
     if args.unwrap {
         let (m, r) = unwrap(&mesh, UnwrapOptions::default())?;
@@ -75,6 +89,8 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         mesh_volume: mesh.volume(),
         bake_ms,
         unwrap: report,
+        opening_texels: args.open.then(|| atlas.opening_samples().len()),
+        openings: mesh.openings.clone(),
     };
     if let Some(dir) = &args.export {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
@@ -111,6 +127,22 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
                 "  unwrap       {:>12} charts, density {:.2}–{:.2} of mean (cv {:.3}), {:.1} ms",
                 r.charts, r.density_min, r.density_max, r.density_cv, r.millis
             );
+        }
+        for (k, o) in out.openings.iter().enumerate() {
+            let [nx, ny, nz] = o.normal;
+            let [cx, cy, cz] = o.centroid;
+            println!(
+                "  rim {k:<8} {:>12} vertices, {:.4} m long, cap {:.6} m² at ({cx:.3}, {cy:.3}, {cz:.3}) m facing \
+                 ({nx:.3}, {ny:.3}, {nz:.3}), {} triangles, warp {:.2e} m",
+                o.rim.len(),
+                o.length,
+                o.area,
+                o.triangles,
+                o.warp
+            );
+        }
+        if let Some(n) = out.opening_texels {
+            println!("  cap texels   {n:>12}");
         }
         if let Some(dir) = &args.export {
             println!("  textures in  {}", dir.display());

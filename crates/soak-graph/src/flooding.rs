@@ -222,13 +222,20 @@ impl Flooding {
     /// ([`LiquidGraph::cavity`], `walls` m³ of its room taken by the walls),
     /// behind a watertight wall whose caps are openings
     /// ([`Permeability::open_mesh`]): water comes in over the rims when
-    /// they go under and pours out when the container tips.
+    /// they go under and pours out when the container tips. The caps drain
+    /// into the lowest layer (what comes over a rim falls to the bottom);
+    /// every other texel (a hole opened later) into its nearest layer.
     ///
     /// # Errors
     /// As [`LiquidGraph::cavity`] and [`Flooding::new`].
     pub fn open_container(atlas: &Atlas, walls: f64, options: FlowOptions) -> Result<Self, FlowError> {
         let graph = LiquidGraph::cavity(atlas, walls).map_err(FlowError::Graph)?;
-        Self::for_atlas(atlas, graph, Permeability::open_mesh(atlas), options)
+        let mut nodes = TexelNodes::nearest(atlas, &graph).nodes().to_vec();
+        for i in atlas.opening_samples() {
+            nodes[i as usize] = 0;
+        }
+        let map = TexelNodes::from_nodes(atlas, &graph, nodes).map_err(FlowError::TexelMap)?;
+        Self::new(graph, Permeability::open_mesh(atlas), map, options)
     }
 
     /// [`Flooding::new`] with each texel of `atlas` draining into its nearest node.

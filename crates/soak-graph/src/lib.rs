@@ -27,7 +27,7 @@ pub use self::graph_file::{
     EdgeSpec, Format, GraphFile, NodeRef, NodeSpec, load_graph, parse_graph, to_json, to_toml, unnamed,
 };
 pub use self::ledger::Ledger;
-pub use self::liquid_graph::{LiquidGraph, Node, Pipe, SegmentGraphOptions, WATER_VISCOSITY};
+pub use self::liquid_graph::{CAVITY_LAYERS, LiquidGraph, Node, Pipe, SegmentGraphOptions, WATER_VISCOSITY};
 pub use self::permeability::Permeability;
 pub use self::texel_nodes::TexelNodes;
 

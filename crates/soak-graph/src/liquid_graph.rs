@@ -15,6 +15,9 @@ use soak_hydro::MassProperties;
 use crate::error::GraphError;
 use crate::segment::Segmentation;
 
+/// Layers of [`LiquidGraph::cavity`].
+pub const CAVITY_LAYERS: usize = 4;
+
 /// Dynamic viscosity of fresh water at 20 °C, Pa·s.
 pub const WATER_VISCOSITY: f64 = 1.0e-3;
 
@@ -284,13 +287,20 @@ pub struct LiquidGraph {
 }
 
 impl LiquidGraph {
-    /// The one-compartment graph of a hollow body's inside, for an open
-    /// mesh's cavity ([`soak_bake::cap_openings`]) or a hull holed at run
-    /// time: a node named `"inside"` whose vessel spans the atlas' height
-    /// (its bottom at the lowest texel, its top at the highest, object `y`),
-    /// at the enclosed volume's centroid in `x` and `z`, holding up to the
-    /// enclosed volume less `walls` (m³, the volume the walls take up inside
-    /// the surface; 0 for thin walls).
+    /// The graph of a hollow body's inside, for an open mesh's cavity
+    /// ([`soak_bake::cap_openings`]) or a hull holed at run time: the
+    /// enclosed volume cut into [`CAVITY_LAYERS`] horizontal layers of the
+    /// object's `y` (its lowest texel to its highest), bottom first, each a
+    /// node named `"inside k"` whose vessel is its layer, at the enclosed
+    /// volume's centroid in `x` and `z`, holding its layer's share of the
+    /// enclosed volume less `walls` (m³, the room the walls take inside the
+    /// surface; 0 for thin walls); consecutive layers are joined by wide
+    /// pipes. Liquid settles in the lowest layers, so its weight acts low in
+    /// an upright container, as it does in a real one.
+    ///
+    /// A layer's volume is the enclosed volume between its planes, from the
+    /// texels' columns: below a plane `y = c` a closed surface encloses
+    /// `Σ_{y_i < c} −A_{y,i} (c − y_i)`.
     ///
     /// # Errors
     /// An atlas that encloses no volume, or `walls` negative, not finite or
@@ -314,12 +324,36 @@ impl LiquidGraph {
             lo = lo.min(y);
             hi = hi.max(y);
         }
+        let below = |c: f64| -> f64 {
+            let a = atlas.area_vectors();
+            (0..atlas.len())
+                .map(|i| {
+                    let y = atlas.position(i).y;
+                    if y < c {
+                        -(a.get(i)[1] as f64) * (c - y)
+                    } else {
+                        0.0
+                    }
+                })
+                .sum()
+        };
+        let k = CAVITY_LAYERS;
+        let h = (hi - lo) / k as f64;
         let c = moments.origin + moments.first / volume;
-        let position = Point3::new(c.x, 0.5 * (lo + hi), c.z);
-        Self::new(
-            vec![Node::new("inside", position, capacity).with_height(hi - lo)],
-            vec![],
-        )
+        let cuts: Vec<f64> = (0..=k)
+            .map(|j| if j == k { volume } else { below(lo + j as f64 * h) })
+            .collect();
+        let nodes = (0..k)
+            .map(|j| {
+                let share = ((cuts[j + 1] - cuts[j]) / volume).max(0.0);
+                let position = Point3::new(c.x, lo + (j as f64 + 0.5) * h, c.z);
+                Node::new(format!("inside {j}"), position, share * capacity).with_height(h)
+            })
+            .collect::<Vec<_>>();
+        // Pipes as wide as the layers: the liquid finds its level in a step.
+        let radius = (capacity / (hi - lo) / std::f64::consts::PI).sqrt();
+        let pipes = (1..k).map(|j| (j - 1, j, Pipe::new(radius, h))).collect();
+        Self::new(nodes, pipes)
     }
 
     /// A graph from its nodes and edges `(a, b, pipe)` (node indices),

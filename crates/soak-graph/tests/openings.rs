@@ -104,7 +104,12 @@ fn an_open_box_pours_out_when_tipped_past_its_rim() {
     let closed = cap_openings(&builtin::open_box(1.0, 0.5, 1.0)).unwrap();
     let atlas = Atlas::bake(&closed, BakeOptions::square(128)).unwrap();
     let graph = LiquidGraph::cavity(&atlas, 0.0).unwrap();
-    assert!((graph.nodes().next().unwrap().capacity - 0.5).abs() < 1e-5);
+    // Four layers of a quarter of the box each, bottom first.
+    let capacities: Vec<f64> = graph.nodes().map(|n| n.capacity).collect();
+    assert_eq!(capacities.len(), soak_graph::CAVITY_LAYERS);
+    for c in &capacities {
+        assert!((c - 0.125).abs() < 1e-5, "{capacities:?}");
+    }
     let mut flooding = Flooding::for_atlas(
         &atlas,
         graph,
@@ -112,7 +117,11 @@ fn an_open_box_pours_out_when_tipped_past_its_rim() {
         FlowOptions::default(),
     )
     .unwrap();
-    flooding.pour(0, 0.3).unwrap();
+    let mut poured = 0.0;
+    for node in 0..capacities.len() {
+        poured += flooding.pour(node, 0.3 - poured).unwrap();
+    }
+    assert!((poured - 0.3).abs() < 1e-12);
     let water = Water::calm(-10.0); // far below: only the box's own liquid moves
     let dt = 1.0 / 60.0;
     // Upright it holds its liquid.

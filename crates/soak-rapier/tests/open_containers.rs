@@ -191,7 +191,7 @@ fn a_bucket_heeled_under_fills_and_floats_at_the_draft_of_what_it_holds() {
     }
     let l = w.inside();
     // The hydrostatics of the bucket holding `l` m³ (its walls, and the
-    // water at its compartment's node: soak's liquid graph), from the exact
+    // water at its compartments' nodes: soak's liquid graph), from the exact
     // clipping of its closed shape: the heel and height at which it
     // displaces its weight with the centre of buoyancy under the centre of
     // mass.

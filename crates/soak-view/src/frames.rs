@@ -317,6 +317,22 @@ impl SceneRenderer {
                 });
                 object = object.with_liquid(image);
             }
+            // An open container shows the liquid it holds, at its
+            // compartment's level (the highest, with several).
+            if !self.meshes[i].openings.is_empty()
+                && let Some(id) = b.id
+                && let Some(flooding) = sim.soak.flooding(id)
+            {
+                let level = flooding
+                    .graph()
+                    .nodes()
+                    .filter(|n| n.liquid > 0.0)
+                    .map(|n| n.head_at((pose * n.position).y))
+                    .fold(f64::NEG_INFINITY, f64::max);
+                if level.is_finite() {
+                    object = object.with_inner_water(level);
+                }
+            }
             // The segments view colours a body with a liquid graph by
             // compartment (the node nearest each triangle) and draws the
             // graph's pipes between the nodes.

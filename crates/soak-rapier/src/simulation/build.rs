@@ -382,8 +382,7 @@ fn flooding(
     let wall = Permeability::open_mesh(atlas);
     match spec {
         crate::scene::GraphSpec::Cavity(_) => {
-            let graph = LiquidGraph::cavity(atlas, walls_volume).map_err(|e| e.to_string())?;
-            Flooding::for_atlas(atlas, graph, wall, FlowOptions::default()).map_err(|e| e.to_string())
+            Flooding::open_container(atlas, walls_volume, FlowOptions::default()).map_err(|e| e.to_string())
         }
         crate::scene::GraphSpec::File(file) => {
             let path = loaded.resolve(file);

@@ -73,7 +73,11 @@ pub(crate) fn run_cell(
     // half submerged (Darcy: the inflow is about κ ρ g V_s / μ).
     // An open container's ingress is its cavity, filled over the rims
     // (thin walls: the whole enclosed volume).
-    let capacity = if f.atlas.has_openings() { f.volume } else { 0.3 * f.volume };
+    let capacity = if f.atlas.has_openings() {
+        f.volume
+    } else {
+        0.3 * f.volume
+    };
     if cell.level >= Level::Ingress && f.atlas.has_openings() {
         effects = effects.with_flooding(Flooding::open_container(&f.atlas, 0.0, FlowOptions::default())?);
     } else if cell.level >= Level::Ingress {
@@ -120,6 +124,24 @@ pub(crate) fn run_cell(
         substeps_expected = 10;
         effects = effects.with_wetting(wet);
     }
+    // An open container's walls weigh what a solid of the cell's density
+    // filling its closed shape would.
+    let mass_model = if f.atlas.has_openings() {
+        MassModel::Shell {
+            areal_density: cell.density * RHO_W * f.volume / f.atlas.wall_area(),
+        }
+    } else {
+        MassModel::Solid {
+            density: cell.density * RHO_W,
+        }
+    };
+    let centroid = {
+        let v = soak_hydro::volume_moments(&f.atlas);
+        v.origin + v.first / v.volume
+    };
+    let centred = mass_model
+        .mass_properties(&f.atlas)
+        .is_ok_and(|m| (m.center_of_mass - centroid).norm() <= 0.01 * size);
     let id = soak.register(
         &mut world.bodies,
         &world.colliders,
@@ -127,17 +149,7 @@ pub(crate) fn run_cell(
         BodyDesc {
             name: cell.name(),
             atlas: f.atlas.clone().into(),
-            // An open container's walls weigh what a solid of the cell's
-            // density filling its closed shape would.
-            mass_model: if f.atlas.has_openings() {
-                MassModel::Shell {
-                    areal_density: cell.density * RHO_W * f.volume / f.atlas.wall_area(),
-                }
-            } else {
-                MassModel::Solid {
-                    density: cell.density * RHO_W,
-                }
-            },
+            mass_model: mass_model.clone(),
             effects,
         },
     )?;
@@ -274,6 +286,7 @@ pub(crate) fn run_cell(
         vy,
         vy_label,
         dy: (rb.translation().y as f64 - y0) / size,
+        centred,
     });
     if !settled {
         failures.push(format!("{expect:?}: {settle_note}"));

@@ -42,6 +42,10 @@ pub(crate) struct Motion {
     pub(crate) vy_label: &'static str,
     /// Height at the end less at the start, in sizes.
     pub(crate) dy: f64,
+    /// Whether the centre of mass lies at the centre of the closed shape
+    /// (within 1 % of the size): true for the matrix's solids, false for
+    /// the open containers' walls.
+    pub(crate) centred: bool,
 }
 
 /// Whether the body settled as physics says, what was measured, and the
@@ -64,6 +68,7 @@ pub(crate) fn settle(m: &Motion) -> (bool, String, f64) {
         vy,
         vy_label,
         dy,
+        centred,
     } = *m;
     match expect {
         Expect::Floats => {
@@ -128,6 +133,18 @@ pub(crate) fn settle(m: &Motion) -> (bool, String, f64) {
             // than the water it displaces: there it may drift down. In the
             // sea its velocity is taken on average over the last half: in a
             // wave's orbits drag carries it up and down with the water.
+            // A body whose centre of mass is off the centre of its shape
+            // (an open container's walls) feels a couple of its weight and
+            // its buoyancy: it swings like a pendulum, bares its ends at the
+            // surface and drifts down; it must only not rise, which a
+            // neutral body cannot do (its buoyancy never exceeds its weight).
+            if !centred {
+                return (
+                    vy < 0.1,
+                    format!("off-centre: mean fraction {mean_fraction:.3}, {vy_label} {vy:.3} √(g·size)"),
+                    1.0,
+                );
+            }
             let sinking_allowed = water != WaterKind::Plane;
             let ok = mean_fraction > 0.85 && vy < 0.1 && (sinking_allowed || vy > -0.1);
             (

@@ -8,7 +8,7 @@ use wgpu::util::DeviceExt;
 
 use super::camera::{light_view_projection, to_gpu};
 use super::error::RenderError;
-use super::geometry::{arrow_vertices, cull_to_view, water_grid};
+use super::geometry::{arrow_vertices, cull_to_view, inner_water, water_grid};
 use super::gpu_types::{FrameUniform, PostUniform, WaterUniform, rgba, vec4};
 use super::passes::{
     ArrowDraw, WaterDraw, arrow_pass, scene_pass, shadow_pass, subsurface_passes, tone_map_pass,
@@ -232,7 +232,19 @@ fn upload_water(gpu: &FrameGpu<'_>, scene: &RenderScene) -> Option<WaterDraw> {
         };
         let (width, height) = (gpu.targets.width, gpu.targets.height);
         let view_proj = scene.camera.view_projection(f64::from(width) / f64::from(height));
-        let indices = cull_to_view(&vertices, &all, &view_proj);
+        let sea = cull_to_view(&vertices, &all, &view_proj);
+        // The liquid inside open containers goes first (see `scene_pass`).
+        let mut vertices = vertices;
+        let mut indices = Vec::new();
+        for o in scene.objects.iter().filter(|o| !o.mesh.openings.is_empty()) {
+            let Some(level) = o.inner_water else { continue };
+            let (v, i) = inner_water(&o.mesh, &o.pose, level);
+            let base = vertices.len() as u32;
+            vertices.extend(v);
+            indices.extend(i.into_iter().map(|k| k + base));
+        }
+        let inner = indices.len() as u32;
+        indices.extend(sea);
         let uniform = WaterUniform {
             colour: rgba(w.colour, w.opacity.clamp(0.0, 1.0)),
             params: [
@@ -270,6 +282,7 @@ fn upload_water(gpu: &FrameGpu<'_>, scene: &RenderScene) -> Option<WaterDraw> {
             vertices: vb,
             indices: ib,
             count: indices.len() as u32,
+            inner,
             bind,
         }
     })

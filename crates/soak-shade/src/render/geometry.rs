@@ -38,7 +38,33 @@ pub(crate) fn check_mesh(mesh: &Mesh) -> Result<(), String> {
 /// be hard), object space. Each corner's normal is the angle-weighted mean
 /// of the normals of the faces around its position (welded across UV
 /// seams) that lie within `crease_degrees` of its own face.
+#[cfg(test)]
 pub(crate) fn mesh_vertices(mesh: &Mesh, segments: Option<&[u32]>, crease_degrees: f64) -> Vec<MeshVertex> {
+    mesh_layout(mesh, segments, crease_degrees).0
+}
+
+/// How [`mesh_layout`] lays an object's vertices out: the walls facing out
+/// (`front` vertices), then for an open mesh the same walls facing in
+/// (`back`: its inside is seen over the rim), then its caps (`caps`,
+/// drawn only into the depth buffer, so the sea does not show inside a
+/// container floating on it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct MeshLayout {
+    pub front: u32,
+    pub back: u32,
+    pub caps: u32,
+}
+
+/// [`mesh_vertices`] of every part of an object, in the order and counts
+/// of [`MeshLayout`].
+pub(crate) fn mesh_layout(
+    mesh: &Mesh,
+    segments: Option<&[u32]>,
+    crease_degrees: f64,
+) -> (Vec<MeshVertex>, MeshLayout) {
+    let walls = mesh
+        .first_opening_triangle()
+        .map_or(mesh.triangles.len(), |f| f as usize);
     let remap = weld(&mesh.positions);
     let unit: Vec<Option<Vector3<f64>>> = (0..mesh.triangles.len())
         .map(|t| mesh.triangle_area_vector(t).try_normalize(1e-300))
@@ -81,7 +107,8 @@ pub(crate) fn mesh_vertices(mesh: &Mesh, segments: Option<&[u32]>, crease_degree
             let w = remap[v as usize] as usize;
             let mut n = Vector3::zeros();
             for &(f, k) in &around[start[w] as usize..start[w + 1] as usize] {
-                if let Some(u) = unit[f as usize] {
+                let cap = (f as usize >= walls) != (t >= walls);
+                if let Some(u) = unit[f as usize].filter(|_| !cap) {
                     if u.dot(&own) >= cos_crease - 1e-9 {
                         n += u * angles[f as usize][k as usize];
                     }
@@ -101,7 +128,122 @@ pub(crate) fn mesh_vertices(mesh: &Mesh, segments: Option<&[u32]>, crease_degree
             });
         }
     }
-    out
+    let front = 3 * walls;
+    let caps = out.split_off(front);
+    if walls < mesh.triangles.len() {
+        // The walls seen from inside: reversed winding, normals turned.
+        let back: Vec<MeshVertex> = out
+            .chunks(3)
+            .flat_map(|t| {
+                [t[0], t[2], t[1]].map(|mut v| {
+                    v.normal = v.normal.map(|c| -c);
+                    v
+                })
+            })
+            .collect();
+        out.extend(back);
+    }
+    let layout = MeshLayout {
+        front: front as u32,
+        back: (out.len() - front) as u32,
+        caps: caps.len() as u32,
+    };
+    out.extend(caps);
+    (out, layout)
+}
+
+/// The free surface of the liquid inside an open container at world
+/// height `level` (m): the walls of `mesh` at `pose` cut by the plane
+/// `y = level`, each closed loop of the cut triangulated, facing up. Empty
+/// when the plane misses the walls or a loop cannot be triangulated.
+pub(crate) fn inner_water(
+    mesh: &Mesh,
+    pose: &nalgebra::Isometry3<f64>,
+    level: f64,
+) -> (Vec<WaterVertex>, Vec<u32>) {
+    let walls = mesh
+        .first_opening_triangle()
+        .map_or(mesh.triangles.len(), |f| f as usize);
+    let remap = weld(&mesh.positions);
+    let world: Vec<Point3<f64>> = mesh.positions.iter().map(|p| pose * p).collect();
+    // The cut of each triangle: a segment between two edge crossings, an
+    // edge keyed by its welded ends so neighbours share the point.
+    let mut segments: Vec<((u32, u32), (u32, u32))> = Vec::new();
+    let mut points: std::collections::HashMap<(u32, u32), Point3<f64>> = std::collections::HashMap::new();
+    for tri in &mesh.triangles[..walls] {
+        let mut cut = Vec::with_capacity(2);
+        for k in 0..3 {
+            let (a, b) = (tri[k] as usize, tri[(k + 1) % 3] as usize);
+            let (ya, yb) = (world[a].y - level, world[b].y - level);
+            if (ya < 0.0) != (yb < 0.0) {
+                let key = (remap[a].min(remap[b]), remap[a].max(remap[b]));
+                let s = ya / (ya - yb);
+                points
+                    .entry(key)
+                    .or_insert_with(|| world[a] + (world[b] - world[a]) * s);
+                cut.push(key);
+            }
+        }
+        if let [p, q] = cut[..] {
+            segments.push((p, q));
+        }
+    }
+    // Chain the segments into loops.
+    let mut next: std::collections::HashMap<(u32, u32), Vec<(u32, u32)>> = std::collections::HashMap::new();
+    for &(p, q) in &segments {
+        next.entry(p).or_default().push(q);
+        next.entry(q).or_default().push(p);
+    }
+    let mut used = std::collections::HashSet::new();
+    let (mut vertices, mut indices) = (Vec::new(), Vec::new());
+    let mut keys: Vec<(u32, u32)> = next.keys().copied().collect();
+    keys.sort_unstable();
+    for start in keys {
+        if used.contains(&start) {
+            continue;
+        }
+        let mut ring = vec![start];
+        used.insert(start);
+        let mut at = start;
+        while let Some(&n) = next[&at].iter().find(|n| !used.contains(*n)) {
+            used.insert(n);
+            ring.push(n);
+            at = n;
+        }
+        if ring.len() < 3 || !next[&at].contains(&start) {
+            continue;
+        }
+        let mut flat: Vec<nalgebra::Point2<f64>> = ring
+            .iter()
+            .map(|k| nalgebra::Point2::new(points[k].x, -points[k].z))
+            .collect();
+        // Counter-clockwise seen from above (x right, −z up the page).
+        let area: f64 = (0..flat.len())
+            .map(|i| {
+                let (a, b) = (flat[i], flat[(i + 1) % flat.len()]);
+                a.x * b.y - b.x * a.y
+            })
+            .sum();
+        if area < 0.0 {
+            ring.reverse();
+            flat.reverse();
+        }
+        let Some(ears) = soak_bake::triangulate(&flat) else {
+            continue;
+        };
+        let base = vertices.len() as u32;
+        for k in &ring {
+            let p = points[k];
+            vertices.push(WaterVertex {
+                position: [p.x as f32, level as f32, p.z as f32],
+                normal: [0.0, 1.0, 0.0],
+            });
+        }
+        for e in ears {
+            indices.extend(e.map(|i| base + i as u32));
+        }
+    }
+    (vertices, indices)
 }
 
 /// Index of the first vertex at the same position, for each vertex (exact
@@ -123,7 +265,10 @@ fn weld(positions: &[Point3<f64>]) -> Vec<u32> {
 pub(crate) fn areas(mesh: &Mesh) -> (f64, f64) {
     let mut world = 0.0;
     let mut uv = 0.0;
-    for t in 0..mesh.triangles.len() {
+    for t in 0..mesh
+        .first_opening_triangle()
+        .map_or(mesh.triangles.len(), |f| f as usize)
+    {
         world += mesh.triangle_area_vector(t).norm();
         if let Some([a, b, c]) = mesh.triangle_uvs(t) {
             uv += 0.5 * ((b - a).perp(&(c - a))).abs();

@@ -12,8 +12,11 @@ use super::upload::GpuObject;
 pub(super) struct WaterDraw {
     pub(super) vertices: wgpu::Buffer,
     pub(super) indices: wgpu::Buffer,
-    /// Indices in view (0 when none of the water is).
+    /// Indices in view (0 when none of the water is), the liquid inside
+    /// open containers (`inner` of them) first, then the sea.
     pub(super) count: u32,
+    /// Indices of the liquid inside open containers, at the start.
+    pub(super) inner: u32,
     pub(super) bind: wgpu::BindGroup,
 }
 
@@ -72,7 +75,7 @@ pub(super) fn subsurface_passes(
             pass.set_bind_group(0, frame_bind, &[]);
             pass.set_bind_group(1, &o.bind, &[]);
             pass.set_vertex_buffer(0, o.vertices.slice(..));
-            pass.draw(0..o.count, 0..1);
+            pass.draw(0..o.front, 0..1);
         }
         for (k, (u, v)) in sss.blurs.iter().enumerate() {
             {
@@ -140,13 +143,31 @@ pub(super) fn scene_pass(
         pass.set_vertex_buffer(0, o.vertices.slice(..));
         pass.draw(0..o.count, 0..1);
     }
+    // The liquid inside open containers, then their caps into the depth
+    // buffer alone (the sea does not show inside them), then the sea.
     // Nothing of the water may be in view (a camera under it, looking down).
-    if let Some(w) = water.filter(|w| w.count > 0) {
+    let water = water.filter(|w| w.count > 0);
+    if let Some(w) = water.filter(|w| w.inner > 0) {
         pass.set_pipeline(&p.water);
         pass.set_bind_group(1, &w.bind, &[]);
         pass.set_vertex_buffer(0, w.vertices.slice(..));
         pass.set_index_buffer(w.indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..w.count, 0, 0..1);
+        pass.draw_indexed(0..w.inner, 0, 0..1);
+    }
+    if objects.iter().any(|o| o.caps > 0) {
+        pass.set_pipeline(&p.cap_mask);
+        for o in objects.iter().filter(|o| o.caps > 0) {
+            pass.set_bind_group(1, &o.bind, &[]);
+            pass.set_vertex_buffer(0, o.vertices.slice(..));
+            pass.draw(o.count..o.count + o.caps, 0..1);
+        }
+    }
+    if let Some(w) = water.filter(|w| w.count > w.inner) {
+        pass.set_pipeline(&p.water);
+        pass.set_bind_group(1, &w.bind, &[]);
+        pass.set_vertex_buffer(0, w.vertices.slice(..));
+        pass.set_index_buffer(w.indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(w.inner..w.count, 0, 0..1);
     }
 }
 

@@ -51,6 +51,7 @@ pub(crate) struct Pipelines {
     pub post_layout: wgpu::BindGroupLayout,
     pub sky: wgpu::RenderPipeline,
     pub surface: wgpu::RenderPipeline,
+    pub cap_mask: wgpu::RenderPipeline,
     pub irradiance: wgpu::RenderPipeline,
     pub shadow: wgpu::RenderPipeline,
     pub water: wgpu::RenderPipeline,
@@ -312,6 +313,26 @@ impl Pipelines {
                 samples,
             },
         );
+        // An open container's caps: depth only, both sides.
+        let cap_mask = pipeline(
+            device,
+            "cap mask",
+            Stage {
+                module: &surface_module,
+                vertex: "vs_main",
+                fragment: Some("fs_mask"),
+                buffers: &mesh_buffers,
+                layouts: &[&frame_layout, &object_layout],
+                target: Some(wgpu::ColorTargetState {
+                    format: HDR_FORMAT,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::empty(),
+                }),
+                depth: Some(depth(true, wgpu::CompareFunction::Less, no_bias)),
+                cull: None,
+                samples,
+            },
+        );
         let irradiance = pipeline(
             device,
             "subsurface irradiance",
@@ -423,6 +444,7 @@ impl Pipelines {
             post_layout,
             sky,
             surface,
+            cap_mask,
             irradiance,
             shadow,
             water,

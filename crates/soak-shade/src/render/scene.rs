@@ -71,6 +71,10 @@ pub struct RenderObject {
     pub crease_degrees: f64,
     /// Whether the object casts shadows (default true).
     pub casts_shadow: bool,
+    /// For an open container ([`Mesh::openings`]): the world height of the
+    /// liquid's surface inside it, m, drawn as water where the plane cuts
+    /// its walls; `None` when it holds none.
+    pub inner_water: Option<f64>,
 }
 
 impl RenderObject {
@@ -87,7 +91,15 @@ impl RenderObject {
             segments: None,
             crease_degrees: 50.0,
             casts_shadow: true,
+            inner_water: None,
         }
+    }
+
+    /// With the liquid inside an open container standing at world height
+    /// `level`, m (see [`RenderObject::inner_water`]).
+    pub fn with_inner_water(mut self, level: f64) -> Self {
+        self.inner_water = Some(level);
+        self
     }
 
     /// With a name.

@@ -171,3 +171,10 @@ fn fs_irradiance(in: VertexOut) -> @location(0) vec4<f32> {
     let w = area / max(object.gamma.y, 1e-30);
     return vec4<f32>(e_t * w, w);
 }
+
+// An open container's caps: into the depth buffer only (the pipeline writes
+// no colour), so the sea is hidden inside the container.
+@fragment
+fn fs_mask() -> @location(0) vec4<f32> {
+    return vec4<f32>(0.0);
+}

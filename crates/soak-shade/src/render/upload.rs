@@ -9,7 +9,7 @@ use soak_bake::Mesh;
 use wgpu::util::DeviceExt;
 
 use super::camera::to_gpu;
-use super::geometry::{areas, mesh_vertices};
+use super::geometry::{MeshLayout, areas, mesh_layout};
 use super::gpu_types::{BlurUniform, ObjectUniform, rgba};
 use super::pipelines::{ALBEDO_FORMAT, LIQUID_FORMAT, Pipelines, SUBSURFACE_FORMAT};
 use super::scene::{Albedo, LiquidImage, RenderObject};
@@ -34,7 +34,7 @@ struct CachedMesh {
     mesh: Weak<Mesh>,
     segments: Option<Weak<Vec<u32>>>,
     buffer: wgpu::Buffer,
-    count: u32,
+    layout: MeshLayout,
     /// Surface area (m²) and UV area.
     areas: (f64, f64),
     used: bool,
@@ -57,14 +57,19 @@ struct CachedLiquid {
 /// A mesh ready to draw.
 pub(super) struct MeshBuffer {
     pub(super) buffer: wgpu::Buffer,
-    pub(super) count: u32,
+    pub(super) layout: MeshLayout,
     pub(super) areas: (f64, f64),
 }
 
 /// Everything uploaded for one object.
 pub(super) struct GpuObject {
     pub(super) vertices: wgpu::Buffer,
+    /// Vertices drawn shaded: the walls, out and (open meshes) in.
     pub(super) count: u32,
+    /// Of those, the outward walls (the texture-space passes draw these).
+    pub(super) front: u32,
+    /// Cap vertices after them (depth only).
+    pub(super) caps: u32,
     pub(super) bind: wgpu::BindGroup,
     pub(super) casts_shadow: bool,
     pub(super) subsurface: Option<ObjectSubsurface>,
@@ -183,12 +188,12 @@ impl Uploader {
                 c.used = true;
                 return MeshBuffer {
                     buffer: c.buffer.clone(),
-                    count: c.count,
+                    layout: c.layout,
                     areas: c.areas,
                 };
             }
         }
-        let vertices = mesh_vertices(
+        let (vertices, layout) = mesh_layout(
             &o.mesh,
             o.segments.as_deref().map(|s| s.as_slice()),
             o.crease_degrees,
@@ -205,14 +210,14 @@ impl Uploader {
                 mesh: Arc::downgrade(&o.mesh),
                 segments: o.segments.as_ref().map(Arc::downgrade),
                 buffer: buffer.clone(),
-                count: vertices.len() as u32,
+                layout,
                 areas,
                 used: true,
             },
         );
         MeshBuffer {
             buffer,
-            count: vertices.len() as u32,
+            layout,
             areas,
         }
     }
@@ -344,7 +349,9 @@ impl Uploader {
         });
         GpuObject {
             vertices: mesh.buffer,
-            count: mesh.count,
+            count: mesh.layout.front + mesh.layout.back,
+            front: mesh.layout.front,
+            caps: mesh.layout.caps,
             bind,
             casts_shadow: o.casts_shadow,
             subsurface: targets,
