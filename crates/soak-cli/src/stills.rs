@@ -45,6 +45,37 @@ pub fn render_stills(out: &Path, quick: bool) -> Result<Vec<String>> {
         if quick { 0.1 } else { 0.35 },
         false,
     )?);
+    // Open containers, seen from above: the water they hold.
+    for (name, text, path, eye) in [
+        (
+            "open_boat",
+            include_str!("../scenes/open_boat.toml"),
+            "data/scenes/open_boat.toml",
+            [2.6, 2.6, 2.8],
+        ),
+        (
+            "open_crates",
+            include_str!("../scenes/open_crates.toml"),
+            "data/scenes/open_crates.toml",
+            [0.5, 2.6, 3.4],
+        ),
+        (
+            "bucket",
+            include_str!("../scenes/bucket.toml"),
+            "data/scenes/bucket.toml",
+            [0.0, 1.9, 1.9],
+        ),
+    ] {
+        lines.push(scene_still_from(
+            out,
+            name,
+            text,
+            path,
+            if quick { 0.2 } else { 1.0 },
+            false,
+            Some((eye, [0.0, -0.1, 0.0])),
+        )?);
+    }
     lines.extend(beach_still(out, quick)?);
     lines.push(stain_still(out)?);
     Ok(lines)
@@ -59,6 +90,20 @@ fn scene_still(
     fraction: f64,
     forces: bool,
 ) -> Result<String> {
+    scene_still_from(out, name, text, path, fraction, forces, None)
+}
+
+/// [`scene_still`] seen from `view`'s eye towards its target (m), or as
+/// the scene frames itself.
+fn scene_still_from(
+    out: &Path,
+    name: &str,
+    text: &str,
+    path: &str,
+    fraction: f64,
+    forces: bool,
+    view: Option<([f64; 3], [f64; 3])>,
+) -> Result<String> {
     let start = Instant::now();
     let loaded = LoadedScene::from_str(text, Path::new(path))?;
     let mut sim = Simulation::from_scene(&loaded)?;
@@ -72,8 +117,8 @@ fn scene_still(
             size: SIZE,
             view: View::Shaded,
             forces,
-            eye: None,
-            target: None,
+            eye: view.map(|v| Point3::from(v.0)),
+            target: view.map(|v| Point3::from(v.1)),
         },
     )?;
     let file = out.join(format!("still_{name}.png"));

@@ -389,3 +389,53 @@ fn an_open_boat_carries_a_load_at_its_freeboard_and_swamps_past_its_heel_limit()
         past.inside()
     );
 }
+
+#[test]
+fn scenes_say_open_walls_and_liquid_and_wrong_values_are_named() {
+    use soak_rapier::{LoadedScene, Simulation};
+    let scene = |body: &str| {
+        format!(
+            "dt = 0.02\nduration = 1.0\n[water]\nkind = \"plane\"\nlevel = 0.0\n[[bodies]]\nname = \"bucket\"\n\
+             mesh = \"builtin:bucket\"\nresolution = 64\n{body}"
+        )
+    };
+    let ok = scene(
+        "open = true\nmass = { model = \"walls\", density = 600.0, thickness = 0.02 }\nliquid = 0.05\n",
+    );
+    let s = LoadedScene::from_str(&ok, "bucket.toml".as_ref()).unwrap();
+    let sim = Simulation::from_scene(&s).unwrap();
+    let id = sim.bodies[0].id.unwrap();
+    let flooding = sim.soak.flooding(id).unwrap();
+    assert!((flooding.inside() - 0.05).abs() < 1e-12);
+    assert_eq!(flooding.graph().node_count(), soak_graph::CAVITY_LAYERS);
+    // The walls' mass plus the water's reaches Rapier.
+    let mass = sim.soak.body(id).unwrap().mass_properties().mass;
+    let walls = 600.0 * 0.02 * sim.soak.body(id).unwrap().atlas().wall_area();
+    assert!((mass - walls - 50.0).abs() < 1e-6 * mass, "{mass} kg");
+    for (body, key) in [
+        (
+            "open = true\nmass = { model = \"walls\", density = 600.0, thickness = 0.02 }\nliquid = 1.0\n",
+            "liquid",
+        ),
+        (
+            "mass = { model = \"shell\", areal_density = 10.0 }\nliquid = 0.01\n",
+            "liquid",
+        ),
+        (
+            "open = true\nmass = { model = \"walls\", density = 600.0, thickness = -0.02 }\n",
+            "mass.thickness",
+        ),
+        (
+            "open = true\nmass = { model = \"solid\", density = 600.0 }\n",
+            "mesh",
+        ),
+        ("mass = { model = \"shell\", areal_density = 10.0 }\n", "mesh"),
+    ] {
+        let text = scene(body);
+        let e = LoadedScene::from_str(&text, "bucket.toml".as_ref())
+            .and_then(|s| Simulation::from_scene(&s).map(|_| ()))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("bucket.toml") && e.contains(key), "{key}: {e}");
+    }
+}

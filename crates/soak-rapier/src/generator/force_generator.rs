@@ -319,6 +319,26 @@ impl ForceGenerator {
             })
     }
 
+    /// [`ForceGenerator::open_hole`] at a world point (m): where a shell
+    /// struck the hull, as the body stands now in `bodies`.
+    ///
+    /// # Errors
+    /// As [`ForceGenerator::open_hole`]; a missing Rapier body.
+    pub fn open_hole_at(
+        &mut self,
+        id: SoakId,
+        bodies: &RigidBodySet,
+        point: impl Into<Point3<f64>>,
+        radius: f64,
+    ) -> Result<usize, SoakError> {
+        let b = self.bodies.get(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        let rb = bodies
+            .get(b.handle)
+            .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
+        let local = crate::convert::pose(rb.position()).inverse_transform_point(&point.into());
+        self.open_hole(id, local, radius)
+    }
+
     /// The holes hard contacts opened in the last step ([`ImpactHoles`](super::ImpactHoles)).
     pub fn impacts(&self) -> &[Impact] {
         &self.impacts

@@ -134,6 +134,10 @@ pub struct BodySpec {
     /// Permeable regions (holes) of the wall; needs `graph` (or `open`).
     #[serde(default)]
     pub permeability: Vec<HoleSpec>,
+    /// Liquid inside at the start, m³ (a bucket half full, a boat's bilge
+    /// water), poured into the compartments in order (an open mesh's cavity:
+    /// from the bottom up); needs `graph` (or `open`).
+    pub liquid: Option<f64>,
     /// Holes torn where a hard contact hits the body: `{ impulse = N·s,
     /// radius = m }` (see [`crate::ImpactHoles`]); needs `graph` (or `open`).
     pub impact_holes: Option<crate::ImpactHoles>,

@@ -51,8 +51,12 @@ pub struct AutoGraphSpec {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HoleSpec {
-    /// Centre in the body's local frame, m.
+    /// Centre, m: in the body's local frame, or in the world's with
+    /// `world = true` (where the body stands when the hole opens).
     pub centre: [f64; 3],
+    /// Whether `centre` is a world point.
+    #[serde(default)]
+    pub world: bool,
     /// Radius, m.
     pub radius: f64,
     /// Permeability over wall thickness κ = k/L, m; absent: an opening, a

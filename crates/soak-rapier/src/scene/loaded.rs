@@ -349,6 +349,17 @@ impl LoadedScene {
                     "needs a `graph` (or `open = true`) for the water to go into",
                 ));
             }
+            if let Some(l) = b.liquid {
+                if !(l.is_finite() && l >= 0.0) {
+                    return Err(self.invalid(&key("liquid"), format!("must be a volume ≥ 0 m³, not {l}")));
+                }
+                if !floods {
+                    return Err(self.invalid(
+                        &key("liquid"),
+                        "needs a `graph` (or `open = true`) for the water to be in",
+                    ));
+                }
+            }
             if let Some(rule) = &b.impact_holes {
                 if let Some(reason) = rule.problem() {
                     return Err(self.invalid(&key("impact_holes"), reason));

@@ -251,9 +251,24 @@ impl Simulation {
                     .transpose()?;
                 let cavity = crate::scene::GraphSpec::Cavity(crate::scene::CavitySpec { cavity: true });
                 let graph = b.graph.as_ref().or(b.open.then_some(&cavity));
-                let flooding = graph
+                let mut flooding = graph
                     .map(|spec| flooding(loaded, i, &mesh, &atlas, spec, walls_volume).map_err(body_err))
                     .transpose()?;
+                if let (Some(f), Some(volume)) = (&mut flooding, b.liquid) {
+                    let mut rest = volume;
+                    for node in 0..f.graph().node_count() {
+                        rest -= f.pour(node, rest).map_err(|e| body_err(e.to_string()))?;
+                    }
+                    if rest > 1e-9 * volume.max(1.0) {
+                        return Err(loaded.invalid(
+                            &format!("bodies[{i}].liquid"),
+                            format!(
+                                "{volume} m³ does not fit: the compartments hold {} m³",
+                                volume - rest
+                            ),
+                        ));
+                    }
+                }
                 // Drag texels are shared like atlases, by mesh and side.
                 let drag_texels = match b.drag_resolution {
                     Some(n) => {

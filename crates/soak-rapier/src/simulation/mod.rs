@@ -190,9 +190,32 @@ impl Simulation {
         let t = self.soak.time();
         for (id, hole, punched) in self.holes.iter_mut() {
             if !*punched && t >= hole.at {
+                let centre = if hole.world {
+                    let handle = self
+                        .soak
+                        .body(*id)
+                        .map(|b| b.handle())
+                        .ok_or(SoakError::UnknownId(id.0))?;
+                    let rb = self
+                        .world
+                        .bodies
+                        .get(handle)
+                        .ok_or_else(|| SoakError::MissingBody {
+                            name: self
+                                .soak
+                                .body(*id)
+                                .map(|b| b.name().to_string())
+                                .unwrap_or_default(),
+                        })?;
+                    let p = crate::convert::pose(rb.position())
+                        .inverse_transform_point(&nalgebra::Point3::from(hole.centre));
+                    [p.x, p.y, p.z]
+                } else {
+                    hole.centre
+                };
                 match hole.kappa {
-                    Some(kappa) => self.soak.punch(*id, hole.centre, hole.radius, kappa)?,
-                    None => self.soak.open_hole(*id, hole.centre, hole.radius)?,
+                    Some(kappa) => self.soak.punch(*id, centre, hole.radius, kappa)?,
+                    None => self.soak.open_hole(*id, centre, hole.radius)?,
                 };
                 *punched = true;
             }
