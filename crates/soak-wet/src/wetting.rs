@@ -74,7 +74,9 @@ pub struct Wetting {
 }
 
 impl Wetting {
-    /// A dry surface over `atlas`, validated; no diffusion.
+    /// A dry surface over `atlas`, validated; no diffusion. An open mesh's
+    /// caps ([`Atlas::is_opening`]) are no surface: their texels start with
+    /// a permeability map of 0, so they neither absorb nor dry.
     pub fn new(atlas: &Atlas, material: Material, liquid: Liquid) -> Result<Self, WetError> {
         if atlas.is_empty() {
             return Err(WetError::EmptyAtlas);
@@ -87,7 +89,9 @@ impl Wetting {
             response: EnvironmentResponse::default(),
             diffusion: None,
             h: vec![0.0; atlas.len()],
-            permeability_map: None,
+            permeability_map: atlas
+                .has_openings()
+                .then(|| (0..atlas.len()).map(|i| if atlas.is_opening(i) { 0.0 } else { 1.0 }).collect()),
             ledger: Ledger::default(),
             cache: Cache::default(),
         })
