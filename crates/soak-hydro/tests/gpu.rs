@@ -1106,3 +1106,46 @@ fn non_finite_input_is_a_typed_error() {
     // Still works after all those refusals.
     assert!(eval(&ok, &b.mass, 0.0, &water).is_ok());
 }
+
+/// An open mesh's caps weigh nothing on the GPU as on the CPU, and a solid
+/// of it is refused there too.
+#[test]
+fn open_mesh_walls_weigh_the_same_on_the_gpu() {
+    let Some(d) = device() else { return };
+    let mut gpu = hydro(&d);
+    let atlas = Atlas::bake(
+        &soak_bake::cap_openings(&builtin::open_box(1.2, 0.5, 0.8)).unwrap(),
+        BakeOptions::square(128),
+    )
+    .unwrap();
+    let id = gpu.upload(&atlas).unwrap();
+    for model in [
+        MassModel::Walls {
+            density: 700.0,
+            thickness: 0.02,
+        },
+        MassModel::Shell { areal_density: 9.0 },
+        MassModel::ShellTexture {
+            areal_density: vec![5.0; atlas.len()],
+        },
+    ] {
+        let (cpu, on_gpu) = (
+            model.mass_properties(&atlas).unwrap(),
+            gpu.mass_properties(id, &model).unwrap(),
+        );
+        assert!(
+            (cpu.mass - on_gpu.mass).abs() < 1e-4 * cpu.mass,
+            "{model:?}: {} vs {}",
+            cpu.mass,
+            on_gpu.mass
+        );
+        assert!(
+            (cpu.center_of_mass - on_gpu.center_of_mass).norm() < 1e-4,
+            "{model:?}"
+        );
+    }
+    assert!(matches!(
+        gpu.mass_properties(id, &MassModel::Solid { density: 500.0 }),
+        Err(GpuHydroError::Mass(soak_hydro::HydroError::OpenSolid))
+    ));
+}

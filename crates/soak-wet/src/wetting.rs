@@ -89,9 +89,11 @@ impl Wetting {
             response: EnvironmentResponse::default(),
             diffusion: None,
             h: vec![0.0; atlas.len()],
-            permeability_map: atlas
-                .has_openings()
-                .then(|| (0..atlas.len()).map(|i| if atlas.is_opening(i) { 0.0 } else { 1.0 }).collect()),
+            permeability_map: atlas.has_openings().then(|| {
+                (0..atlas.len())
+                    .map(|i| if atlas.is_opening(i) { 0.0 } else { 1.0 })
+                    .collect()
+            }),
             ledger: Ledger::default(),
             cache: Cache::default(),
         })
