@@ -101,6 +101,23 @@ impl Builder {
         self.orient_chart(first, Point3::new(0.0, ymid, 0.0));
     }
 
+    /// A planar quad `c` (corners in order around it) as one chart, wound
+    /// so its normal points along `out`.
+    fn quad(&mut self, c: [Point3<f64>; 4], out: nalgebra::Vector3<f64>) {
+        let (_, first) = self.begin_chart();
+        let e1 = (c[1] - c[0]).normalize();
+        let e2 = out.normalize().cross(&e1);
+        let ids = c.map(|p| self.vertex(p, Point2::new((p - c[0]).dot(&e1), (p - c[0]).dot(&e2))));
+        self.triangles.push([ids[0], ids[1], ids[2]]);
+        self.triangles.push([ids[0], ids[2], ids[3]]);
+        let n = (c[1] - c[0]).cross(&(c[2] - c[0]));
+        if n.dot(&out) < 0.0 {
+            for t in &mut self.triangles[first..] {
+                t.swap(1, 2);
+            }
+        }
+    }
+
     /// A flat disk at height `y` as one fan chart.
     fn disk(&mut self, radius: f64, y: f64, segments: usize, inside: Point3<f64>) {
         let (_, first) = self.begin_chart();
@@ -179,6 +196,70 @@ pub fn open_box(sx: f64, sy: f64, sz: f64) -> Mesh {
     });
     mesh.name = format!("builtin:open_box:{sx}x{sy}x{sz}");
     mesh
+}
+
+/// Open-topped box with walls of thickness `t` (m), modelled as one closed
+/// surface — outside, the rim's flat top, inside — as most assets of
+/// containers are: outer sizes `sx`×`sy`×`sz`, centred at the origin, the
+/// cavity `(sx − 2t)`×`(sy − t)`×`(sz − 2t)` open at `y = sy/2`. Closed: its
+/// cavity is found by [`cap_cavities`](crate::cap_cavities).
+pub fn thick_open_box(sx: f64, sy: f64, sz: f64, t: f64) -> Mesh {
+    use nalgebra::Vector3;
+    let (hx, hy, hz) = (sx / 2.0, sy / 2.0, sz / 2.0);
+    let (ix, iz, floor) = (hx - t, hz - t, -hy + t);
+    let p = Point3::new;
+    let mut b = Builder::default();
+    // Outside: bottom and four sides.
+    b.quad(
+        [p(-hx, -hy, -hz), p(hx, -hy, -hz), p(hx, -hy, hz), p(-hx, -hy, hz)],
+        -Vector3::y(),
+    );
+    for (sign, axis) in [(1.0, 0), (-1.0, 0), (1.0, 2), (-1.0, 2)] {
+        let (u, w) = if axis == 0 {
+            (hx * sign, hz)
+        } else {
+            (hz * sign, hx)
+        };
+        let at = |a: f64, y: f64| if axis == 0 { p(u, y, a) } else { p(a, y, u) };
+        let out = if axis == 0 {
+            Vector3::x() * sign
+        } else {
+            Vector3::z() * sign
+        };
+        b.quad([at(-w, -hy), at(w, -hy), at(w, hy), at(-w, hy)], out);
+    }
+    // The rim's top: a frame between the outer and inner squares.
+    let outer = [p(-hx, hy, -hz), p(hx, hy, -hz), p(hx, hy, hz), p(-hx, hy, hz)];
+    let inner = [p(-ix, hy, -iz), p(ix, hy, -iz), p(ix, hy, iz), p(-ix, hy, iz)];
+    for k in 0..4 {
+        let j = (k + 1) % 4;
+        b.quad([outer[k], outer[j], inner[j], inner[k]], Vector3::y());
+    }
+    // Inside: the cavity's four walls and floor, facing into it.
+    b.quad(
+        [
+            p(-ix, floor, -iz),
+            p(ix, floor, -iz),
+            p(ix, floor, iz),
+            p(-ix, floor, iz),
+        ],
+        Vector3::y(),
+    );
+    for (sign, axis) in [(1.0, 0), (-1.0, 0), (1.0, 2), (-1.0, 2)] {
+        let (u, w) = if axis == 0 {
+            (ix * sign, iz)
+        } else {
+            (iz * sign, ix)
+        };
+        let at = |a: f64, y: f64| if axis == 0 { p(u, y, a) } else { p(a, y, u) };
+        let into = if axis == 0 {
+            -Vector3::x() * sign
+        } else {
+            -Vector3::z() * sign
+        };
+        b.quad([at(-w, floor), at(w, floor), at(w, hy), at(-w, hy)], into);
+    }
+    b.finish(format!("builtin:thick_open_box:{sx}x{sy}x{sz}:{t}"))
 }
 
 /// Bucket about the y axis: a cylinder of `radius` and `height` (m),
@@ -436,6 +517,7 @@ pub const NAMES: &[&str] = &[
 /// | `builtin:open_box[:SXxSYxSZ]` (open) | outer sizes | `1x0.5x1` |
 /// | `builtin:bucket[:R[:H[:SEGMENTS]]]` (open) | radius, height | `0.3:0.6:64` |
 /// | `builtin:open_boat[:LxBxD]` (open) | length, beam, depth | `4x1.2x0.6` |
+/// | `builtin:thick_open_box[:SXxSYxSZ[:T]]` (closed, a cavity) | outer sizes, wall thickness | `1x0.5x1:0.05` |
 pub fn parse(name: &str) -> Result<Mesh, LoadError> {
     let err = |reason: String| LoadError::Builtin {
         name: name.to_string(),
@@ -485,6 +567,7 @@ pub fn parse(name: &str) -> Result<Mesh, LoadError> {
         "sphere" | "cylinder" | "capsule" | "bucket" => 3,
         "torus" | "dumbbell" => 4,
         "box" | "boat" | "open_box" | "open_boat" => 1,
+        "thick_open_box" => 2,
         other => {
             return Err(err(format!(
                 "unknown builtin `{other}` (known: {})",
@@ -543,6 +626,14 @@ pub fn parse(name: &str) -> Result<Mesh, LoadError> {
         "open_box" => {
             let [a, b, c] = sizes(0, [1.0, 0.5, 1.0])?;
             open_box(a, b, c)
+        }
+        "thick_open_box" => {
+            let [a, b, c] = sizes(0, [1.0, 0.5, 1.0])?;
+            let t = num(1, 0.05, "wall thickness")?;
+            if 2.0 * t >= a.min(c) || t >= b {
+                return Err(err(format!("walls {t} m thick leave no cavity in {a}x{b}x{c}")));
+            }
+            thick_open_box(a, b, c, t)
         }
         "bucket" => bucket(
             num(0, 0.3, "radius")?,

@@ -28,7 +28,7 @@ pub use self::error::{BakeError, ExportError, LoadError, MeshError, MeshProblem}
 pub use self::export::AtlasImage;
 pub use self::load::{load_gltf_bytes, load_mesh, load_obj_bytes};
 pub use self::mesh::Mesh;
-pub use self::open::{Opening, boundary_loops, cap_openings, triangulate};
+pub use self::open::{Cavities, Opening, boundary_loops, cap_cavities, cap_openings, triangulate};
 pub use self::pack::{DEFAULT_PADDING, pack_charts};
 pub use self::unwrap::{UnwrapOptions, UnwrapReport, unwrap};
 pub use self::uv_overlap::{find_overlap, triangles_overlap};

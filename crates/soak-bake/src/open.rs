@@ -368,6 +368,176 @@ pub fn cap_openings(mesh: &Mesh) -> Result<Mesh, MeshError> {
     Ok(closed)
 }
 
+/// The cavities of a closed mesh modelled with thick walls (a bucket or a
+/// crate whose outside, rim and inside are one closed surface), found and
+/// capped: what [`cap_cavities`] returns.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cavities {
+    /// The filled shape: the mesh without its cavities' inner walls, each
+    /// cavity's mouth capped ([`Mesh::openings`]): what displaces water while
+    /// the cavities are dry.
+    pub filled: Mesh,
+    /// The input's triangles that line the cavities (left out of
+    /// `filled`), ascending.
+    pub inner: Vec<u32>,
+}
+
+/// Finds the cavities of a closed mesh that open through a flat rim and
+/// caps them (module docs for the caps).
+///
+/// A rim is flat where the mesh touches a plane that has the whole mesh
+/// behind it (a face of its convex hull: the top of a bucket's rim): the
+/// mesh's triangles in that plane form a region, and each hole in that
+/// region — a loop of its edges that runs clockwise about the plane's
+/// outward normal — is a cavity's mouth. The triangles reached from the
+/// mouth without crossing it line the cavity; they are left out and the
+/// mouth is capped, which leaves the filled shape closed. A mesh without
+/// such a mouth (a closed hull, a cavity whose rim is rounded) comes back
+/// with no cavities.
+///
+/// # Errors
+/// The closed-mesh checks of [`validate_topology`]; a mouth that cannot be
+/// capped ([`cap_openings`]'s errors).
+///
+/// # Example
+/// ```
+/// use soak_bake::{builtin, cap_cavities};
+/// // 1 m × 0.5 m × 1 m outside, walls 5 cm thick, open at the top.
+/// let crate_ = builtin::thick_open_box(1.0, 0.5, 1.0, 0.05);
+/// let c = cap_cavities(&crate_)?;
+/// assert_eq!(c.filled.openings.len(), 1);
+/// assert!((c.filled.volume() - 0.5).abs() < 1e-12);
+/// # Ok::<(), soak_bake::MeshError>(())
+/// ```
+pub fn cap_cavities(mesh: &Mesh) -> Result<Cavities, MeshError> {
+    validate_topology(mesh)?;
+    let welded = mesh.welded_triangles();
+    let n_tri = welded.len();
+    let (lo, hi) = mesh.bounds();
+    let tol = 1e-9 * (hi - lo).norm().max(f64::MIN_POSITIVE);
+    let normals: Vec<Option<Vector3<f64>>> = (0..n_tri)
+        .map(|t| mesh.triangle_area_vector(t).try_normalize(f64::MIN_POSITIVE))
+        .collect();
+    // Support planes: triangles whose plane has every vertex behind it.
+    // Triangles of one plane share (quantised) normal and offset.
+    let key = |n: &Vector3<f64>, d: f64| -> [i64; 4] {
+        let q = |x: f64| (x * 1e6).round() as i64;
+        [q(n.x), q(n.y), q(n.z), (d / tol.max(1e-12) * 1e-3).round() as i64]
+    };
+    let mut extreme: std::collections::HashMap<[i64; 3], f64> = std::collections::HashMap::new();
+    let mut regions: std::collections::BTreeMap<[i64; 4], Vec<u32>> = std::collections::BTreeMap::new();
+    for (t, n) in normals.iter().enumerate() {
+        let Some(n) = n else { continue };
+        let nk = [
+            (n.x * 1e6).round() as i64,
+            (n.y * 1e6).round() as i64,
+            (n.z * 1e6).round() as i64,
+        ];
+        let top = *extreme.entry(nk).or_insert_with(|| {
+            mesh.positions
+                .iter()
+                .map(|p| n.dot(&p.coords))
+                .fold(f64::NEG_INFINITY, f64::max)
+        });
+        let pts = mesh.triangle_points(t);
+        if pts.iter().all(|p| n.dot(&p.coords) >= top - tol) {
+            regions.entry(key(n, top)).or_default().push(t as u32);
+        }
+    }
+    // Edge → the triangles using it (welded, undirected).
+    let mut edge_tris: std::collections::HashMap<(u32, u32), Vec<u32>> = std::collections::HashMap::new();
+    for (t, tri) in welded.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            edge_tris.entry((a.min(b), a.max(b))).or_default().push(t as u32);
+        }
+    }
+    let mut inner = std::collections::BTreeSet::new();
+    for tris in regions.values() {
+        let in_region: std::collections::HashSet<u32> = tris.iter().copied().collect();
+        let n = normals[tris[0] as usize].expect("support triangles have normals");
+        // The region's boundary, each edge in its triangle's direction.
+        let mut next: std::collections::BTreeMap<u32, u32> = std::collections::BTreeMap::new();
+        for &t in tris {
+            let tri = welded[t as usize];
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                let shared = edge_tris[&(a.min(b), a.max(b))]
+                    .iter()
+                    .any(|o| *o != t && in_region.contains(o));
+                if !shared {
+                    next.insert(a, b);
+                }
+            }
+        }
+        let mut seen = std::collections::BTreeSet::new();
+        let starts: Vec<u32> = next.keys().copied().collect();
+        for start in starts {
+            if seen.contains(&start) {
+                continue;
+            }
+            let mut ring = vec![start];
+            seen.insert(start);
+            let mut v = start;
+            while let Some(&w) = next.get(&v) {
+                if w == start || !seen.insert(w) {
+                    break;
+                }
+                ring.push(w);
+                v = w;
+            }
+            let pts: Vec<Point3<f64>> = ring.iter().map(|&v| mesh.positions[v as usize]).collect();
+            if ring.len() < 3 || newell(&pts).dot(&n) >= 0.0 {
+                continue; // the region's outer boundary, not a mouth
+            }
+            // Flood the cavity's lining from across the mouth's edges.
+            let mouth: std::collections::HashSet<(u32, u32)> = (0..ring.len())
+                .map(|i| {
+                    let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
+                    (a.min(b), a.max(b))
+                })
+                .collect();
+            let mut stack: Vec<u32> = mouth
+                .iter()
+                .flat_map(|e| edge_tris[e].iter().copied())
+                .filter(|t| !in_region.contains(t))
+                .collect();
+            while let Some(t) = stack.pop() {
+                if in_region.contains(&t) || !inner.insert(t) {
+                    continue;
+                }
+                let tri = welded[t as usize];
+                for k in 0..3 {
+                    let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                    let e = (a.min(b), a.max(b));
+                    if mouth.contains(&e) {
+                        continue;
+                    }
+                    stack.extend(edge_tris[&e].iter().copied().filter(|o| !inner.contains(o)));
+                }
+            }
+        }
+    }
+    if inner.is_empty() {
+        return Ok(Cavities {
+            filled: mesh.clone(),
+            inner: Vec::new(),
+        });
+    }
+    let mut kept = mesh.clone();
+    kept.triangles = mesh
+        .triangles
+        .iter()
+        .enumerate()
+        .filter(|(t, _)| !inner.contains(&(*t as u32)))
+        .map(|(_, tri)| *tri)
+        .collect();
+    Ok(Cavities {
+        filled: cap_openings(&kept)?,
+        inner: inner.into_iter().collect(),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -150,3 +150,35 @@ fn a_concave_rim_is_capped_without_overlap() {
     assert_eq!(o.normal, [0.0, -1.0, 0.0]);
     assert_eq!(o.triangles, 4);
 }
+
+#[test]
+fn a_thick_walled_box_has_its_cavity_found_and_capped() {
+    let walls = builtin::thick_open_box(1.0, 0.5, 1.0, 0.05);
+    validate(&walls).expect("one closed surface");
+    // Its solid is the walls: the box less the cavity 0.9 × 0.45 × 0.9.
+    assert!((walls.volume() - (0.5 - 0.9 * 0.45 * 0.9)).abs() < 1e-12);
+    let c = soak_bake::cap_cavities(&walls).unwrap();
+    assert_eq!(
+        c.inner.len(),
+        10,
+        "the cavity's four walls and floor, two triangles each"
+    );
+    assert_eq!(c.filled.openings.len(), 1);
+    let mouth = &c.filled.openings[0];
+    assert!((mouth.area - 0.81).abs() < 1e-12 && mouth.normal == [0.0, 1.0, 0.0]);
+    assert!(
+        (c.filled.volume() - 0.5).abs() < 1e-12,
+        "filled: {}",
+        c.filled.volume()
+    );
+    let atlas = bake(&c.filled, 128);
+    assert!((atlas.volume() - 0.5).abs() < 1e-6);
+    // A closed hull has no cavity; an open mesh is refused (not closed).
+    assert!(
+        soak_bake::cap_cavities(&builtin::boat(4.0, 1.2, 0.6))
+            .unwrap()
+            .inner
+            .is_empty()
+    );
+    assert!(soak_bake::cap_cavities(&builtin::open_box(1.0, 0.5, 1.0)).is_err());
+}

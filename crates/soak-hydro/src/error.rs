@@ -59,6 +59,12 @@ pub enum HydroError {
          (use walls of a density and a thickness, or a shell)"
     )]
     OpenSolid,
+    /// Given mass properties with a mass not > 0 or a value not finite.
+    #[error("given mass properties {properties} need a mass > 0 and finite values")]
+    GivenMass {
+        /// The properties given, printed.
+        properties: String,
+    },
     /// A wall thickness is non-finite or not positive.
     #[error("wall thickness {value} m must be finite and positive")]
     Thickness {

@@ -247,6 +247,13 @@ pub enum MassModel {
         /// Wall thickness, m.
         thickness: f64,
     },
+    /// Mass properties worked out elsewhere, object frame: e.g. the solid
+    /// walls of a thick-walled container, from its own closed mesh, while
+    /// its atlas is the filled shape ([`soak_bake::cap_cavities`]).
+    Given {
+        /// Mass (kg, > 0), centre of mass (m) and inertia about it (kg·m²).
+        properties: MassProperties,
+    },
 }
 
 impl MassModel {
@@ -269,6 +276,7 @@ impl MassModel {
                 check_thickness(*thickness)?;
                 Ok(shell(atlas, |_| density * thickness))
             }
+            MassModel::Given { properties } => check_given(properties),
             MassModel::ShellTexture { areal_density } => {
                 if areal_density.len() != atlas.len() {
                     return Err(HydroError::ChannelLength {
@@ -287,6 +295,16 @@ impl MassModel {
                 Ok(shell(atlas, |i| areal_density[i] as f64))
             }
         }
+    }
+}
+
+pub(crate) fn check_given(p: &MassProperties) -> Result<MassProperties, HydroError> {
+    if p.is_finite() && p.mass > 0.0 {
+        Ok(*p)
+    } else {
+        Err(HydroError::GivenMass {
+            properties: format!("{p:?}"),
+        })
     }
 }
 

@@ -439,3 +439,61 @@ fn scenes_say_open_walls_and_liquid_and_wrong_values_are_named() {
         assert!(e.contains("bucket.toml") && e.contains(key), "{key}: {e}");
     }
 }
+
+/// The thick-walled crate (one closed surface: outside, rim, inside) as a
+/// scene body with `open = true`, its walls a solid of `density`.
+fn thick_crate(density: f64, y: f64) -> soak_rapier::Simulation {
+    let text = format!(
+        "dt = 0.0166667\nduration = 30.0\n[water]\nkind = \"plane\"\nlevel = 0.0\n[[bodies]]\nname = \"crate\"\n\
+         mesh = \"builtin:thick_open_box:1x0.5x1:0.05\"\nopen = true\nresolution = 128\n\
+         mass = {{ model = \"solid\", density = {density} }}\nposition = [0.0, {y}, 0.0]\n\
+         drag = {{ coefficient = 1.0, linear = 30.0 }}\n"
+    );
+    let s = soak_rapier::LoadedScene::from_str(&text, "crate.toml".as_ref()).unwrap();
+    soak_rapier::Simulation::from_scene(&s).unwrap()
+}
+
+#[test]
+fn a_thick_walled_crate_floats_on_the_air_in_its_cavity_and_sinks_once_filled() {
+    // Walls: the 1 × 0.5 × 1 m box less its 0.9 × 0.45 × 0.9 m cavity,
+    // 0.1355 m³; of density 600, 81.3 kg: afloat on the cavity's air it is
+    // 81.3 kg / (1000 kg/m³ × 1 m²) = 0.0813 m deep.
+    let walls = 0.5 - 0.9 * 0.45 * 0.9;
+    let mut sim = thick_crate(600.0, 0.3);
+    let id = sim.bodies[0].id.unwrap();
+    let mass = sim.soak.body(id).unwrap().mass_properties().mass;
+    assert!((mass - 600.0 * walls).abs() < 1e-3 * mass, "{mass} kg");
+    for _ in 0..1800 {
+        sim.step().unwrap();
+    }
+    let r = &sim.report()[0];
+    let draft = 0.25 - r.position[1];
+    let expected = 600.0 * walls / 1000.0;
+    let tilt = r.rotation[0].abs().max(r.rotation[2].abs());
+    println!(
+        "thick-walled crate: draft {draft:.4} m ({expected:.4} from its walls' weight), tilt {tilt:.3}°"
+    );
+    assert!((draft - expected).abs() < 0.02 * expected, "draft {draft} m");
+    assert!(tilt < 0.5);
+    assert_eq!(sim.soak.flooding(id).unwrap().inside(), 0.0);
+    // Of aluminium (2700: 366 kg) it floats 0.37 m deep while dry; held
+    // with its rim 10 cm under, it fills and, let go, sinks.
+    let mut sim = thick_crate(2700.0, -0.35);
+    let handle = sim.bodies[0].handle;
+    let held = *sim.world.bodies[handle].position();
+    for _ in 0..120 {
+        sim.step().unwrap();
+        let b = &mut sim.world.bodies[handle];
+        b.set_position(held, true);
+        b.set_linvel(Vector::ZERO, true);
+        b.set_angvel(Vector::ZERO, true);
+    }
+    let f = sim.soak.flooding(id).unwrap();
+    let capacity: f64 = f.graph().nodes().map(|n| n.capacity).sum();
+    assert!((capacity - 0.9 * 0.45 * 0.9).abs() < 1e-3, "cavity {capacity} m³");
+    assert!(f.inside() > 0.99 * capacity, "{} of {capacity} m³", f.inside());
+    for _ in 0..300 {
+        sim.step().unwrap();
+    }
+    assert!(sim.report()[0].position[1] < -2.0);
+}

@@ -76,6 +76,7 @@ impl GpuHydro {
                 check_density("areal", *areal_density)?;
                 uniform(*areal_density)
             }
+            MassModel::Given { properties } => crate::mass::check_given(properties).map_err(Into::into),
             MassModel::Walls { density, thickness } => {
                 check_density("wall", *density)?;
                 check_thickness(*thickness)?;

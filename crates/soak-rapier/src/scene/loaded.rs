@@ -89,7 +89,7 @@ impl LoadedScene {
         };
         let mut mesh = soak_bake::load_mesh(&source).map_err(|e| body_err(&b.name, e.to_string()))?;
         if b.open {
-            mesh = soak_bake::cap_openings(&mesh).map_err(|e| body_err(&b.name, e.to_string()))?;
+            mesh = open_mesh(mesh).map_err(|e| body_err(&b.name, e.to_string()))?.0;
         }
         if !b.unwrap {
             return Ok(mesh);
@@ -97,6 +97,41 @@ impl LoadedScene {
         soak_bake::unwrap(&mesh, soak_bake::UnwrapOptions::default())
             .map(|(m, _)| m)
             .map_err(|e| body_err(&b.name, e.to_string()))
+    }
+
+    /// The closed mesh of body `i`'s walls when it is a thick-walled
+    /// container (`open = true` on a closed mesh whose cavity
+    /// [`soak_bake::cap_cavities`] found: its solid is the walls, while
+    /// [`LoadedScene::body_mesh`] is the filled shape); `None` otherwise.
+    ///
+    /// # Errors
+    /// As [`LoadedScene::body_mesh`].
+    pub fn body_walls(&self, i: usize) -> Result<Option<soak_bake::Mesh>, SceneError> {
+        let Some(b) = self.scene.bodies.get(i).filter(|b| b.open) else {
+            return Ok(None);
+        };
+        let key = format!("bodies[{i}].mesh");
+        let err = |message: String| SceneError::Body {
+            path: self.path.clone(),
+            line: self.line_of(&key),
+            body: b.name.clone(),
+            message,
+        };
+        let source = if b.mesh.starts_with("builtin:") {
+            b.mesh.clone()
+        } else {
+            self.resolve(&b.mesh).to_string_lossy().into_owned()
+        };
+        let mesh = soak_bake::load_mesh(&source).map_err(|e| err(e.to_string()))?;
+        let Some(walls) = open_mesh(mesh).map_err(|e| err(e.to_string()))?.1 else {
+            return Ok(None);
+        };
+        if !b.unwrap {
+            return Ok(Some(walls));
+        }
+        soak_bake::unwrap(&walls, soak_bake::UnwrapOptions::default())
+            .map(|(m, _)| Some(m))
+            .map_err(|e| err(e.to_string()))
     }
 
     /// A path relative to the scene file.
@@ -477,4 +512,19 @@ impl LoadedScene {
         }
         Ok(())
     }
+}
+
+/// An open body's mesh: its rims capped; or, for a closed mesh, its
+/// cavities' mouths capped with the walls' own closed mesh beside it.
+fn open_mesh(
+    mesh: soak_bake::Mesh,
+) -> Result<(soak_bake::Mesh, Option<soak_bake::Mesh>), soak_bake::MeshError> {
+    if !soak_bake::boundary_loops(&mesh)?.is_empty() {
+        return Ok((soak_bake::cap_openings(&mesh)?, None));
+    }
+    let cavities = soak_bake::cap_cavities(&mesh)?;
+    if cavities.inner.is_empty() {
+        return Ok((mesh, None));
+    }
+    Ok((cavities.filled, Some(mesh)))
 }

@@ -234,7 +234,24 @@ impl Simulation {
                     }
                 };
                 resolution = side;
+                // A thick-walled container's solid is its walls' closed mesh,
+                // its atlas the filled shape.
+                let walls_mesh = loaded.body_walls(i)?;
+                let walls_solid = match (&walls_mesh, &b.mass) {
+                    (Some(w), &MassSpec::Solid { density }) => {
+                        let atlas = Atlas::bake(w, BakeOptions::square(side.max(64)))
+                            .map_err(|e| body_err(format!("the walls: {e}")))?;
+                        let m = MassModel::Solid { density }
+                            .mass_properties(&atlas)
+                            .map_err(|e| body_err(format!("the walls: {e}")))?;
+                        Some((m, atlas.volume()))
+                    }
+                    _ => None,
+                };
                 let mass_model = match b.mass {
+                    MassSpec::Solid { .. } if walls_solid.is_some() => MassModel::Given {
+                        properties: walls_solid.expect("checked").0,
+                    },
                     MassSpec::Solid { density } => MassModel::Solid { density },
                     MassSpec::Shell { areal_density } => MassModel::Shell { areal_density },
                     MassSpec::Walls { density, thickness } => MassModel::Walls { density, thickness },
@@ -242,7 +259,7 @@ impl Simulation {
                 // The room thin walls take inside the surface.
                 let walls_volume = match b.mass {
                     MassSpec::Walls { thickness, .. } => atlas.wall_area() * thickness,
-                    _ => 0.0,
+                    _ => walls_solid.map_or(0.0, |w| w.1),
                 };
                 let wetting = b
                     .wetting
