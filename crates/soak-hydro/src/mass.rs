@@ -251,8 +251,9 @@ pub enum MassModel {
     /// walls of a thick-walled container, from its own closed mesh, while
     /// its atlas is the filled shape ([`soak_bake::cap_cavities`]).
     Given {
-        /// Mass (kg, > 0), centre of mass (m) and inertia about it (kg·m²).
-        properties: MassProperties,
+        /// Mass (kg, > 0), centre of mass (m) and inertia about it (kg·m²);
+        /// boxed, so the other models stay small.
+        properties: Box<MassProperties>,
     },
 }
 

@@ -250,7 +250,7 @@ impl Simulation {
                 };
                 let mass_model = match b.mass {
                     MassSpec::Solid { .. } if walls_solid.is_some() => MassModel::Given {
-                        properties: walls_solid.expect("checked").0,
+                        properties: Box::new(walls_solid.expect("checked").0),
                     },
                     MassSpec::Solid { density } => MassModel::Solid { density },
                     MassSpec::Shell { areal_density } => MassModel::Shell { areal_density },
