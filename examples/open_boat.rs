@@ -38,7 +38,9 @@ fn main() -> soak::Result<()> {
 
     let mut world = PhysicsWorld::new();
     world.integration_parameters.dt = 1.0 / 60.0;
-    let handle = world.bodies.insert(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, -0.1, 0.0)));
+    let handle = world
+        .bodies
+        .insert(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, -0.1, 0.0)));
     let mut water = ForceGenerator::new(Water::calm(0.0));
     let id = water.register(
         &mut world.bodies,

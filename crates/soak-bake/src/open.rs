@@ -420,9 +420,10 @@ pub fn cap_cavities(mesh: &Mesh) -> Result<Cavities, MeshError> {
         .collect();
     // Support planes: triangles whose plane has every vertex behind it.
     // Triangles of one plane share (quantised) normal and offset.
+    // Normals to 1e-6, offsets to a millionth of the mesh's diagonal.
     let key = |n: &Vector3<f64>, d: f64| -> [i64; 4] {
         let q = |x: f64| (x * 1e6).round() as i64;
-        [q(n.x), q(n.y), q(n.z), (d / tol.max(1e-12) * 1e-3).round() as i64]
+        [q(n.x), q(n.y), q(n.z), (d / (1e3 * tol)).round() as i64]
     };
     let mut extreme: std::collections::HashMap<[i64; 3], f64> = std::collections::HashMap::new();
     let mut regions: std::collections::BTreeMap<[i64; 4], Vec<u32>> = std::collections::BTreeMap::new();

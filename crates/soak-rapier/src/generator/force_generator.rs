@@ -8,7 +8,8 @@ use std::sync::Arc;
 use nalgebra::{Point3, Vector3};
 use rapier3d::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
 use serde::Serialize;
-use soak_graph::Flooding;
+use soak_bake::Atlas;
+use soak_graph::{Flooding, Permeability};
 use soak_hydro::{
     HydroForces, MassModel, MassProperties, SeaSampling, SeaVelocity, TiledAtlas, Water, Wrench,
 };
@@ -270,6 +271,16 @@ impl ForceGenerator {
         kappa: f64,
     ) -> Result<usize, SoakError> {
         let centre = centre.into();
+        self.change_wall(id, |p, atlas| p.paint(atlas, centre, radius, kappa))
+    }
+
+    /// Changes a flooding body's wall with `change`; 0 for a sealed liquid
+    /// graph, which has none.
+    fn change_wall(
+        &mut self,
+        id: SoakId,
+        change: impl FnOnce(&mut Permeability, &Atlas) -> Result<usize, soak_graph::PermeabilityError>,
+    ) -> Result<usize, SoakError> {
         let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
         let flooding = b
             .effects
@@ -279,11 +290,10 @@ impl ForceGenerator {
         let Some(p) = flooding.permeability_mut() else {
             return Ok(0);
         };
-        p.paint(&b.atlas, centre, radius, kappa)
-            .map_err(|source| SoakError::Permeability {
-                name: b.name.clone(),
-                source,
-            })
+        change(p, &b.atlas).map_err(|source| SoakError::Permeability {
+            name: b.name.clone(),
+            source,
+        })
     }
 
     /// Opens a hole in a flooding body's wall: every texel within `radius`
@@ -303,20 +313,7 @@ impl ForceGenerator {
         radius: f64,
     ) -> Result<usize, SoakError> {
         let centre = centre.into();
-        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
-        let flooding = b
-            .effects
-            .flooding
-            .as_mut()
-            .ok_or_else(|| SoakError::NoFlooding { name: b.name.clone() })?;
-        let Some(p) = flooding.permeability_mut() else {
-            return Ok(0);
-        };
-        p.open(&b.atlas, centre, radius)
-            .map_err(|source| SoakError::Permeability {
-                name: b.name.clone(),
-                source,
-            })
+        self.change_wall(id, |p, atlas| p.open(atlas, centre, radius))
     }
 
     /// [`ForceGenerator::open_hole`] at a world point (m): where a shell
