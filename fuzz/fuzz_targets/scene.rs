@@ -108,11 +108,14 @@ fuzz_target!(|data: &[u8]| {
                 }
             }
             Some(GraphSpec::Auto(a)) => a.clusters = a.clusters.min(3),
-            None => {}
+            Some(GraphSpec::Cavity(_)) | None => {}
         }
         physical &= match b.mass {
             MassSpec::Solid { density } => (1.0..=1e5).contains(&density),
             MassSpec::Shell { areal_density } => (1e-2..=1e4).contains(&areal_density),
+            MassSpec::Walls { density, thickness } => {
+                (1.0..=1e5).contains(&density) && (1e-4..=1.0).contains(&thickness)
+            }
         };
         physical &= within(&b.position, 1e4)
             && within(&b.linear_velocity, 100.0)
@@ -120,7 +123,7 @@ fuzz_target!(|data: &[u8]| {
             && b.drag.is_none_or(|d| d.coefficient <= 1e3 && d.linear <= 1e4)
             && b.permeability
                 .iter()
-                .all(|h| h.kappa <= 1e-3 && within(&h.centre, 1e3));
+                .all(|h| h.kappa.is_none_or(|k| k <= 1e-3) && within(&h.centre, 1e3));
     }
     let mut sim = match Simulation::from_scene(&loaded) {
         Ok(sim) => sim,

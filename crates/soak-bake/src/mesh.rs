@@ -1,8 +1,7 @@
 //! The triangle mesh that goes into baking.
 
 use nalgebra::{Point2, Point3, Vector3};
-
-use crate::open::Opening;
+use serde::{Deserialize, Serialize};
 
 /// A triangle mesh with optional per-vertex texture coordinates.
 ///
@@ -167,4 +166,27 @@ impl Mesh {
             .map(|t| t.map(|v| remap[v as usize]))
             .collect()
     }
+}
+
+/// One capped rim of an open mesh.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Opening {
+    /// The rim's vertices in order (indices of the input mesh), the loop the
+    /// mesh's own boundary edges run along.
+    pub rim: Vec<u32>,
+    /// The cap's first triangle in the capped mesh.
+    pub first_triangle: u32,
+    /// Number of cap triangles.
+    pub triangles: u32,
+    /// The cap's area, m².
+    pub area: f64,
+    /// The cap's centroid, object space, m.
+    pub centroid: [f64; 3],
+    /// The cap's outward unit normal (out of the closed shape).
+    pub normal: [f64; 3],
+    /// The rim's length, m.
+    pub length: f64,
+    /// Largest distance of a rim vertex from the cap's plane, m (0 for a
+    /// planar rim).
+    pub warp: f64,
 }

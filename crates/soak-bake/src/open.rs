@@ -18,35 +18,11 @@
 //! result, [`crate::unwrap`], which keeps triangle order).
 
 use nalgebra::{Point2, Point3, Vector3};
-use serde::{Deserialize, Serialize};
 
 use crate::error::{MeshError, MeshProblem};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Opening};
 use crate::pack::{DEFAULT_PADDING, pack_charts};
 use crate::validate::{validate_geometry, validate_topology};
-
-/// One capped rim of an open mesh.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Opening {
-    /// The rim's vertices in order (indices of the input mesh), the loop the
-    /// mesh's own boundary edges run along.
-    pub rim: Vec<u32>,
-    /// The cap's first triangle in the capped mesh.
-    pub first_triangle: u32,
-    /// Number of cap triangles.
-    pub triangles: u32,
-    /// The cap's area, m².
-    pub area: f64,
-    /// The cap's centroid, object space, m.
-    pub centroid: [f64; 3],
-    /// The cap's outward unit normal (out of the closed shape).
-    pub normal: [f64; 3],
-    /// The rim's length, m.
-    pub length: f64,
-    /// Largest distance of a rim vertex from the cap's plane, m (0 for a
-    /// planar rim).
-    pub warp: f64,
-}
 
 /// The boundary loops of `mesh` (vertices welded by position), each as the
 /// vertex indices of the input in the direction its triangles run along it.
