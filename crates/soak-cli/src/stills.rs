@@ -36,6 +36,7 @@ pub fn render_stills(out: &Path, quick: bool) -> Result<Vec<String>> {
         "data/scenes/buoy_on_waves.toml",
         0.5,
         true,
+        None,
     )?);
     lines.push(scene_still(
         out,
@@ -44,6 +45,7 @@ pub fn render_stills(out: &Path, quick: bool) -> Result<Vec<String>> {
         "data/scenes/sinking_boat.toml",
         if quick { 0.1 } else { 0.35 },
         false,
+        None,
     )?);
     // Open containers, seen from above: the water they hold.
     for (name, text, path, eye) in [
@@ -66,7 +68,7 @@ pub fn render_stills(out: &Path, quick: bool) -> Result<Vec<String>> {
             [0.0, 1.9, 1.9],
         ),
     ] {
-        lines.push(scene_still_from(
+        lines.push(scene_still(
             out,
             name,
             text,
@@ -81,21 +83,9 @@ pub fn render_stills(out: &Path, quick: bool) -> Result<Vec<String>> {
     Ok(lines)
 }
 
-/// A scene file simulated to `fraction` of its duration and drawn.
+/// A scene file simulated to `fraction` of its duration and drawn, seen
+/// from `view`'s eye towards its target (m), or as the scene frames itself.
 fn scene_still(
-    out: &Path,
-    name: &str,
-    text: &str,
-    path: &str,
-    fraction: f64,
-    forces: bool,
-) -> Result<String> {
-    scene_still_from(out, name, text, path, fraction, forces, None)
-}
-
-/// [`scene_still`] seen from `view`'s eye towards its target (m), or as
-/// the scene frames itself.
-fn scene_still_from(
     out: &Path,
     name: &str,
     text: &str,
