@@ -99,6 +99,12 @@ pub enum HydroError {
         /// Its value.
         value: f32,
     },
+    /// A body's added mass cannot be computed.
+    #[error("added mass: {reason}")]
+    AddedMass {
+        /// What is wrong.
+        reason: String,
+    },
     /// The mass model gives no mass.
     #[error("the mass model gives zero mass")]
     ZeroMass,

@@ -2,6 +2,7 @@
 
 // The files are private: what users reach is re-exported below, so the
 // layout can change without changing the API.
+mod added_mass;
 mod error;
 mod hydrostatics;
 mod mass;
@@ -24,6 +25,7 @@ pub mod gpu;
 // `reference::solid_mass_properties` beside `MassModel::mass_properties`.
 pub mod reference;
 
+pub use self::added_mass::{AddedMass, EquivalentEllipsoid, lamb_coefficients};
 pub use self::error::{HydroError, WaterError};
 pub use self::hydrostatics::body_state::BodyState;
 pub use self::hydrostatics::evaluation::{evaluate, sampled_water, streaming_read};

@@ -492,6 +492,7 @@ fn parity(
                     dt: 1.0 / 60.0,
                     sea,
                     sea_velocity: SeaVelocity::PerTexel,
+                    added_mass: None,
                 };
                 (water, state, options)
             })

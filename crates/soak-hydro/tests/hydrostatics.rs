@@ -20,6 +20,7 @@ const PRESSURE: HydroOptions = HydroOptions {
     dt: 1.0 / 60.0,
     sea: SeaSampling::PerWavelength(SeaSampling::DEFAULT_PER_WAVELENGTH),
     sea_velocity: SeaVelocity::PerTile,
+    added_mass: None,
 };
 
 /// A small deterministic generator for poses.

@@ -122,6 +122,24 @@ pub enum SoakError {
         /// What is wrong.
         reason: String,
     },
+    /// A body so light against the fluid it displaces (under a millionth
+    /// of its mass) that its buoyancy alone would accelerate it at over a
+    /// million `g`: without the water
+    /// it must push aside ([`Effects::added_mass`](crate::Effects::added_mass))
+    /// the step cannot follow it. Give it an added mass, or more mass.
+    #[error(
+        "body `{name}`: {mass:.3e} kg displacing {displaced:.3e} kg of fluid is lighter than a millionth of it: \
+         its buoyancy alone would accelerate it at over a million g; give it an added mass (Effects::with_added_mass, \
+         `added_mass = true` in a scene) or more mass"
+    )]
+    TooLight {
+        /// The soak body's name.
+        name: String,
+        /// Its mass, kg.
+        mass: f64,
+        /// The mass of the fluid its enclosed volume displaces, kg.
+        displaced: f64,
+    },
     /// A flooding setting was given for a body without flooding.
     #[error("body `{name}` has no flooding")]
     NoFlooding {

@@ -445,7 +445,7 @@ fn sampled_sea_drag_matches_the_reference() {
                 .unwrap()
                 .expect("the swell is sampled by default");
             let want = reference_sums(&atlas, &sampled, &state, &mass, &drag);
-            let (_, explicit) = implicit_drag(&want, &state, &mass, options.dt);
+            let (_, explicit) = implicit_drag(&want, &state, &mass, None, options.dt);
             let f = evaluate(&atlas, &sampled, &state, &mass, 0.0, &options).unwrap();
             let d = wrench_difference(&f.drag_explicit, &explicit, &want);
             assert!(d <= 1e-10, "{name} at y = {y}: {d:e}");
@@ -545,7 +545,7 @@ fn whole_bodies_match_the_reference() {
                         }
                         // What the evaluations report: the implicit and the
                         // explicit drag of the reference's system.
-                        let (applied, explicit) = implicit_drag(&want, &state, mass, options.dt);
+                        let (applied, explicit) = implicit_drag(&want, &state, mass, None, options.dt);
                         let f = evaluate(atlas, &water, &state, mass, 0.0, &options).unwrap();
                         let ft = tiled
                             .evaluate(atlas, &water, &state, mass, 0.0, &options)

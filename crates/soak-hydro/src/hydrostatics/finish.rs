@@ -54,7 +54,12 @@ pub(crate) fn finish(
         BuoyancyMode::Off => Wrench::default(),
     };
     let (drag, drag_explicit) = match drag {
-        Some(d) => implicit_drag(d, state, mass, options.dt),
+        Some(d) => {
+            let added = options
+                .added_mass
+                .map(|a| a.scaled(&state.pose.rotation, water.density, volume));
+            implicit_drag(d, state, mass, added.as_ref(), options.dt)
+        }
         None => (Wrench::default(), Wrench::default()),
     };
     HydroForces {

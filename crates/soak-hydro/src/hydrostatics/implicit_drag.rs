@@ -10,11 +10,15 @@ use crate::mass::MassProperties;
 
 /// `(applied, explicit)`: the applied drag is `M (q' − q)/dt` with
 /// `q' = (M + dt K)⁻¹ (M q + dt b)`, which decays the relative velocity
-/// without ever reversing it, for any `dt`.
+/// without ever reversing it, for any `dt`. `M` is the body's mass and
+/// inertia, plus `added` where the body has an added mass: its
+/// translational part in world axes (kg) and its rotational part in
+/// object axes (kg·m²).
 pub(crate) fn implicit_drag(
     d: &DragSums,
     state: &BodyState,
     mass: &MassProperties,
+    added: Option<&(Matrix3<f64>, Matrix3<f64>)>,
     dt: f64,
 ) -> (Wrench, Wrench) {
     let q = Vector6::new(
@@ -34,10 +38,18 @@ pub(crate) fn implicit_drag(
         return (wrench(&explicit), wrench(&explicit));
     }
     let rot = state.pose.rotation.to_rotation_matrix().into_inner();
-    let inertia = rot * mass.inertia * rot.transpose();
+    let (linear, inertia) = match added {
+        None => (
+            Matrix3::identity() * mass.mass,
+            rot * mass.inertia * rot.transpose(),
+        ),
+        Some((linear, angular)) => (
+            Matrix3::identity() * mass.mass + linear,
+            rot * (mass.inertia + angular) * rot.transpose(),
+        ),
+    };
     let mut m = Matrix6::zeros();
-    m.fixed_view_mut::<3, 3>(0, 0)
-        .copy_from(&(Matrix3::identity() * mass.mass));
+    m.fixed_view_mut::<3, 3>(0, 0).copy_from(&linear);
     m.fixed_view_mut::<3, 3>(3, 3).copy_from(&inertia);
     // A massless rotational axis (point mass) gets no rotational drag.
     let sys = m + d.k * dt;

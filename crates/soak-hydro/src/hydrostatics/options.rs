@@ -62,6 +62,12 @@ pub struct HydroOptions {
     /// (the default) or at every texel.
     #[serde(default)]
     pub sea_velocity: SeaVelocity,
+    /// The body's added mass ([`AddedMass`](crate::AddedMass)), if it has
+    /// one: the implicit drag solve then moves the body's mass and the
+    /// water's it sets moving (the added mass scaled by the submerged
+    /// fraction), not the body's alone. `None`: the body's mass alone.
+    #[serde(default)]
+    pub added_mass: Option<crate::AddedMass>,
 }
 
 /// Where the tiled path reads the fluid's velocity for the drag under a
@@ -138,6 +144,7 @@ impl Default for HydroOptions {
             dt: 1.0 / 60.0,
             sea: SeaSampling::default(),
             sea_velocity: SeaVelocity::default(),
+            added_mass: None,
         }
     }
 }

@@ -36,6 +36,9 @@ pub struct SoakBody {
     pub(super) effects: Effects,
     pub(super) forces: HydroForces,
     pub(super) applied: Wrench,
+    /// The water's inertial reaction at the last step (zero without an
+    /// added mass).
+    pub(super) added_force: Wrench,
     pub(super) dry_skips: u64,
     /// What the last wetting step did (meaningful with wetting only).
     pub(super) wet_report: soak_wet::StepReport,
@@ -92,6 +95,15 @@ impl SoakBody {
     /// (N and N·m about the centre of mass; f64, as soak summed them).
     pub fn applied(&self) -> &Wrench {
         &self.applied
+    }
+    /// The reaction of the water the body sets moving at the last step,
+    /// world frame (N and N·m about the centre of mass): `−M_a a` with the
+    /// accelerations the step ends with, zero without an added mass
+    /// ([`Effects::added_mass`](super::Effects::added_mass)) or dry. It is
+    /// already part of [`SoakBody::applied`]: the buoyancy and drag the
+    /// water exerts, plus this, are what Rapier was handed.
+    pub fn added_mass_force(&self) -> &Wrench {
+        &self.added_force
     }
     /// The force handed to Rapier at the last step, world frame, N.
     pub fn applied_force(&self) -> Vector {

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
 use soak_graph::Flooding;
-use soak_hydro::{BuoyancyMode, Drag, DragTexels, MassModel};
+use soak_hydro::{AddedMass, BuoyancyMode, Drag, DragTexels, MassModel};
 use soak_wet::Wetting;
 
 /// The effects a body takes part in, each `None` when off: buoyancy and
@@ -51,6 +51,18 @@ pub struct Effects {
     /// Holes torn by hard contacts (a cannonball, a rock): see
     /// [`ImpactHoles`]. Needs flooding, whose wall takes the holes.
     pub impact_holes: Option<ImpactHoles>,
+    /// Added mass: the water a body sets moving when it accelerates
+    /// ([`AddedMass`], in the body's axes; [`AddedMass::of_atlas`] gives
+    /// the equivalent ellipsoid's), scaled each step by the submerged
+    /// fraction and counted implicitly in the step: a bubble rises at no
+    /// more than about `2 g`, a floating body heaves with the period of its
+    /// mass and the water's. The buoyancy, the drag's implicit solve and
+    /// the stiff-step treatment all move the larger mass; Rapier is handed
+    /// the wrench that gives the body alone the same accelerations
+    /// (contacts still see the body's own mass). `None`: the body's mass
+    /// alone, and a body lighter than a millionth of the fluid it
+    /// displaces is refused ([`SoakError::TooLight`](crate::SoakError::TooLight)).
+    pub added_mass: Option<AddedMass>,
 }
 
 /// The rule that tears a hole where something hits a body hard: after each
@@ -173,6 +185,39 @@ impl Effects {
     /// ```
     pub fn with_flooding(mut self, flooding: Flooding) -> Self {
         self.flooding = Some(flooding);
+        self
+    }
+
+    /// The same effects with an added mass ([`Effects::added_mass`]; e.g.
+    /// [`AddedMass::of_atlas`] of the body's atlas).
+    ///
+    /// # Example
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use soak_bake::{Atlas, BakeOptions, builtin};
+    /// use soak_hydro::{AddedMass, MassModel, Water};
+    /// use soak_rapier::{BodyDesc, Effects, ForceGenerator};
+    ///
+    /// // A hollow sphere of 1 kg/m³, 10 m down: buoyancy alone would fling it
+    /// // up at a thousand g, the water it must push aside holds it to 2 g.
+    /// let mut world = PhysicsWorld::new();
+    /// let handle = world.bodies.insert(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, -10.0, 0.0)));
+    /// let atlas = Atlas::bake(&builtin::sphere(0.5, 48, 24), BakeOptions::square(128))?;
+    /// let added = AddedMass::of_atlas(&atlas)?;
+    /// let mut soak = ForceGenerator::new(Water::calm(0.0));
+    /// soak.register(&mut world.bodies, &world.colliders, handle, BodyDesc {
+    ///     name: "bubble".into(),
+    ///     atlas: atlas.into(),
+    ///     mass_model: MassModel::Solid { density: 1.0 },
+    ///     effects: Effects::buoyancy().with_added_mass(added),
+    /// })?;
+    /// soak.step(&mut world)?;
+    /// let a = world.bodies[handle].linvel().y / world.integration_parameters.dt;
+    /// assert!((a / 9.81 - 2.0).abs() < 0.05, "{a} m/s²");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_added_mass(mut self, added: AddedMass) -> Self {
+        self.added_mass = Some(added);
         self
     }
 

@@ -13,6 +13,7 @@ use soak_hydro::{BodyState, BuoyancyMode, HydroForces, HydroOptions, Water, Wren
 use super::config::SoakId;
 use super::force_generator::{ForceGenerator, Impact};
 use super::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
+use super::inertial::Inertial;
 use super::rapier_body::apply_wrench;
 use crate::convert;
 use crate::error::SoakError;
@@ -128,6 +129,7 @@ impl ForceGenerator {
                 };
                 apply_wrench(rb, &Wrench::default());
                 b.applied = Wrench::default();
+                b.added_force = Wrench::default();
                 continue;
             }
             let options = HydroOptions {
@@ -136,6 +138,7 @@ impl ForceGenerator {
                 dt,
                 sea: self.sea,
                 sea_velocity: self.sea_velocity,
+                added_mass: b.effects.added_mass,
             };
             work.push((k, state, options));
         }
@@ -212,6 +215,19 @@ impl ForceGenerator {
                     continue;
                 }
             };
+            // What the step moves: the body, and with an added mass the
+            // water it sets moving (as much of it as is under water now).
+            let inertial = match &b.effects.added_mass {
+                None => Inertial::plain(rb.mass() as f64, &b.mass.inertia),
+                Some(added) => Inertial::with_added(
+                    rb.mass() as f64,
+                    &b.mass.inertia,
+                    added,
+                    &state.pose.rotation,
+                    self.water.density,
+                    forces.submerged_volume,
+                ),
+            };
             let mut wrench = Wrench::default();
             // Buoyancy can never exceed the weight of fluid the whole body displaces.
             let limit = 1.5 * self.water.density * self.water.gravity * b.shape.volume + 1e-9;
@@ -232,7 +248,10 @@ impl ForceGenerator {
                 // The drag is applied with the buoyancy: the implicit solve counts it.
                 let drag = last_part(&forces.drag);
                 let water = sea.as_ref().unwrap_or(&self.water);
-                wrench = wrench + implicit_heave(b, rb, water, state, options, t, substeps, limit, bw, drag);
+                wrench = wrench
+                    + implicit_heave(
+                        b, rb, water, state, options, t, substeps, limit, bw, drag, &inertial,
+                    );
             }
             if forces.drag.is_finite() {
                 wrench = wrench + forces.drag;
@@ -240,8 +259,21 @@ impl ForceGenerator {
                 self.firewall
                     .reject(step, &b.name, "drag", format!("non-finite {:?}", forces.drag));
             }
-            apply_wrench(rb, &wrench);
-            b.applied = wrench;
+            // With an added mass: the wrench that gives the body alone the
+            // accelerations the body and the water would take.
+            let applied = if inertial.has_added() {
+                let g = self.water.gravity * rb.gravity_scale() as f64;
+                let rapier = inertial.for_rapier(&wrench, &b.mass.inertia, &state.pose.rotation, g);
+                if rapier.is_finite() { rapier } else { wrench }
+            } else {
+                wrench
+            };
+            apply_wrench(rb, &applied);
+            b.added_force = Wrench {
+                force: applied.force - wrench.force,
+                torque: applied.torque - wrench.torque,
+            };
+            b.applied = applied;
             b.forces = forces;
         }
     }

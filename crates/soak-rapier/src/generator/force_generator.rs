@@ -17,7 +17,7 @@ use soak_wet::{Environment, Wetting};
 
 use super::body::{FloodSettings, Shape, SoakBody, with_extra};
 use super::config::{Backend, BodyDesc, SoakId};
-use super::rapier_body::push_mass;
+use super::rapier_body::{check_not_too_light, push_mass};
 use crate::error::SoakError;
 use crate::firewall::Firewall;
 
@@ -537,6 +537,23 @@ impl ForceGenerator {
                 source,
             })?;
         }
+        check_not_too_light(
+            &desc.name,
+            mass.mass,
+            &desc.effects,
+            &self.water,
+            desc.atlas.volume(),
+        )?;
+        if let Some(added) = &desc.effects.added_mass
+            && !added.is_valid()
+        {
+            return Err(SoakError::Hydro {
+                name: desc.name.clone(),
+                source: soak_hydro::HydroError::AddedMass {
+                    reason: format!("{added:?} is not finite with a volume > 0"),
+                },
+            });
+        }
         push_mass(&desc.name, body, colliders, &mass)?;
         let tiled = (self.backend != Backend::PerTexel && desc.effects.needs_hydrostatics())
             .then(|| shared_tiles(&self.bodies, &desc.atlas));
@@ -557,6 +574,7 @@ impl ForceGenerator {
             effects: desc.effects,
             forces: HydroForces::default(),
             applied: Wrench::default(),
+            added_force: Wrench::default(),
             dry_skips: 0,
             wet_report: soak_wet::StepReport::default(),
             flood: FloodSettings::default(),
@@ -588,7 +606,9 @@ impl ForceGenerator {
         let rb = bodies
             .get_mut(b.handle)
             .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
-        push_mass(&b.name, rb, colliders, &with_extra(&mass, b.extra_mass.as_ref()))?;
+        let total = with_extra(&mass, b.extra_mass.as_ref());
+        check_not_too_light(&b.name, total.mass, &b.effects, &self.water, b.shape.volume)?;
+        push_mass(&b.name, rb, colliders, &total)?;
         b.mass = with_extra(&mass, b.extra_mass.as_ref());
         b.model_mass = mass;
         b.mass_model = model;
@@ -667,6 +687,7 @@ impl ForceGenerator {
             .get_mut(b.handle)
             .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
         let total = with_extra(&mass, b.extra_mass.as_ref());
+        check_not_too_light(&b.name, total.mass, &b.effects, &self.water, atlas.volume())?;
         push_mass(&b.name, rb, colliders, &total)?;
         if b.tiled.is_some() {
             b.tiled = Some(Arc::new(TiledAtlas::new(&atlas)));

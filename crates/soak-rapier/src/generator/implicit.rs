@@ -7,6 +7,7 @@ use rapier3d::prelude::RigidBody;
 use soak_hydro::{BodyState, BuoyancyMode, HydroOptions, SurfaceKind, Water, Wrench};
 
 use super::body::{Shape, SoakBody};
+use super::inertial::Inertial;
 use super::predicted_step::Step;
 
 /// Below this weight `θ` of the implicit part of the heave step (see
@@ -67,6 +68,14 @@ pub(super) fn implicit_weight(water: &Water, shape: &Shape, m: f64, dt: f64, sub
 /// of the angular acceleration: without it, a light stiff body's drag and
 /// buoyancy each stopped the same motion and together overshot it.
 ///
+/// With an added mass (see [`Inertial`]) the step moves the body and the
+/// water it sets moving: `m` above is the mass a vertical force moves
+/// ([`Inertial::vertical`]), `a = (F_y + D_y − m_b g)/m` with `m_b` the
+/// body's own mass, and the pitch and roll turn the inertia with its
+/// rotational added part. The wrench returned is the one that moves the
+/// two; [`Inertial::for_rapier`] makes it the one Rapier, moving the body
+/// alone, must be given.
+///
 /// Last, the step is checked for energy ([`Step::without_energy_gain`]):
 /// the generator predicts Rapier's step from the pose now under the
 /// wrench, and where the body would end it with more energy than it began
@@ -89,9 +98,12 @@ pub(super) fn implicit_heave(
     limit: f64,
     buoyancy: Wrench,
     drag: Wrench,
+    inertial: &Inertial,
 ) -> Wrench {
     let dt = options.dt;
-    let m = rb.mass() as f64;
+    // The mass a vertical force moves: the body's, or with the water's it
+    // sets moving.
+    let m = inertial.vertical();
     let radius = b.atlas.bounding_radius();
     if !(dt > 0.0 && m > 0.0 && radius > 0.0 && limit.is_finite()) || options.buoyancy == BuoyancyMode::Off {
         return buoyancy;
@@ -131,13 +143,18 @@ pub(super) fn implicit_heave(
             .filter(|w| w.is_finite() && (0.0..=limit).contains(&w.force.y))
     };
     let rot = state.pose.rotation.to_rotation_matrix().into_inner();
-    let inertia = rot * b.mass.inertia * rot.transpose();
+    let inertia = rot * inertial.inertia() * rot.transpose();
     // The implicit wrench; every way out of it goes through the energy
     // check below.
     let implicit = (|| {
         let at = |dy: f64| at_pose(posed(dy, Vector3::zeros()));
         // The shift the step would make with vertical buoyancy f.
-        let target = |f: f64| theta * ((1.0 - beta) * dt * v + c * dt * dt * ((f + drag.force.y) / m - g));
+        let target = |f: f64| {
+            let a = inertial
+                .acceleration(&Vector3::new(0.0, f + drag.force.y, 0.0), g)
+                .y;
+            theta * ((1.0 - beta) * dt * v + c * dt * dt * a)
+        };
         let residual = |dy: f64, f: f64| dy - target(f);
         // Bracket: no buoyancy (residual ≤ 0) and the most there can be (≥ 0).
         let (mut lo, mut hi) = (target(0.0), target(limit));
@@ -223,7 +240,7 @@ pub(super) fn implicit_heave(
     let Some(step) = Step::new(
         state,
         &b.mass,
-        m,
+        *inertial,
         g,
         drag,
         dt,

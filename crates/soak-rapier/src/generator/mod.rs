@@ -17,6 +17,7 @@ mod config;
 mod driver;
 mod force_generator;
 mod implicit;
+mod inertial;
 mod predicted_step;
 mod rapier_body;
 mod state;

@@ -6,6 +6,8 @@
 use nalgebra::{Isometry3, Matrix3, Point3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use soak_hydro::{BodyState, MassProperties, PrincipalInertia, Wrench};
 
+use super::inertial::Inertial;
+
 /// Rapier's step of one body as the generator predicts it: from the pose
 /// now, under a constant buoyancy wrench, the drag and gravity, over
 /// `substeps` substeps of symplectic Euler (`y' = y + dt v + c dt² a`,
@@ -16,14 +18,16 @@ pub(super) struct Step<'a> {
     /// `(s + 1)/(2s)` for `s` substeps: the step moves the centre by
     /// `dt ((1 − c) v₀ + c v₁)`.
     c: f64,
-    m: f64,
+    /// The body's mass and inertia, with the water's it sets moving.
+    inertial: Inertial,
     /// Gravity along −y, m/s² (the body's gravity scale included).
     g: f64,
     /// World inertia tensor about the centre of mass at the pose now, and
     /// its inverse.
     inertia: Matrix3<f64>,
     inverse: Matrix3<f64>,
-    /// Inertia tensor in the object's axes.
+    /// Inertia tensor in the object's axes (the added rotational inertia
+    /// included).
     body_inertia: Matrix3<f64>,
     /// Velocities and the pose now (the generator evaluated at a lookahead
     /// pose `β dt` ahead: back from it along the same velocities).
@@ -81,7 +85,7 @@ impl<'a> Step<'a> {
     pub(super) fn new(
         state: &BodyState,
         mass: &'a MassProperties,
-        m: f64,
+        inertial: Inertial,
         g: f64,
         drag: Wrench,
         dt: f64,
@@ -94,15 +98,15 @@ impl<'a> Step<'a> {
         let com = &mass.center_of_mass;
         let rot0 = UnitQuaternion::from_scaled_axis(-w0 * lookahead) * state.pose.rotation;
         let r = rot0.to_rotation_matrix().into_inner();
-        let inertia = r * mass.inertia * r.transpose();
+        let inertia = r * inertial.inertia() * r.transpose();
         Some(Self {
             dt,
             c: (substeps + 1.0) / (2.0 * substeps),
-            m,
+            inertial,
             g,
             inertia,
             inverse: inertia.try_inverse()?,
-            body_inertia: mass.inertia,
+            body_inertia: *inertial.inertia(),
             v0,
             w0,
             com0: state.pose * com - v0 * lookahead,
@@ -118,7 +122,7 @@ impl<'a> Step<'a> {
     /// Linear and angular acceleration under `w`, the drag and gravity.
     fn accelerations(&self, w: &Wrench) -> (Vector3<f64>, Vector3<f64>) {
         (
-            (w.force + self.drag.force) / self.m - Vector3::y() * self.g,
+            self.inertial.acceleration(&(w.force + self.drag.force), self.g),
             self.inverse * (w.torque + self.drag.torque),
         )
     }
@@ -133,7 +137,7 @@ impl<'a> Step<'a> {
     /// The buoyancy wrench that ends the step with velocities `v1`, `w1`.
     fn wrench_for(&self, v1: &Vector3<f64>, w1: &Vector3<f64>) -> Wrench {
         Wrench {
-            force: self.m * ((v1 - self.v0) / self.dt + Vector3::y() * self.g) - self.drag.force,
+            force: self.inertial.force_for(&((v1 - self.v0) / self.dt), self.g) - self.drag.force,
             torque: self.inertia * ((w1 - self.w0) / self.dt) - self.drag.torque,
         }
     }
@@ -165,11 +169,10 @@ impl<'a> Step<'a> {
             let local = rotation.inverse() * w;
             0.5 * local.dot(&(self.body_inertia * local))
         };
-        let kinetic = 0.5 * self.m * (end.v.norm_squared() - self.v0.norm_squared())
-            + spin(&end.rotation, &end.w)
+        let kinetic = self.inertial.kinetic_change(&end.v, &self.v0) + spin(&end.rotation, &end.w)
             - spin(&self.rot0, &self.w0);
         let sideways = Vector3::new(end.dx.x, 0.0, end.dx.z);
-        let gain = kinetic + self.m * self.g * end.dx.y + u1
+        let gain = kinetic + self.inertial.mass() * self.g * end.dx.y + u1
             - u0
             - self.drag.force.dot(&end.dx)
             - self.drag.torque.dot(&end.turn)
@@ -341,7 +344,7 @@ mod tests {
             let step = Step::new(
                 &state,
                 &mass,
-                2.0,
+                Inertial::plain(2.0, &mass.inertia),
                 g,
                 Wrench::default(),
                 dt,

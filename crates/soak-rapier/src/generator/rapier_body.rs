@@ -3,7 +3,9 @@
 
 use nalgebra::Vector3;
 use rapier3d::prelude::{ColliderSet, RigidBody};
-use soak_hydro::{MassProperties, Wrench};
+use soak_hydro::{BuoyancyMode, MassProperties, Water, Wrench};
+
+use super::config::Effects;
 
 use crate::convert;
 use crate::error::SoakError;
@@ -17,6 +19,35 @@ pub(super) fn apply_wrench(rb: &mut RigidBody, w: &Wrench) {
     }
 }
 
+/// Below this fraction of the fluid it displaces a body without an added
+/// mass is refused ([`SoakError::TooLight`]): its buoyancy would
+/// accelerate it at over a million `g`, and the stiff step can no longer
+/// resolve it (at a trillionth, a sphere under water was handed no force
+/// at all and fell through).
+pub(super) const LIGHTEST_WITHOUT_ADDED_MASS: f64 = 1e-6;
+
+/// Refuses a body with buoyancy and no added mass whose `mass` (kg) is
+/// below [`LIGHTEST_WITHOUT_ADDED_MASS`] of the `water` its `volume` (m³)
+/// displaces.
+pub(super) fn check_not_too_light(
+    name: &str,
+    mass: f64,
+    effects: &Effects,
+    water: &Water,
+    volume: f64,
+) -> Result<(), SoakError> {
+    let buoyant = effects.buoyancy.is_some_and(|m| m != BuoyancyMode::Off);
+    let displaced = water.density * volume.abs();
+    if buoyant && effects.added_mass.is_none() && mass < LIGHTEST_WITHOUT_ADDED_MASS * displaced {
+        return Err(SoakError::TooLight {
+            name: name.to_string(),
+            mass,
+            displaced,
+        });
+    }
+    Ok(())
+}
+
 /// Hands mass properties to Rapier and makes them readable at once.
 pub(super) fn push_mass(
     name: &str,
@@ -24,7 +55,9 @@ pub(super) fn push_mass(
     colliders: &ColliderSet,
     m: &MassProperties,
 ) -> Result<(), SoakError> {
-    if !m.is_finite() || m.mass <= 0.0 {
+    // Rapier holds the mass in f32: a mass that rounds to nothing there
+    // (or to a subnormal) would leave the body unmoved by any force.
+    if !m.is_finite() || m.mass <= 0.0 || !(m.mass as f32).is_normal() {
         return Err(SoakError::MassProperties {
             name: name.to_string(),
             reason: format!(

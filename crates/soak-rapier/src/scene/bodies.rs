@@ -116,6 +116,12 @@ pub struct BodySpec {
     pub buoyancy: BuoyancyMode,
     /// Drag coefficients; no drag when absent.
     pub drag: Option<Drag>,
+    /// Added mass: the water the body sets moving when it accelerates,
+    /// from the equivalent ellipsoid of its enclosed volume
+    /// ([`soak_hydro::AddedMass::of_atlas`]), scaled by the submerged
+    /// fraction (see [`crate::Effects::added_mass`]). Off by default.
+    #[serde(default)]
+    pub added_mass: bool,
     /// Sum the drag over a second bake of the mesh at this side, texels,
     /// rather than over the body's own atlas (see
     /// [`soak_hydro::DragTexels`]): 64 takes a 1024² body's drag to within

@@ -8,7 +8,7 @@ use std::sync::Arc;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions};
-use soak_hydro::{DragTexels, Gerstner, HeightField, MassModel, Plane, Unbounded, Water};
+use soak_hydro::{AddedMass, DragTexels, Gerstner, HeightField, MassModel, Plane, Unbounded, Water};
 
 use super::{SimBody, Simulation};
 use crate::convert;
@@ -304,7 +304,13 @@ impl Simulation {
                     }
                     None => None,
                 };
+                let added_mass = b
+                    .added_mass
+                    .then(|| AddedMass::of_atlas(&atlas))
+                    .transpose()
+                    .map_err(|e| body_err(e.to_string()))?;
                 let effects = Effects {
+                    added_mass,
                     buoyancy: Some(b.buoyancy),
                     drag: b.drag,
                     drag_texels,

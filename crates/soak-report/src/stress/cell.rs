@@ -7,8 +7,8 @@ use std::time::Instant;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::{PhysicsWorld, RigidBodyBuilder};
 use soak_graph::{Flooding, FlowOptions, LiquidGraph, Node, Permeability, Pipe, WATER_VISCOSITY};
-use soak_hydro::{BuoyancyMode, Drag, MassModel};
-use soak_rapier::{BodyDesc, Effects, ForceGenerator, convert};
+use soak_hydro::{AddedMass, BuoyancyMode, Drag, MassModel};
+use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakError, convert};
 use soak_wet::{Diffusion, Environment, FieldResolution, Liquid, Material, Wetting};
 
 use super::energy::{allowance, periods, specific_energy};
@@ -123,6 +123,14 @@ pub(crate) fn run_cell(
         wet.set_diffusion(Some(Diffusion::new(coefficient).with_resolution(field)))?;
         substeps_expected = 10;
         effects = effects.with_wetting(wet);
+    }
+    // Added mass: the equivalent ellipsoid of the closed shape.
+    if cell.level >= Level::AddedMass {
+        let added = AddedMass::of_atlas(&f.atlas).map_err(|source| SoakError::Hydro {
+            name: cell.name(),
+            source,
+        })?;
+        effects = effects.with_added_mass(added);
     }
     // An open container's walls weigh what a solid of the cell's density
     // filling its closed shape would.

@@ -133,11 +133,20 @@ pub enum Level {
     Ingress,
     /// + surface wetting with diffusion at 10× its explicit limit.
     Wetting,
+    /// + added mass: the equivalent ellipsoid's, scaled by the submerged
+    ///   fraction.
+    AddedMass,
 }
 
 impl Level {
     /// Every level of the matrix, in its order.
-    pub const ALL: [Level; 4] = [Level::Buoyancy, Level::Drag, Level::Ingress, Level::Wetting];
+    pub const ALL: [Level; 5] = [
+        Level::Buoyancy,
+        Level::Drag,
+        Level::Ingress,
+        Level::Wetting,
+        Level::AddedMass,
+    ];
 
     /// The short name in cell names and tables.
     pub fn label(self) -> &'static str {
@@ -146,6 +155,7 @@ impl Level {
             Level::Drag => "+drag",
             Level::Ingress => "+ingress",
             Level::Wetting => "+wetting",
+            Level::AddedMass => "+added_mass",
         }
     }
 }
@@ -193,8 +203,8 @@ fn fmt_scale(s: f64) -> String {
     if s == 1.0 { "1m".into() } else { format!("{s:e}m") }
 }
 
-/// The full product: 10 meshes × 3 waters × 4 levels × 3 scales × 7
-/// densities × 3 rates = 7,560 cells.
+/// The full product: 10 meshes × 3 waters × 5 levels × 3 scales × 7
+/// densities × 3 rates = 9,450 cells.
 pub fn full_matrix() -> Vec<Cell> {
     let mut cells = Vec::new();
     for mesh in Shape::ALL {
@@ -220,7 +230,7 @@ pub fn full_matrix() -> Vec<Cell> {
     cells
 }
 
-/// Every mesh × water × effects (120 cells), each with one (density, time
+/// Every mesh × water × effects (150 cells), each with one (density, time
 /// step, scale) taken in turn from a list that pairs the extremes: the
 /// lightest and the heaviest bodies, the neutral one, the smallest and
 /// largest scales, the shortest and longest steps all appear, on every mesh
@@ -264,8 +274,8 @@ mod tests {
     #[test]
     fn the_matrices_have_their_sizes_and_names_round_trip() {
         let full = full_matrix();
-        assert_eq!(full.len(), 7560);
-        assert_eq!(quick_matrix().len(), 120);
+        assert_eq!(full.len(), 9450);
+        assert_eq!(quick_matrix().len(), 150);
         let mut names: Vec<String> = full.iter().map(Cell::name).collect();
         names.sort();
         names.dedup();

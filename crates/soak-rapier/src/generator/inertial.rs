@@ -1,0 +1,178 @@
+//! The inertia a step moves ([`Inertial`]): the body's mass and inertia,
+//! plus the added mass of the water it sets moving where it has one
+//! ([`Effects::added_mass`](super::Effects::added_mass)), and the wrench
+//! that makes Rapier, which moves the body's mass alone, move the body as
+//! the two would move ([`Inertial::for_rapier`]).
+
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use soak_hydro::{AddedMass, Wrench};
+
+/// What a step accelerates: the body's mass `m` (which gravity pulls) and
+/// its inertia, plus, with an added mass `M_a`, the water's: a force `F`
+/// (gravity aside) then accelerates the body by `(m I + M_a)⁻¹ (F − m g ŷ)`.
+///
+/// The added mass enters the step implicitly: the water's reaction
+/// `−M_a a` is taken at the acceleration the step itself ends with, which
+/// is the same as moving the larger mass. It can only slow the body's
+/// answer to a force, never make it overshoot, at any time step.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Inertial {
+    /// The body's mass, kg.
+    mass: f64,
+    /// The inertia about the centre of mass, object axes, kg·m²: the
+    /// body's, plus the rotational added mass.
+    inertia: Matrix3<f64>,
+    /// With an added mass: `m I + M_a` (world axes, kg) and its inverse.
+    linear: Option<(Matrix3<f64>, Matrix3<f64>)>,
+}
+
+impl Inertial {
+    /// The body's own mass (kg) and inertia (object axes, kg·m²).
+    pub(super) fn plain(mass: f64, inertia: &Matrix3<f64>) -> Self {
+        Self {
+            mass,
+            inertia: *inertia,
+            linear: None,
+        }
+    }
+
+    /// The body's mass and inertia with `added` scaled to the fluid's
+    /// `density` (kg/m³) and the body's `submerged_volume` (m³), turned by
+    /// `rotation`. Where the added mass is nil (the body dry) or the sum
+    /// cannot be inverted, the body's own.
+    pub(super) fn with_added(
+        mass: f64,
+        inertia: &Matrix3<f64>,
+        added: &AddedMass,
+        rotation: &UnitQuaternion<f64>,
+        density: f64,
+        submerged_volume: f64,
+    ) -> Self {
+        if added.fraction(submerged_volume) <= 0.0 {
+            return Self::plain(mass, inertia);
+        }
+        let (linear, angular) = added.scaled(rotation, density, submerged_volume);
+        let total = Matrix3::identity() * mass + linear;
+        match total.try_inverse() {
+            Some(inverse) if inverse.iter().all(|x| x.is_finite()) => Self {
+                mass,
+                inertia: inertia + angular,
+                linear: Some((total, inverse)),
+            },
+            _ => Self::plain(mass, inertia),
+        }
+    }
+
+    /// The body's mass, kg.
+    pub(super) fn mass(&self) -> f64 {
+        self.mass
+    }
+
+    /// The inertia a torque turns, object axes, kg·m².
+    pub(super) fn inertia(&self) -> &Matrix3<f64> {
+        &self.inertia
+    }
+
+    /// The mass a vertical force alone accelerates, kg: `m`, or
+    /// `1/((m I + M_a)⁻¹)_yy`.
+    pub(super) fn vertical(&self) -> f64 {
+        match &self.linear {
+            None => self.mass,
+            Some((_, inverse)) => 1.0 / inverse[(1, 1)],
+        }
+    }
+
+    /// The linear acceleration under `force` (N, gravity aside) and gravity
+    /// `g` (m/s², along −y).
+    pub(super) fn acceleration(&self, force: &Vector3<f64>, g: f64) -> Vector3<f64> {
+        match &self.linear {
+            None => force / self.mass - Vector3::y() * g,
+            Some((_, inverse)) => inverse * (force - Vector3::y() * (self.mass * g)),
+        }
+    }
+
+    /// The force (gravity aside) that accelerates the body by `a` under
+    /// gravity `g`: the inverse of [`Inertial::acceleration`].
+    pub(super) fn force_for(&self, a: &Vector3<f64>, g: f64) -> Vector3<f64> {
+        match &self.linear {
+            None => self.mass * (a + Vector3::y() * g),
+            Some((total, _)) => total * a + Vector3::y() * (self.mass * g),
+        }
+    }
+
+    /// The change of the translational kinetic energy from `v0` to `v1`
+    /// (m/s), the water's included, J.
+    pub(super) fn kinetic_change(&self, v1: &Vector3<f64>, v0: &Vector3<f64>) -> f64 {
+        match &self.linear {
+            None => 0.5 * self.mass * (v1.norm_squared() - v0.norm_squared()),
+            Some((total, _)) => 0.5 * (v1.dot(&(total * v1)) - v0.dot(&(total * v0))),
+        }
+    }
+
+    /// Whether an added mass is counted.
+    pub(super) fn has_added(&self) -> bool {
+        self.linear.is_some()
+    }
+
+    /// The wrench Rapier must be given, moving the body's `own` inertia
+    /// (object axes) and its mass alone, for the body turned by `rotation`
+    /// to move as the body and the water it sets moving would under `w`
+    /// (about the centre of mass, world) and gravity `g`: the same linear
+    /// and angular accelerations. Without an added mass, `w` itself.
+    pub(super) fn for_rapier(
+        &self,
+        w: &Wrench,
+        own: &Matrix3<f64>,
+        rotation: &UnitQuaternion<f64>,
+        g: f64,
+    ) -> Wrench {
+        if self.linear.is_none() {
+            return *w;
+        }
+        let a = self.acceleration(&w.force, g);
+        let r = rotation.to_rotation_matrix().into_inner();
+        let torque = (r * self.inertia * r.transpose())
+            .try_inverse()
+            .map(|inverse| r * own * r.transpose() * (inverse * w.torque))
+            .filter(|t| t.iter().all(|x| x.is_finite()))
+            .unwrap_or(w.torque);
+        Wrench {
+            force: Inertial::plain(self.mass, own).force_for(&a, g),
+            torque,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sphere's added mass, `½ ρ V`, in every direction: a force moves
+    /// the body as it would move `m + ½ ρ V`, and the Rapier wrench gives
+    /// the body's own mass that acceleration.
+    #[test]
+    fn a_spheres_added_mass_slows_every_answer_by_the_same_factor() {
+        let volume = 4.0 / 3.0 * std::f64::consts::PI * 0.125;
+        let (added, _) = AddedMass::ellipsoid(Vector3::repeat(0.5), Matrix3::identity(), volume).unwrap();
+        let (m, rho, g) = (52.0, 1000.0, 9.81);
+        let inertia = Matrix3::identity() * 5.2;
+        let inertial = Inertial::with_added(m, &inertia, &added, &UnitQuaternion::identity(), rho, 1.0);
+        let total = m + 0.5 * rho * volume;
+        assert!((inertial.vertical() - total).abs() < 1e-9 * total);
+        let w = Wrench {
+            force: Vector3::new(10.0, rho * g * volume, -3.0),
+            torque: Vector3::new(1.0, 2.0, 3.0),
+        };
+        let a = inertial.acceleration(&w.force, g);
+        let want = (w.force - Vector3::y() * m * g) / total;
+        assert!((a - want).norm() < 1e-12 * want.norm());
+        assert!((inertial.force_for(&a, g) - w.force).norm() < 1e-9 * w.force.norm());
+        let rapier = inertial.for_rapier(&w, &inertia, &UnitQuaternion::identity(), g);
+        assert!((rapier.force / m - Vector3::y() * g - want).norm() < 1e-9 * want.norm());
+        // A sphere has no rotational added mass: the torque is untouched.
+        assert!((rapier.torque - w.torque).norm() < 1e-12);
+        // Dry: the body's own.
+        let dry = Inertial::with_added(m, &inertia, &added, &UnitQuaternion::identity(), rho, 0.0);
+        assert!(!dry.has_added());
+    }
+}
