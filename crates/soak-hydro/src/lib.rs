@@ -10,6 +10,7 @@ mod parallel;
 mod resolution;
 mod tiled;
 mod water;
+mod water_plane;
 
 // Public on purpose: the wgpu compute kernels are a namespace behind a
 // feature, with an API of their own (device helpers, batches of bodies, and
@@ -43,6 +44,7 @@ pub use self::water::{
     AIR_DENSITY, Gerstner, GerstnerWave, HeightField, MAX_PATCH_NODES, Plane, STANDARD_GRAVITY, Surface,
     SurfaceKind, SurfacePatch, Unbounded, WATER_DENSITY, Water,
 };
+pub use self::water_plane::{WaterPlane, water_plane};
 
 /// The types most users need.
 pub mod prelude {

@@ -140,6 +140,14 @@ pub enum SoakError {
         /// The mass of the fluid its enclosed volume displaces, kg.
         displaced: f64,
     },
+    /// Slamming settings out of range.
+    #[error("body `{name}`: slamming: {reason}")]
+    Slamming {
+        /// The soak body's name.
+        name: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// A flooding setting was given for a body without flooding.
     #[error("body `{name}` has no flooding")]
     NoFlooding {

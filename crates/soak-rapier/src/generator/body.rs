@@ -4,8 +4,10 @@
 
 use std::sync::Arc;
 
+use nalgebra::{Point3, Vector3};
 use rapier3d::math::Vector;
 use rapier3d::prelude::RigidBodyHandle;
+use serde::Serialize;
 use soak_bake::Atlas;
 use soak_graph::Flooding;
 use soak_hydro::{HydroForces, MassModel, MassProperties, TiledAtlas, Water, Wrench};
@@ -44,6 +46,43 @@ pub struct SoakBody {
     pub(super) wet_report: soak_wet::StepReport,
     /// The flooding's settings and last report (meaningful with flooding only).
     pub(super) flood: FloodSettings,
+    /// Slamming's state, with slamming only.
+    pub(super) slam: Option<SlamState>,
+}
+
+/// What slamming keeps between steps: plain values, no allocation.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct SlamState {
+    /// The water-plane's added mass at the last evaluation, kg (`None`
+    /// before the first).
+    pub(super) last_added: Option<f64>,
+    /// The last step's slamming.
+    pub(super) report: SlamReport,
+}
+
+/// One step's slamming ([`Slamming`](super::Slamming)) and the largest
+/// force so far.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct SlamReport {
+    /// The slamming force of the step, world frame, N (upwards; zero
+    /// while the water-plane does not grow or the body does not enter).
+    pub force: Vector3<f64>,
+    /// Where it acts: the water-plane's centroid at the surface, world, m.
+    pub point: Point3<f64>,
+    /// The water-plane's added mass, kg.
+    pub added_mass: f64,
+    /// Its growth over the step, kg/s.
+    pub rate: f64,
+    /// The downward speed of the water-plane's centroid, m/s.
+    pub speed: f64,
+    /// Whether the cap ([`Slamming::cap`](super::Slamming::cap)) held the
+    /// force back.
+    pub capped: bool,
+    /// The largest slamming force of the run so far, N, and the
+    /// generator's time at the end of its step, s.
+    pub peak: f64,
+    /// When the peak came, s.
+    pub peak_time: f64,
 }
 
 /// What a flooding body carries besides its liquid graph; plain values, no
@@ -104,6 +143,11 @@ impl SoakBody {
     /// water exerts, plus this, are what Rapier was handed.
     pub fn added_mass_force(&self) -> &Wrench {
         &self.added_force
+    }
+    /// The last step's slamming and the peak so far, if slamming is on
+    /// ([`Effects::slamming`](super::Effects::slamming)).
+    pub fn slamming(&self) -> Option<&SlamReport> {
+        self.slam.as_ref().map(|s| &s.report)
     }
     /// The force handed to Rapier at the last step, world frame, N.
     pub fn applied_force(&self) -> Vector {

@@ -63,6 +63,48 @@ pub struct Effects {
     /// alone, and a body lighter than a millionth of the fluid it
     /// displaces is refused ([`SoakError::TooLight`](crate::SoakError::TooLight)).
     pub added_mass: Option<AddedMass>,
+    /// Slamming: the impact of a body entering the water, from the added
+    /// mass of its water-plane growing as it goes under (see [`Slamming`]).
+    /// `None`: none, and nothing is summed for it.
+    pub slamming: Option<Slamming>,
+}
+
+/// Slamming, von Kármán's momentum theory in three dimensions: as a body
+/// enters the water, the region where the surface cuts it (its water-plane,
+/// summed from the submerged texels: [`soak_hydro::water_plane`]) grows, and
+/// so does the water it sets moving, the added mass of that region as a
+/// flat plate on a free surface
+/// ([`WaterPlane::plate_added_mass`](soak_hydro::WaterPlane::plate_added_mass):
+/// `½ π ρ c²` per length for a strip of half-width `c`). Each step the
+/// momentum the new added mass takes, `F = (dm/dt) w` upwards at the
+/// water-plane's centroid (`w` the downward speed of that point), is
+/// applied, and reported with its peak
+/// ([`SoakBody::slamming`](super::SoakBody::slamming)). For a 2-D wedge it
+/// is von Kármán's `ρ π V c ċ` per length; Wagner's theory, with the water
+/// piled up along the body, gives a wetted width `π/2` wider and more force
+/// at small deadrise. The water's own vertical motion (a sea) is not
+/// counted.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Slamming {
+    /// The largest share of the body's downward momentum relative to the
+    /// water (with its added mass, if it has one) one step's slamming
+    /// impulse may take, in `(0, 1]`: at 1 a step's impact can stop the
+    /// entry but never throw the body back, at any time step. Default 1.
+    pub cap: f64,
+}
+
+impl Default for Slamming {
+    fn default() -> Self {
+        Self { cap: 1.0 }
+    }
+}
+
+impl Slamming {
+    /// Why the settings are invalid, if they are.
+    pub fn problem(&self) -> Option<String> {
+        (!(self.cap > 0.0 && self.cap <= 1.0)).then(|| format!("cap {} must be in (0, 1]", self.cap))
+    }
 }
 
 /// The rule that tears a hole where something hits a body hard: after each
@@ -221,6 +263,12 @@ impl Effects {
         self
     }
 
+    /// The same effects with slamming ([`Slamming`]).
+    pub fn with_slamming(mut self, slamming: Slamming) -> Self {
+        self.slamming = Some(slamming);
+        self
+    }
+
     /// The same effects with holes torn by hard contacts ([`ImpactHoles`];
     /// needs flooding).
     pub fn with_impact_holes(mut self, rule: ImpactHoles) -> Self {
@@ -236,9 +284,11 @@ impl Effects {
     }
 
     /// Whether the body needs hydrostatics (texel sums) at all: buoyancy
-    /// in a mode other than [`BuoyancyMode::Off`], or drag.
+    /// in a mode other than [`BuoyancyMode::Off`], drag or slamming.
     pub fn needs_hydrostatics(&self) -> bool {
-        self.buoyancy.is_some_and(|m| m != BuoyancyMode::Off) || self.drag.is_some()
+        self.buoyancy.is_some_and(|m| m != BuoyancyMode::Off)
+            || self.drag.is_some()
+            || self.slamming.is_some()
     }
 }
 

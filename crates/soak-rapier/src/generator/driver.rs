@@ -5,10 +5,15 @@
 //! Rapier), [`ForceGenerator::wet`], [`ForceGenerator::splash`], and
 //! [`ForceGenerator::step`], which does a whole step.
 
-use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::{ColliderSet, IntegrationParameters, PhysicsWorld, RigidBodySet};
 use rayon::prelude::*;
-use soak_hydro::{BodyState, BuoyancyMode, HydroForces, HydroOptions, Water, Wrench};
+use soak_hydro::{
+    BodyState, BuoyancyMode, HydroForces, HydroOptions, MassProperties, Water, WaterPlane, Wrench,
+};
+
+use super::body::{SlamReport, SlamState};
+use super::config::Slamming;
 
 use super::config::SoakId;
 use super::force_generator::{ForceGenerator, Impact};
@@ -130,6 +135,14 @@ impl ForceGenerator {
                 apply_wrench(rb, &Wrench::default());
                 b.applied = Wrench::default();
                 b.added_force = Wrench::default();
+                if let Some(slam) = &mut b.slam {
+                    slam.last_added = Some(0.0);
+                    slam.report = SlamReport {
+                        peak: slam.report.peak,
+                        peak_time: slam.report.peak_time,
+                        ..SlamReport::default()
+                    };
+                }
                 continue;
             }
             let options = HydroOptions {
@@ -200,8 +213,24 @@ impl ForceGenerator {
                 .collect_into_vec(&mut results);
         }
 
+        // The water-planes of the slamming bodies (one more pass over their
+        // texels; nothing at all in a scene without slamming).
+        let planes: Vec<Option<WaterPlane>> = if work.iter().any(|(k, ..)| self.bodies[*k].slam.is_some()) {
+            let (bodies, water) = (&self.bodies, &self.water);
+            work.par_iter()
+                .zip(&seas)
+                .map(|((k, state, _), sea)| {
+                    let b = &bodies[*k];
+                    b.slam?;
+                    soak_hydro::water_plane(&b.atlas, sea.as_ref().unwrap_or(water), state, t).ok()
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+
         // 3. The firewall, then Rapier.
-        for (((k, state, options), result), sea) in work.iter().zip(results).zip(&seas) {
+        for (i, (((k, state, options), result), sea)) in work.iter().zip(results).zip(&seas).enumerate() {
             let b = &mut self.bodies[*k];
             let Some(rb) = bodies.get_mut(b.handle) else {
                 continue;
@@ -228,6 +257,26 @@ impl ForceGenerator {
                     forces.submerged_volume,
                 ),
             };
+            // Slamming: the momentum the water-plane's growing added mass
+            // takes, acting over the step like the drag.
+            let slam = match (
+                b.slam.as_mut(),
+                b.effects.slamming,
+                planes.get(i).copied().flatten(),
+            ) {
+                (Some(slam), Some(rule), Some(plane)) => slam_step(
+                    slam,
+                    &rule,
+                    &plane,
+                    state,
+                    &b.mass,
+                    &inertial,
+                    self.water.density,
+                    dt,
+                    t + dt,
+                ),
+                _ => Wrench::default(),
+            };
             let mut wrench = Wrench::default();
             // Buoyancy can never exceed the weight of fluid the whole body displaces.
             let limit = 1.5 * self.water.density * self.water.gravity * b.shape.volume + 1e-9;
@@ -245,14 +294,16 @@ impl ForceGenerator {
                 );
                 wrench = wrench + last_part(&b.forces.buoyancy);
             } else {
-                // The drag is applied with the buoyancy: the implicit solve counts it.
-                let drag = last_part(&forces.drag);
+                // The drag (and slamming) is applied with the buoyancy: the
+                // implicit solve counts it.
+                let drag = last_part(&forces.drag) + slam;
                 let water = sea.as_ref().unwrap_or(&self.water);
                 wrench = wrench
                     + implicit_heave(
                         b, rb, water, state, options, t, substeps, limit, bw, drag, &inertial,
                     );
             }
+            wrench = wrench + slam;
             if forces.drag.is_finite() {
                 wrench = wrench + forces.drag;
             } else {
@@ -432,6 +483,62 @@ impl ForceGenerator {
             }
         }
         Ok(())
+    }
+}
+
+/// One step's slamming of a body whose water-plane is `plane` at `state`
+/// (see [`Slamming`]): updates its state and report, returns the wrench
+/// (world, about the centre of mass). `end` is the time at the end of the
+/// step, for the peak.
+#[allow(clippy::too_many_arguments)]
+fn slam_step(
+    slam: &mut SlamState,
+    rule: &Slamming,
+    plane: &WaterPlane,
+    state: &BodyState,
+    mass: &MassProperties,
+    inertial: &Inertial,
+    density: f64,
+    dt: f64,
+    end: f64,
+) -> Wrench {
+    let added = plane.plate_added_mass(density);
+    let last = slam.last_added.unwrap_or(added);
+    slam.last_added = Some(added);
+    let rate = (added - last) / dt;
+    let point = Point3::new(plane.centroid.x, plane.height, plane.centroid.y);
+    let com = state.pose * mass.center_of_mass;
+    let speed = -(state.linear_velocity + state.angular_velocity.cross(&(point - com))).y;
+    let mut force = 0.0;
+    let mut capped = false;
+    if rate > 0.0 && speed > 0.0 && rate.is_finite() && speed.is_finite() {
+        force = rate * speed;
+        // At most `cap` of the downward momentum in one step.
+        let cap = rule.cap * inertial.vertical() * speed / dt;
+        if force > cap {
+            force = cap;
+            capped = true;
+        }
+    }
+    let f = Vector3::new(0.0, force, 0.0);
+    let (peak, peak_time) = if force > slam.report.peak {
+        (force, end)
+    } else {
+        (slam.report.peak, slam.report.peak_time)
+    };
+    slam.report = SlamReport {
+        force: f,
+        point,
+        added_mass: added,
+        rate,
+        speed,
+        capped,
+        peak,
+        peak_time,
+    };
+    Wrench {
+        force: f,
+        torque: (point - com).cross(&f),
     }
 }
 

@@ -15,7 +15,7 @@ use soak_hydro::{
 };
 use soak_wet::{Environment, Wetting};
 
-use super::body::{FloodSettings, Shape, SoakBody, with_extra};
+use super::body::{FloodSettings, Shape, SlamState, SoakBody, with_extra};
 use super::config::{Backend, BodyDesc, SoakId};
 use super::rapier_body::{check_not_too_light, push_mass};
 use crate::error::SoakError;
@@ -531,6 +531,12 @@ impl ForceGenerator {
                 });
             }
         }
+        if let Some(reason) = desc.effects.slamming.and_then(|s| s.problem()) {
+            return Err(SoakError::Slamming {
+                name: desc.name.clone(),
+                reason,
+            });
+        }
         if let Some(texels) = &desc.effects.drag_texels {
             texels.check(&desc.atlas).map_err(|source| SoakError::Hydro {
                 name: desc.name.clone(),
@@ -578,8 +584,12 @@ impl ForceGenerator {
             dry_skips: 0,
             wet_report: soak_wet::StepReport::default(),
             flood: FloodSettings::default(),
+            slam: None,
         });
         let id = SoakId(self.bodies.len() - 1);
+        if self.bodies[id.0].effects.slamming.is_some() {
+            self.bodies[id.0].slam = Some(SlamState::default());
+        }
         if self.bodies[id.0].effects.flooding.is_some() {
             // The liquid already inside, at once.
             self.sync_liquid_mass(id, bodies, colliders)?;

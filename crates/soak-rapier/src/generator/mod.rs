@@ -22,7 +22,7 @@ mod predicted_step;
 mod rapier_body;
 mod state;
 
-pub use body::SoakBody;
-pub use config::{Backend, BodyDesc, Effects, ImpactHoles, SoakId};
+pub use body::{SlamReport, SoakBody};
+pub use config::{Backend, BodyDesc, Effects, ImpactHoles, Slamming, SoakId};
 pub use force_generator::{ForceGenerator, Impact};
 pub use state::{BodyRunState, GeneratorState};

@@ -47,6 +47,10 @@ pub struct BodyRunState {
     /// Density of the liquid inside, kg/m³, if set (flooding bodies).
     #[serde(default)]
     pub liquid_density: Option<f64>,
+    /// The water-plane's added mass at the last step, kg (slamming bodies
+    /// after their first step): the next step's impact is its growth.
+    #[serde(default)]
+    pub slam_added_mass: Option<f64>,
 }
 
 impl PartialEq for BodyRunState {
@@ -65,6 +69,7 @@ impl PartialEq for BodyRunState {
             && self.flooding == other.flooding
             && self.ballast == other.ballast
             && self.liquid_density == other.liquid_density
+            && self.slam_added_mass == other.slam_added_mass
             && same_wetting
     }
 }
@@ -116,6 +121,7 @@ impl ForceGenerator {
                     flooding: b.effects.flooding.as_ref().map(|f| f.state()),
                     ballast: b.ballast().copied(),
                     liquid_density: b.effects.flooding.as_ref().and(b.flood.density),
+                    slam_added_mass: b.slam.and_then(|s| s.last_added),
                 })
                 .collect(),
             environment: self.environment,
@@ -185,6 +191,9 @@ impl ForceGenerator {
             b.dry_skips = s.dry_skips;
             b.effects.wetting = s.wetting.clone();
             b.wet_report = s.wet_report.unwrap_or_default();
+            if let Some(slam) = &mut b.slam {
+                slam.last_added = s.slam_added_mass;
+            }
         }
         self.time = state.time;
         self.steps = state.steps;

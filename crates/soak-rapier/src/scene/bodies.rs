@@ -122,6 +122,11 @@ pub struct BodySpec {
     /// fraction (see [`crate::Effects::added_mass`]). Off by default.
     #[serde(default)]
     pub added_mass: bool,
+    /// Slamming: the impact of entering the water (see [`crate::Slamming`]):
+    /// `slamming = {}` for the defaults, `slamming = { cap = 0.5 }` to
+    /// let one step's impact take at most half the body's downward
+    /// momentum. Off when absent.
+    pub slamming: Option<crate::Slamming>,
     /// Sum the drag over a second bake of the mesh at this side, texels,
     /// rather than over the body's own atlas (see
     /// [`soak_hydro::DragTexels`]): 64 takes a 1024² body's drag to within

@@ -311,6 +311,7 @@ impl Simulation {
                     .map_err(|e| body_err(e.to_string()))?;
                 let effects = Effects {
                     added_mass,
+                    slamming: b.slamming,
                     buoyancy: Some(b.buoyancy),
                     drag: b.drag,
                     drag_texels,
