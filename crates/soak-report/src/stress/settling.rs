@@ -120,7 +120,14 @@ pub(crate) fn settle(m: &Motion) -> (bool, String, f64) {
             // until it filled can have been lifted above where it started
             // by the waves, whose surface rises and falls by more than the
             // body's size in a period.
-            let ok = vy < 0.0 && (dy < 0.0 || water == WaterKind::Sea);
+            // With added mass the body answers more slowly (a third more
+            // inertia for a sphere, half again for a flooded container):
+            // in a run shorter than it takes to rise to its floating level,
+            // fill and go under (1.25 s at 1/240 s), it must be going down
+            // and not above its floating level (it started 5 % of its size
+            // below it).
+            let slow = level >= Level::AddedMass && dy < 0.05;
+            let ok = vy < 0.0 && (dy < 0.0 || slow || water == WaterKind::Sea);
             (
                 ok,
                 format!("{vy_label} {vy:.3} √(g·size), {dy:.3} sizes from the start"),
