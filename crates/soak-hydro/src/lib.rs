@@ -11,6 +11,7 @@ mod resolution;
 mod tiled;
 mod water;
 mod water_plane;
+mod waves;
 
 // Public on purpose: the wgpu compute kernels are a namespace behind a
 // feature, with an API of their own (device helpers, batches of bodies, and
@@ -45,6 +46,7 @@ pub use self::water::{
     SurfaceKind, SurfacePatch, Unbounded, WATER_DENSITY, Water,
 };
 pub use self::water_plane::{WaterPlane, water_plane};
+pub use self::waves::{InteractiveWaves, WaveRegion};
 
 /// The types most users need.
 pub mod prelude {
