@@ -9,15 +9,16 @@
 //! (tiled, the fluid's velocity read once per tile and at every texel;
 //! and with the drag over a 64² bake of the same mesh),
 //! at 1024² and 128²; the boat at 1024², per texel and tiled; the sphere
-//! at 2048², beyond the cache.
+//! at 2048², beyond the cache; a step of the interactive wave surface.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::reference::{self, ClipPlane};
 use soak_hydro::{
-    BodyState, BuoyancyMode, Drag, DragTexels, Gerstner, GerstnerWave, HydroOptions, MassModel,
-    MassProperties, SeaSampling, SeaVelocity, TiledAtlas, Water, evaluate, streaming_read,
+    BodyState, BuoyancyMode, Drag, DragTexels, Gerstner, GerstnerWave, HydroOptions, InteractiveWaves,
+    MassModel, MassProperties, SeaSampling, SeaVelocity, TiledAtlas, Water, WaveRegion, evaluate,
+    streaming_read,
 };
 
 /// `mesh` baked at `n`², and the mass properties of a solid of half the
@@ -292,5 +293,23 @@ fn boat(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, hydro, small, boat, beyond_the_cache);
+/// One step of the interactive wave surface ([`InteractiveWaves`]): a
+/// 64 m square at 0.25 m cells (256²) and at 0.5 m (128²), with a sponge,
+/// under a towed pressure patch.
+fn waves(c: &mut Criterion) {
+    let mut g = c.benchmark_group("interactive_waves");
+    for (cells, name) in [(256, "step_64m_256"), (128, "step_64m_128")] {
+        let region = WaveRegion {
+            centre: [0.0, 0.0],
+            size: 64.0,
+            cells,
+        };
+        let mut waves = InteractiveWaves::new(region, 9.81, 1000.0, cells / 16).unwrap();
+        waves.add_gaussian(0.0, 0.0, 0.5, 0.05);
+        g.bench_function(name, |b| b.iter(|| waves.step(1.0 / 60.0).unwrap()));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, hydro, small, boat, beyond_the_cache, waves);
 criterion_main!(benches);

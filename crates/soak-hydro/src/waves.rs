@@ -20,6 +20,7 @@
 
 use std::sync::Arc;
 
+use rayon::prelude::*;
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 use serde::Serialize;
@@ -259,12 +260,16 @@ impl InteractiveWaves {
         data
     }
 
+    /// The 2-D transform in place: the rows, then the columns (as rows of
+    /// the transpose), the rows in parallel (each row's transform is the
+    /// same on any number of threads).
     fn fft2(&mut self, data: &mut [Complex<f64>], forward: bool) {
         let n = self.region.cells;
         let fft = if forward { &self.forward } else { &self.inverse };
-        fft.process(data);
+        let rows = |data: &mut [Complex<f64>]| data.par_chunks_mut(n * 8).for_each(|c| fft.process(c));
+        rows(data);
         transpose(data, &mut self.scratch, n);
-        fft.process(&mut self.scratch);
+        rows(&mut self.scratch);
         transpose(&self.scratch, data, n);
     }
 
@@ -292,7 +297,11 @@ impl InteractiveWaves {
         let g = self.gravity;
         let mut h = self.transform(&self.h.clone());
         let mut phi = self.transform(&self.phi.clone());
-        let p = self.transform(&self.pressure.clone());
+        let p = if self.pressure.iter().all(|&p| p == 0.0) {
+            vec![Complex::default(); n * n]
+        } else {
+            self.transform(&self.pressure.clone())
+        };
         for iz in 0..n {
             for ix in 0..n {
                 let i = iz * n + ix;
@@ -309,6 +318,17 @@ impl InteractiveWaves {
                 phi[i] = phi[i] * c - rest * (g / omega * s);
             }
         }
+        // The energy now, from the modes (Parseval), for the sponge's account.
+        let before = (self.sponge > 0).then(|| {
+            let mut sum = 0.0;
+            for iz in 0..n {
+                for ix in 0..n {
+                    let i = iz * n + ix;
+                    sum += g * h[i].norm_sqr() + self.wavenumber(ix, iz) * phi[i].norm_sqr();
+                }
+            }
+            0.5 * self.density * sum * self.region.cell().powi(2) / (n * n) as f64
+        });
         self.fft2(&mut h, false);
         self.fft2(&mut phi, false);
         let scale = 1.0 / (n * n) as f64;
@@ -316,7 +336,9 @@ impl InteractiveWaves {
             self.h[i] = h[i].re * scale;
             self.phi[i] = phi[i].re * scale;
         }
-        self.absorb(dt);
+        if let Some(before) = before {
+            self.absorb(dt, before);
+        }
         self.time += dt;
         Ok(())
     }
@@ -325,11 +347,7 @@ impl InteractiveWaves {
     /// at a rate growing as the square of the depth into the sponge, up to
     /// `ω` of a wave two sponge-widths long (a few of its periods to
     /// cross). The energy it takes is the waves' energy before less after.
-    fn absorb(&mut self, dt: f64) {
-        if self.sponge == 0 {
-            return;
-        }
-        let before = self.energy();
+    fn absorb(&mut self, dt: f64, before: f64) {
         let n = self.region.cells;
         let w = self.sponge as f64;
         let d = self.region.cell();
