@@ -266,6 +266,35 @@ fn the_holed_boat_floods_and_sinks_bow_first() {
     assert!(!r.non_finite);
 }
 
+/// Two boats dropped 1.5 m: the one with added mass and slamming is
+/// stopped by the blow as it lands (it goes less deep than the one
+/// without, which plunges on its buoyancy alone) and reports its peak.
+#[test]
+fn a_dropped_hull_with_slamming_lands_on_the_blow() {
+    let scene = LoadedScene::from_file(&data("scenes/hull_drop.toml")).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    sim.record(true);
+    sim.run(|_| {}).unwrap();
+    let lowest = |body: usize| {
+        sim.samples()
+            .iter()
+            .filter(|s| s.body == body)
+            .map(|s| s.position[1])
+            .fold(f64::MAX, f64::min)
+    };
+    let (slamming, plain) = (lowest(0), lowest(1));
+    let report = sim.report();
+    println!(
+        "lowest: with slamming {slamming:.3} m, without {plain:.3} m; peak slamming force {:?} N",
+        report[0].slamming_peak
+    );
+    assert!(slamming > plain + 0.05, "{slamming} vs {plain}");
+    let peak = report[0].slamming_peak.unwrap();
+    assert!(peak.is_finite() && peak > 0.0);
+    assert_eq!(report[1].slamming_peak, None);
+    assert!(!report[0].non_finite && !report[1].non_finite);
+}
+
 #[test]
 fn permeability_without_a_graph_is_refused() {
     let text = "[water]\nkind = \"plane\"\n\n[[bodies]]\nname = \"b\"\nmesh = \"builtin:box\"\n\

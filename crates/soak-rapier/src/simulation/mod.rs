@@ -85,6 +85,9 @@ pub struct BodyReport {
     pub liquid_inside: Option<f64>,
     /// Liquid soaked into the surface (bodies with wetting), m³.
     pub surface_liquid: Option<f64>,
+    /// The largest slamming force of the run, N (bodies with slamming).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slamming_peak: Option<f64>,
     /// Whether any state or force went non-finite during the run.
     pub non_finite: bool,
 }
@@ -359,6 +362,11 @@ impl Simulation {
                     mass: rb.mass() as f64,
                     liquid_inside: self.liquid_of(b.id),
                     surface_liquid: self.surface_liquid_of(b.id),
+                    slamming_peak: b
+                        .id
+                        .and_then(|id| self.soak.body(id))
+                        .and_then(|body| body.slamming())
+                        .map(|s| s.peak),
                     non_finite: self.non_finite[i] || non_finite,
                 }
             })
