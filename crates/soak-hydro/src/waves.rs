@@ -199,6 +199,97 @@ impl InteractiveWaves {
         }
     }
 
+    /// Presses a body's hull on the surface: every submerged texel of
+    /// `atlas` at `state` adds its column, `−A_y d` (m³: its area's
+    /// vertical part times its depth under `water`'s surface, negative for
+    /// the texels on top of the submerged part), to the cell under it, so
+    /// that each cell holds the submerged height of the body over it, and
+    /// the pressure `ρ g` times that. Returns the cells touched and the
+    /// depth (m) added to each, for the body to take its own depression
+    /// back out of the surface it floats on; their sum times a cell's area
+    /// is the body's submerged volume. Texels outside the region press
+    /// nothing.
+    ///
+    /// # Errors
+    /// [`WaterError::Parameter`] for a state that is not finite.
+    pub fn press(
+        &mut self,
+        atlas: &soak_bake::Atlas,
+        water: &crate::Water,
+        state: &crate::BodyState,
+        t: f64,
+    ) -> Result<Vec<(usize, f64)>, WaterError> {
+        let finite = state.pose.translation.vector.iter().all(|c| c.is_finite())
+            && state.pose.rotation.coords.iter().all(|c| c.is_finite());
+        if !finite {
+            return Err(WaterError::Parameter {
+                name: "waves.body_pose",
+                value: f64::NAN,
+            });
+        }
+        let n = self.region.cells;
+        let d = self.region.cell();
+        let (x0, z0) = self.corner();
+        let rot = state.pose.rotation.to_rotation_matrix().into_inner();
+        let ow = (state.pose * atlas.origin()).coords;
+        let mut columns: std::collections::BTreeMap<usize, f64> = std::collections::BTreeMap::new();
+        for i in 0..atlas.len() {
+            let (x, a) = crate::hydrostatics::frame::texel(atlas, i);
+            let p = rot * x + ow;
+            let depth = water.surface.depth(&nalgebra::Point3::from(p), t);
+            if depth.is_nan() || depth <= 0.0 {
+                continue;
+            }
+            let (u, v) = ((p.x - x0) / d, (p.z - z0) / d);
+            if !(u >= 0.0 && v >= 0.0 && u < n as f64 && v < n as f64) {
+                continue;
+            }
+            let cell = (v as usize) * n + u as usize;
+            *columns.entry(cell).or_insert(0.0) += -(rot * a).y * depth / (d * d);
+        }
+        let g = self.gravity;
+        let pressed: Vec<(usize, f64)> = columns.into_iter().collect();
+        for &(cell, depth) in &pressed {
+            self.pressure[cell] += g * depth;
+        }
+        Ok(pressed)
+    }
+
+    /// Moves the region to be centred as near `centre` (`(x, z)`, world,
+    /// m) as a whole number of cells allows, keeping the surface where it
+    /// is in the world; cells that come in are still water, and the energy
+    /// of the waves that leave is counted as absorbed. Returns the shift,
+    /// cells along x and z.
+    pub fn recentre(&mut self, centre: [f64; 2]) -> (i64, i64) {
+        let d = self.region.cell();
+        let sx = ((centre[0] - self.region.centre[0]) / d).round() as i64;
+        let sz = ((centre[1] - self.region.centre[1]) / d).round() as i64;
+        if sx == 0 && sz == 0 || !(centre[0].is_finite() && centre[1].is_finite()) {
+            return (0, 0);
+        }
+        let before = self.energy();
+        let n = self.region.cells as i64;
+        let shift = |values: &[f64]| {
+            let mut out = vec![0.0; values.len()];
+            for iz in 0..n {
+                for ix in 0..n {
+                    let (fx, fz) = (ix + sx, iz + sz);
+                    if (0..n).contains(&fx) && (0..n).contains(&fz) {
+                        out[(iz * n + ix) as usize] = values[(fz * n + fx) as usize];
+                    }
+                }
+            }
+            out
+        };
+        self.h = shift(&self.h);
+        self.phi = shift(&self.phi);
+        self.pressure = shift(&self.pressure);
+        self.region.centre[0] += sx as f64 * d;
+        self.region.centre[1] += sz as f64 * d;
+        self.absorbed += (before - self.energy()).max(0.0);
+        (sx, sz)
+    }
+
     /// Sets the elevation (m) and potential (m²/s) per cell, e.g. a
     /// disturbance to watch spread.
     ///

@@ -196,3 +196,61 @@ fn the_pressures_work_is_the_waves_energy() {
     }
     assert!((free.energy() / e0 - 1.0).abs() < 1e-9);
 }
+
+/// A floating cube pressing on the surface: each cell under it holds its
+/// draft, and the cells' columns add up to its submerged volume; a sphere
+/// wholly under water presses with its whole volume.
+#[test]
+fn a_hull_presses_with_its_submerged_columns() {
+    use nalgebra::Isometry3;
+    use soak_bake::{Atlas, BakeOptions, builtin};
+    use soak_hydro::{BodyState, Water};
+
+    let mut waves = InteractiveWaves::new(region(16.0, 64), G, 1000.0, 0).unwrap();
+    let cell_area = 0.25 * 0.25;
+    let cube = Atlas::bake(&builtin::cuboid(1.0, 1.0, 1.0), BakeOptions::square(256)).unwrap();
+    let floating = BodyState::at_rest(Isometry3::translation(0.0, 0.0, 0.0));
+    let pressed = waves.press(&cube, &Water::calm(0.0), &floating, 0.0).unwrap();
+    // The walls' texels on the cells' edges press nothing (their area is
+    // all horizontal) but touch the cells beside.
+    let under: Vec<&(usize, f64)> = pressed.iter().filter(|p| p.1.abs() > 1e-9).collect();
+    assert_eq!(under.len(), 16, "the 4 × 4 cells under a 1 m cube at 0.25 m");
+    for &&(cell, depth) in &under {
+        // Each texel falls into one cell: a cell's share is its draft to
+        // about a row of texels either side (a face of the 256² bake is
+        // about 85 texels across, a 0.25 m cell about 21).
+        assert!((depth - 0.5).abs() < 0.04, "cell {cell}: {depth} m");
+        assert!((waves.pressure_mut()[cell] - G * depth).abs() < 1e-12);
+    }
+    let volume: f64 = pressed.iter().map(|p| p.1).sum::<f64>() * cell_area;
+    assert!((volume - 0.5).abs() < 0.005, "{volume} m³");
+    waves.clear_pressure();
+    let sphere = Atlas::bake(&builtin::sphere(0.5, 48, 24), BakeOptions::square(256)).unwrap();
+    let under = BodyState::at_rest(Isometry3::translation(1.1, -2.0, -0.7));
+    let pressed = waves.press(&sphere, &Water::calm(0.0), &under, 0.0).unwrap();
+    let volume: f64 = pressed.iter().map(|p| p.1).sum::<f64>() * cell_area;
+    assert!(
+        (volume / sphere.volume() - 1.0).abs() < 1e-6,
+        "{volume} vs {}",
+        sphere.volume()
+    );
+}
+
+/// Moving the region keeps the surface where it is in the world.
+#[test]
+fn the_region_follows_without_moving_the_waves() {
+    let mut waves = InteractiveWaves::new(region(16.0, 64), G, 1000.0, 0).unwrap();
+    waves.add_gaussian(3.0, 2.0, 0.6, 0.1);
+    for _ in 0..10 {
+        waves.step(1.0 / 30.0).unwrap();
+    }
+    waves.clear_pressure();
+    let probe = [(3.0, 2.0), (2.2, 1.4), (4.1, 2.9)];
+    let before: Vec<f64> = probe.iter().map(|&(x, z)| waves.height(x, z)).collect();
+    let shift = waves.recentre([1.0, -0.5]);
+    assert_eq!(shift, (4, -2));
+    assert_eq!(waves.region().centre, [1.0, -0.5]);
+    for (k, &(x, z)) in probe.iter().enumerate() {
+        assert!((waves.height(x, z) - before[k]).abs() < 1e-12, "at ({x}, {z})");
+    }
+}
