@@ -13,9 +13,7 @@ use soak_hydro::{
 };
 
 use super::body::{SlamReport, SlamState};
-use super::config::Slamming;
-
-use super::config::SoakId;
+use super::config::{Slamming, SoakId};
 use super::force_generator::{ForceGenerator, Impact};
 use super::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
 use super::inertial::Inertial;
