@@ -90,6 +90,7 @@ impl ForceGenerator {
 
         // 1. Which bodies need texel work, at which predicted state.
         let mut work: Vec<(usize, BodyState, HydroOptions)> = Vec::new();
+        let mut slamming = false;
         for (k, b) in self.bodies.iter_mut().enumerate() {
             if !b.effects.needs_hydrostatics() {
                 continue;
@@ -151,6 +152,7 @@ impl ForceGenerator {
                 sea_velocity: self.sea_velocity,
                 added_mass: b.effects.added_mass,
             };
+            slamming |= b.slam.is_some();
             work.push((k, state, options));
         }
 
@@ -213,7 +215,7 @@ impl ForceGenerator {
 
         // The water-planes of the slamming bodies (one more pass over their
         // texels; nothing at all in a scene without slamming).
-        let planes: Vec<Option<WaterPlane>> = if work.iter().any(|(k, ..)| self.bodies[*k].slam.is_some()) {
+        let planes: Vec<Option<WaterPlane>> = if slamming {
             let (bodies, water) = (&self.bodies, &self.water);
             work.par_iter()
                 .zip(&seas)

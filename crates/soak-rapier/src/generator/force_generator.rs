@@ -543,13 +543,9 @@ impl ForceGenerator {
                 source,
             })?;
         }
-        check_not_too_light(
-            &desc.name,
-            mass.mass,
-            &desc.effects,
-            &self.water,
-            desc.atlas.volume(),
-        )?;
+        // The atlas' volume and bounds: a pass over its texels, taken once.
+        let shape = Shape::of(&desc.atlas);
+        check_not_too_light(&desc.name, mass.mass, &desc.effects, &self.water, shape.volume)?;
         if let Some(added) = &desc.effects.added_mass
             && !added.is_valid()
         {
@@ -570,7 +566,7 @@ impl ForceGenerator {
         self.bodies.push(SoakBody {
             name: desc.name,
             handle,
-            shape: Shape::of(&desc.atlas),
+            shape,
             atlas: desc.atlas,
             tiled,
             mass_model: desc.mass_model,
@@ -697,7 +693,8 @@ impl ForceGenerator {
             .get_mut(b.handle)
             .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
         let total = with_extra(&mass, b.extra_mass.as_ref());
-        check_not_too_light(&b.name, total.mass, &b.effects, &self.water, atlas.volume())?;
+        let shape = Shape::of(&atlas);
+        check_not_too_light(&b.name, total.mass, &b.effects, &self.water, shape.volume)?;
         push_mass(&b.name, rb, colliders, &total)?;
         if b.tiled.is_some() {
             b.tiled = Some(Arc::new(TiledAtlas::new(&atlas)));
@@ -710,7 +707,7 @@ impl ForceGenerator {
         if let Some(gpu) = &mut self.gpu {
             gpu.deform(id.0, positions)?;
         }
-        b.shape = Shape::of(&atlas);
+        b.shape = shape;
         b.atlas = Arc::new(atlas);
         b.effects.drag_texels = drag_texels;
         b.model_mass = mass;
