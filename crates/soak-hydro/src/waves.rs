@@ -65,6 +65,11 @@ pub struct InteractiveWaves {
     forward: Arc<dyn Fft<f64>>,
     inverse: Arc<dyn Fft<f64>>,
     scratch: Vec<Complex<f64>>,
+    /// `|k|` per mode, rad/m, in the transform's order.
+    k: Vec<f64>,
+    /// The step's rotation per mode for the last `dt`: `(dt, [cos ωdt,
+    /// sin ωdt · k/ω, sin ωdt · g/ω])`, made again when `dt` changes.
+    turn: Option<(f64, Vec<[f64; 3]>)>,
 }
 
 impl std::fmt::Debug for InteractiveWaves {
@@ -122,6 +127,14 @@ impl InteractiveWaves {
             forward: planner.plan_fft_forward(n),
             inverse: planner.plan_fft_inverse(n),
             scratch: vec![Complex::default(); n * n],
+            k: {
+                let base = 2.0 * std::f64::consts::PI / region.size;
+                let signed = |i: usize| if i < n / 2 { i as f64 } else { i as f64 - n as f64 };
+                (0..n * n)
+                    .map(|i| base * (signed(i % n).powi(2) + signed(i / n).powi(2)).sqrt())
+                    .collect()
+            },
+            turn: None,
         })
     }
 
@@ -322,12 +335,7 @@ impl InteractiveWaves {
         let potential: f64 =
             self.h.iter().map(|h| h * h).sum::<f64>() * 0.5 * self.density * self.gravity * area;
         let phi = self.transform(&self.phi.clone());
-        let mut kinetic = 0.0;
-        for iz in 0..n {
-            for ix in 0..n {
-                kinetic += self.wavenumber(ix, iz) * phi[iz * n + ix].norm_sqr();
-            }
-        }
+        let kinetic: f64 = self.k.iter().zip(&phi).map(|(k, p)| k * p.norm_sqr()).sum();
         potential + 0.5 * self.density * kinetic * area / (n * n) as f64
     }
 
@@ -335,13 +343,6 @@ impl InteractiveWaves {
     /// far, J.
     pub fn absorbed(&self) -> f64 {
         self.absorbed
-    }
-
-    fn wavenumber(&self, ix: usize, iz: usize) -> f64 {
-        let n = self.region.cells;
-        let base = 2.0 * std::f64::consts::PI / self.region.size;
-        let signed = |i: usize| if i < n / 2 { i as f64 } else { i as f64 - n as f64 };
-        base * (signed(ix).powi(2) + signed(iz).powi(2)).sqrt()
     }
 
     /// The 2-D forward transform of `values` (unnormalised).
@@ -393,31 +394,39 @@ impl InteractiveWaves {
         } else {
             self.transform(&self.pressure.clone())
         };
-        for iz in 0..n {
-            for ix in 0..n {
-                let i = iz * n + ix;
-                let k = self.wavenumber(ix, iz);
-                if k == 0.0 {
-                    phi[i] -= (h[i] * g + p[i]) * dt;
-                    continue;
-                }
-                let omega = (g * k).sqrt();
-                let (s, c) = (omega * dt).sin_cos();
-                // About the depression the pressure holds, −P/g.
-                let rest = h[i] + p[i] / g;
-                h[i] = rest * c + phi[i] * (k / omega * s) - p[i] / g;
-                phi[i] = phi[i] * c - rest * (g / omega * s);
+        if self.turn.as_ref().is_none_or(|(t, _)| *t != dt) {
+            let turn = self
+                .k
+                .iter()
+                .map(|&k| {
+                    let omega = (g * k).sqrt();
+                    let (s, c) = (omega * dt).sin_cos();
+                    if k == 0.0 {
+                        [1.0, 0.0, 0.0]
+                    } else {
+                        [c, k / omega * s, g / omega * s]
+                    }
+                })
+                .collect();
+            self.turn = Some((dt, turn));
+        }
+        let turn = &self.turn.as_ref().expect("made above").1;
+        for i in 0..n * n {
+            if self.k[i] == 0.0 {
+                phi[i] -= (h[i] * g + p[i]) * dt;
+                continue;
             }
+            let [c, hs, ps] = turn[i];
+            // About the depression the pressure holds, −P/g.
+            let rest = h[i] + p[i] / g;
+            h[i] = rest * c + phi[i] * hs - p[i] / g;
+            phi[i] = phi[i] * c - rest * ps;
         }
         // The energy now, from the modes (Parseval), for the sponge's account.
         let before = (self.sponge > 0).then(|| {
-            let mut sum = 0.0;
-            for iz in 0..n {
-                for ix in 0..n {
-                    let i = iz * n + ix;
-                    sum += g * h[i].norm_sqr() + self.wavenumber(ix, iz) * phi[i].norm_sqr();
-                }
-            }
+            let sum: f64 = (0..n * n)
+                .map(|i| g * h[i].norm_sqr() + self.k[i] * phi[i].norm_sqr())
+                .sum();
             0.5 * self.density * sum * self.region.cell().powi(2) / (n * n) as f64
         });
         self.fft2(&mut h, false);
