@@ -44,25 +44,27 @@ impl GpuBackend {
         Ok(self.hydro.deform(id, positions)?)
     }
 
-    /// One batch for the bodies in `work` (index, state, options), each on
-    /// its sampled sea where `seas` has one (else on `water`).
+    /// One batch for the bodies in `work` (index, state) with their
+    /// `options`, each on its sampled sea where `seas` has one (else on
+    /// `water`).
     pub(crate) fn evaluate(
         &self,
         bodies: &[SoakBody],
         water: &Water,
         seas: &[Option<Water>],
-        work: &[(usize, BodyState, HydroOptions)],
+        work: &[(usize, BodyState)],
+        options: &dyn Fn(&SoakBody) -> HydroOptions,
         t: f64,
     ) -> Result<Vec<HydroForces>, soak_hydro::gpu::GpuHydroError> {
         let batch: Vec<GpuBody<'_>> = work
             .iter()
             .zip(seas)
-            .map(|((k, state, options), sea)| GpuBody {
+            .map(|((k, state), sea)| GpuBody {
                 atlas: self.atlases[*k],
                 water: sea.as_ref().unwrap_or(water),
                 state: *state,
                 mass: *bodies[*k].mass_properties(),
-                options: *options,
+                options: options(&bodies[*k]),
             })
             .collect();
         self.hydro.evaluate_batch(&batch, t)

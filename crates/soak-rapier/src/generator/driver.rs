@@ -12,7 +12,7 @@ use soak_hydro::{
     BodyState, BuoyancyMode, HydroForces, HydroOptions, MassProperties, Water, WaterPlane, Wrench,
 };
 
-use super::body::{SlamReport, SlamState};
+use super::body::{SlamReport, SlamState, SoakBody};
 use super::config::{Slamming, SoakId};
 use super::force_generator::{ForceGenerator, Impact};
 use super::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
@@ -89,7 +89,16 @@ impl ForceGenerator {
         let bounds = self.water.surface.height_bounds(t);
 
         // 1. Which bodies need texel work, at which predicted state.
-        let mut work: Vec<(usize, BodyState, HydroOptions)> = Vec::new();
+        // Each body's options are made where they are needed from what every
+        // body shares and its own effects: the work list holds its index and
+        // state alone (an `Option<AddedMass>` in every item would be copied
+        // with each body, on or off).
+        let shared = SharedOptions {
+            dt,
+            sea: self.sea,
+            sea_velocity: self.sea_velocity,
+        };
+        let mut work: Vec<(usize, BodyState)> = Vec::new();
         let mut slamming = false;
         for (k, b) in self.bodies.iter_mut().enumerate() {
             if !b.effects.needs_hydrostatics() {
@@ -144,16 +153,8 @@ impl ForceGenerator {
                 }
                 continue;
             }
-            let options = HydroOptions {
-                buoyancy: b.effects.buoyancy.unwrap_or(BuoyancyMode::Off),
-                drag: b.effects.drag,
-                dt,
-                sea: self.sea,
-                sea_velocity: self.sea_velocity,
-                added_mass: b.effects.added_mass,
-            };
             slamming |= b.slam.is_some();
-            work.push((k, state, options));
+            work.push((k, state));
         }
 
         // The sea, sampled once per body over its footprint, read by the
@@ -164,8 +165,9 @@ impl ForceGenerator {
         let seas: Vec<Option<Water>> = {
             let (bodies, water) = (&self.bodies, &self.water);
             work.par_iter()
-                .map(|(k, state, options)| {
-                    soak_hydro::sampled_water(&bodies[*k].atlas, water, state, t, options)
+                .map(|(k, state)| {
+                    let b = &bodies[*k];
+                    soak_hydro::sampled_water(&b.atlas, water, state, t, &shared.of(b))
                         .ok()
                         .flatten()
                 })
@@ -178,7 +180,7 @@ impl ForceGenerator {
         let mut results: Vec<Result<HydroForces, String>> = Vec::with_capacity(work.len());
         #[cfg(feature = "gpu")]
         if let Some(gpu) = &self.gpu {
-            match gpu.evaluate(&self.bodies, &self.water, &seas, &work, t) {
+            match gpu.evaluate(&self.bodies, &self.water, &seas, &work, &|b| shared.of(b), t) {
                 Ok(forces) => results.extend(forces.into_iter().map(Ok)),
                 Err(e) => {
                     // Keep going on the CPU for this step; say so once per failure.
@@ -195,8 +197,9 @@ impl ForceGenerator {
             let (bodies, water) = (&self.bodies, &self.water);
             work.par_iter()
                 .zip(&seas)
-                .map(|((k, state, options), sea)| {
+                .map(|((k, state), sea)| {
                     let b = &bodies[*k];
+                    let options = &shared.of(b);
                     let water = sea.as_ref().unwrap_or(water);
                     let r = match (&b.tiled, &b.effects.drag_texels) {
                         (Some(tiled), None) => tiled.evaluate(&b.atlas, water, state, &b.mass, t, options),
@@ -219,7 +222,7 @@ impl ForceGenerator {
             let (bodies, water) = (&self.bodies, &self.water);
             work.par_iter()
                 .zip(&seas)
-                .map(|((k, state, _), sea)| {
+                .map(|((k, state), sea)| {
                     let b = &bodies[*k];
                     b.slam?;
                     soak_hydro::water_plane(&b.atlas, sea.as_ref().unwrap_or(water), state, t).ok()
@@ -230,8 +233,9 @@ impl ForceGenerator {
         };
 
         // 3. The firewall, then Rapier.
-        for (i, (((k, state, options), result), sea)) in work.iter().zip(results).zip(&seas).enumerate() {
+        for (i, (((k, state), result), sea)) in work.iter().zip(results).zip(&seas).enumerate() {
             let b = &mut self.bodies[*k];
+            let options = &shared.of(b);
             let Some(rb) = bodies.get_mut(b.handle) else {
                 continue;
             };
@@ -539,6 +543,28 @@ fn slam_step(
     Wrench {
         force: f,
         torque: (point - com).cross(&f),
+    }
+}
+
+/// What every body's [`HydroOptions`] share in a step.
+#[derive(Clone, Copy)]
+struct SharedOptions {
+    dt: f64,
+    sea: soak_hydro::SeaSampling,
+    sea_velocity: soak_hydro::SeaVelocity,
+}
+
+impl SharedOptions {
+    /// Body `b`'s options: its buoyancy mode, drag and added mass.
+    fn of(&self, b: &SoakBody) -> HydroOptions {
+        HydroOptions {
+            buoyancy: b.effects.buoyancy.unwrap_or(BuoyancyMode::Off),
+            drag: b.effects.drag,
+            dt: self.dt,
+            sea: self.sea,
+            sea_velocity: self.sea_velocity,
+            added_mass: b.effects.added_mass,
+        }
     }
 }
 
