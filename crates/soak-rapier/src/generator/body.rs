@@ -47,7 +47,7 @@ pub struct SoakBody {
     /// The flooding's settings and last report (meaningful with flooding only).
     pub(super) flood: FloodSettings,
     /// Slamming's state, with slamming only.
-    pub(super) slam: Option<SlamState>,
+    pub(super) slam: Option<Box<SlamState>>,
 }
 
 /// What slamming keeps between steps: plain values, no allocation.

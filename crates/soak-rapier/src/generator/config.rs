@@ -62,7 +62,8 @@ pub struct Effects {
     /// (contacts still see the body's own mass). `None`: the body's mass
     /// alone, and a body lighter than a millionth of the fluid it
     /// displaces is refused ([`SoakError::TooLight`](crate::SoakError::TooLight)).
-    pub added_mass: Option<AddedMass>,
+    /// Boxed: a body without it carries a pointer's width for it.
+    pub added_mass: Option<Box<AddedMass>>,
     /// Slamming: the impact of a body entering the water, from the added
     /// mass of its water-plane growing as it goes under (see [`Slamming`]).
     /// `None`: none, and nothing is summed for it.
@@ -259,7 +260,7 @@ impl Effects {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn with_added_mass(mut self, added: AddedMass) -> Self {
-        self.added_mass = Some(added);
+        self.added_mass = Some(Box::new(added));
         self
     }
 

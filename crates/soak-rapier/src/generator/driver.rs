@@ -224,7 +224,7 @@ impl ForceGenerator {
                 .zip(&seas)
                 .map(|((k, state), sea)| {
                     let b = &bodies[*k];
-                    b.slam?;
+                    b.slam.as_ref()?;
                     soak_hydro::water_plane(&b.atlas, sea.as_ref().unwrap_or(water), state, t).ok()
                 })
                 .collect()
@@ -264,7 +264,7 @@ impl ForceGenerator {
             // Slamming: the momentum the water-plane's growing added mass
             // takes, acting over the step like the drag.
             let slam = match (
-                b.slam.as_mut(),
+                b.slam.as_deref_mut(),
                 b.effects.slamming,
                 planes.get(i).copied().flatten(),
             ) {
@@ -563,7 +563,7 @@ impl SharedOptions {
             dt: self.dt,
             sea: self.sea,
             sea_velocity: self.sea_velocity,
-            added_mass: b.effects.added_mass,
+            added_mass: b.effects.added_mass.as_deref().copied(),
         }
     }
 }

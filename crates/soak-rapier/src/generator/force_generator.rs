@@ -15,7 +15,7 @@ use soak_hydro::{
 };
 use soak_wet::{Environment, Wetting};
 
-use super::body::{FloodSettings, Shape, SlamState, SoakBody, with_extra};
+use super::body::{FloodSettings, Shape, SoakBody, with_extra};
 use super::config::{Backend, BodyDesc, SoakId};
 use super::rapier_body::{check_not_too_light, push_mass};
 use crate::error::SoakError;
@@ -584,7 +584,7 @@ impl ForceGenerator {
         });
         let id = SoakId(self.bodies.len() - 1);
         if self.bodies[id.0].effects.slamming.is_some() {
-            self.bodies[id.0].slam = Some(SlamState::default());
+            self.bodies[id.0].slam = Some(Box::default());
         }
         if self.bodies[id.0].effects.flooding.is_some() {
             // The liquid already inside, at once.

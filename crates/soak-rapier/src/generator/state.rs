@@ -121,7 +121,7 @@ impl ForceGenerator {
                     flooding: b.effects.flooding.as_ref().map(|f| f.state()),
                     ballast: b.ballast().copied(),
                     liquid_density: b.effects.flooding.as_ref().and(b.flood.density),
-                    slam_added_mass: b.slam.and_then(|s| s.last_added),
+                    slam_added_mass: b.slam.as_ref().and_then(|s| s.last_added),
                 })
                 .collect(),
             environment: self.environment,

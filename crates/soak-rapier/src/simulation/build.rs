@@ -306,7 +306,7 @@ impl Simulation {
                 };
                 let added_mass = b
                     .added_mass
-                    .then(|| AddedMass::of_atlas(&atlas))
+                    .then(|| AddedMass::of_atlas(&atlas).map(Box::new))
                     .transpose()
                     .map_err(|e| body_err(e.to_string()))?;
                 let effects = Effects {
