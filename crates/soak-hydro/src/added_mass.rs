@@ -142,7 +142,7 @@ impl AddedMass {
     }
 
     /// The added mass of the ellipsoid with the volume moments' centroid
-    /// and central second moment (see the [module](self) docs), for a body
+    /// and central second moment (see [`lamb_coefficients`] and the crate's README for the shapes it is right for), for a body
     /// of their volume.
     ///
     /// # Errors

@@ -38,7 +38,12 @@ pub struct WaterPlane {
 }
 
 /// The water-plane of the body `atlas` at `state` in `water` at time `t`:
-/// one pass over the texels (see the [module](self) docs).
+/// one pass over the texels. The cut is never built: for any `φ(x, z)` the
+/// field `(0, φ, 0)` has no divergence, so the projection's area and
+/// moments are sums over the submerged texels, `A = Σ −A_y`,
+/// `∫ x dA = Σ −A_y x`, `∫ x² dA = Σ −A_y x²`, … (`A_y` the vertical part of
+/// a texel's outward area vector), exact under calm water and under a
+/// surface that is a height field.
 ///
 /// # Errors
 /// [`HydroError::NonFiniteState`] for a pose that is not finite.

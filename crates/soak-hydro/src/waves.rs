@@ -45,7 +45,17 @@ impl WaveRegion {
     }
 }
 
-/// An interactive deep-water height field (see the [module](self) docs).
+/// An interactive deep-water height field: the surface's elevation `h` and
+/// velocity potential `φ` obey linear deep-water theory, `∂h/∂t = |k| φ`,
+/// `∂φ/∂t = −g h − p/ρ` in Fourier space (`p` the pressure on the surface,
+/// a hull's), so every mode turns at `ω = √(g k)` about the depression
+/// `−p/(ρ g)` a steady pressure holds. With the pressure held over a step
+/// the step is that rotation, exactly: no numerical dispersion, no
+/// damping, no limit on the time step. The energy
+/// `E = ½ ρ ∫ (g h² + φ |k| φ) dA` is kept without pressure; a pressure
+/// does the work `−∫ p ∂h/∂t dA`. The region is periodic for the
+/// transform; a sponge along its border absorbs the waves that reach it
+/// ([`InteractiveWaves::absorbed`]).
 pub struct InteractiveWaves {
     region: WaveRegion,
     gravity: f64,
@@ -366,7 +376,7 @@ impl InteractiveWaves {
     }
 
     /// Advances the surface by `dt` (s) with the pressure held over the
-    /// step (exactly: see the [module](self) docs), then lets the sponge
+    /// step (exactly: see [`InteractiveWaves`]), then lets the sponge
     /// absorb what reached the border.
     ///
     /// # Errors
