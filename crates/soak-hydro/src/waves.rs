@@ -28,7 +28,7 @@ use serde::Serialize;
 use crate::error::WaterError;
 
 /// The square region an [`InteractiveWaves`] covers.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct WaveRegion {
     /// Centre `(x, z)`, world, m.
     pub centre: [f64; 2],
@@ -43,6 +43,21 @@ impl WaveRegion {
     pub fn cell(&self) -> f64 {
         self.size / self.cells as f64
     }
+}
+
+/// What an [`InteractiveWaves`] evolves ([`InteractiveWaves::state`]).
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
+pub struct WavesState {
+    /// The region's centre `(x, z)`, world, m.
+    pub centre: [f64; 2],
+    /// Time stepped, s.
+    pub time: f64,
+    /// Energy the sponge took, J.
+    pub absorbed: f64,
+    /// Elevation per cell, m.
+    pub h: Vec<f64>,
+    /// Surface velocity potential per cell, m²/s.
+    pub phi: Vec<f64>,
 }
 
 /// An interactive deep-water height field: the surface's elevation `h` and
@@ -222,21 +237,38 @@ impl InteractiveWaves {
         }
     }
 
-    /// Presses a body's hull on the surface: every submerged texel of
-    /// `atlas` at `state` adds its column, `−A_y d` (m³: its area's
-    /// vertical part times its depth under `water`'s surface, negative for
-    /// the texels on top of the submerged part), to the cell under it, so
-    /// that each cell holds the submerged height of the body over it, and
-    /// the pressure `ρ g` times that. Returns the cells touched and the
-    /// depth (m) added to each, for the body to take its own depression
-    /// back out of the surface it floats on; their sum times a cell's area
-    /// is the body's submerged volume. Texels outside the region press
-    /// nothing.
+    /// Presses a body's hull on the surface: [`InteractiveWaves::pressed`]
+    /// added to the pressure ([`InteractiveWaves::add_pressure`]). Returns
+    /// the cells touched and the depth (m) added to each.
     ///
     /// # Errors
     /// [`WaterError::Parameter`] for a state that is not finite.
     pub fn press(
         &mut self,
+        atlas: &soak_bake::Atlas,
+        water: &crate::Water,
+        state: &crate::BodyState,
+        t: f64,
+    ) -> Result<Vec<(usize, f64)>, WaterError> {
+        let pressed = self.pressed(atlas, water, state, t)?;
+        self.add_pressure(&pressed);
+        Ok(pressed)
+    }
+
+    /// What a body's hull would press on the surface: every submerged
+    /// texel of `atlas` at `state` adds its column, `−A_y d` (m³: its
+    /// area's vertical part times its depth under `water`'s surface,
+    /// negative for the texels on top of the submerged part), to the cell
+    /// under it, so that each cell holds the submerged height of the body
+    /// over it. Returns the cells touched (in increasing order) and that
+    /// depth (m) for each: `ρ g` times it is the pressure the hull holds
+    /// the surface down with, and the sum times a cell's area is the
+    /// body's submerged volume. Texels outside the region press nothing.
+    ///
+    /// # Errors
+    /// [`WaterError::Parameter`] for a state that is not finite.
+    pub fn pressed(
+        &self,
         atlas: &soak_bake::Atlas,
         water: &crate::Water,
         state: &crate::BodyState,
@@ -270,12 +302,140 @@ impl InteractiveWaves {
             let cell = (v as usize) * n + u as usize;
             *columns.entry(cell).or_insert(0.0) += -(rot * a).y * depth / (d * d);
         }
+        Ok(columns
+            .into_iter()
+            .filter(|(_, depth)| depth.is_finite())
+            .collect())
+    }
+
+    /// Adds what [`InteractiveWaves::pressed`] found to the pressure: `g`
+    /// times each cell's depth (cells outside the region are left out).
+    pub fn add_pressure(&mut self, pressed: &[(usize, f64)]) {
         let g = self.gravity;
-        let pressed: Vec<(usize, f64)> = columns.into_iter().collect();
-        for &(cell, depth) in &pressed {
-            self.pressure[cell] += g * depth;
+        for &(cell, depth) in pressed {
+            if let Some(p) = self.pressure.get_mut(cell) {
+                *p += g * depth;
+            }
         }
-        Ok(pressed)
+    }
+
+    /// Lowers the surface by what [`InteractiveWaves::pressed`] found, at
+    /// rest: the depression a hull held still that long would hold (each
+    /// mode's rest under a steady pressure is `−p/(ρ g)`, cell by cell), so
+    /// that a body set on the water at its floating level starts no waves.
+    pub fn hold(&mut self, pressed: &[(usize, f64)]) {
+        for &(cell, depth) in pressed {
+            if let Some(h) = self.h.get_mut(cell) {
+                *h -= depth;
+            }
+        }
+    }
+
+    /// Renumbers cells found before a [`InteractiveWaves::recentre`] that
+    /// shifted the region by `shift` (cells along x and z) for the region
+    /// now, dropping those that left it.
+    pub fn shift_cells(&self, cells: &mut Vec<(usize, f64)>, shift: (i64, i64)) {
+        if shift == (0, 0) {
+            return;
+        }
+        let n = self.region.cells as i64;
+        cells.retain_mut(|(cell, _)| {
+            let (ix, iz) = ((*cell as i64) % n - shift.0, (*cell as i64) / n - shift.1);
+            let inside = (0..n).contains(&ix) && (0..n).contains(&iz);
+            if inside {
+                *cell = (iz * n + ix) as usize;
+            }
+            inside
+        });
+    }
+
+    /// The highest elevation over the region, m (0 for still water).
+    pub fn highest(&self) -> f64 {
+        self.h.iter().fold(0.0, |a, &h| a.max(h))
+    }
+
+    /// The water a body at `state` floats on: `base` with these waves on
+    /// it, less the body's own depression `own` (what
+    /// [`InteractiveWaves::pressed`] found for it the step before: a hull
+    /// does not sink into the hollow it holds, it feels the waves and what
+    /// its own motion stirred), sampled once over the body's footprint on
+    /// the cells' grid as a [`SurfacePatch`](crate::SurfacePatch) (heights
+    /// at the cell centres, slopes by central differences; with
+    /// `with_velocity` also the base's fluid velocity). `None` when the
+    /// footprint misses the region: the body floats on `base` alone.
+    ///
+    /// The waves' own orbital velocity is not in the patch (the drag sees
+    /// the base's current only).
+    ///
+    /// # Errors
+    /// [`WaterError::Parameter`] for a state that is not finite.
+    pub fn water_for(
+        &self,
+        base: &crate::Water,
+        atlas: &soak_bake::Atlas,
+        state: &crate::BodyState,
+        own: &[(usize, f64)],
+        t: f64,
+        with_velocity: bool,
+    ) -> Result<Option<crate::Water>, WaterError> {
+        let centre = state.pose * atlas.origin();
+        let radius = atlas.bounding_radius();
+        if !(centre.coords.iter().all(|c| c.is_finite()) && radius.is_finite()) {
+            return Err(WaterError::Parameter {
+                name: "waves.body_pose",
+                value: f64::NAN,
+            });
+        }
+        let d = self.region.cell();
+        let (x0, z0) = self.corner();
+        let reach = radius + 2.0 * d;
+        let half = 0.5 * self.region.size;
+        let [cx, cz] = self.region.centre;
+        if (centre.x - cx).abs() > half + reach || (centre.z - cz).abs() > half + reach {
+            return Ok(None);
+        }
+        // Nodes on the cell centres.
+        let align = |c: f64, o: f64| o + (((c - o) / d - 0.5).floor() + 0.5) * d;
+        let min = [align(centre.x - reach, x0), align(centre.z - reach, z0)];
+        let max = [centre.x + reach, centre.z + reach];
+        let surface = OnWaves {
+            base: &*base.surface,
+            waves: self,
+            own,
+        };
+        let velocity = with_velocity.then_some((centre.y - radius, centre.y + radius));
+        let patch = crate::SurfacePatch::sample(&surface, t, min, max, d, velocity)?;
+        Ok(Some(crate::Water {
+            surface: Box::new(patch),
+            density: base.density,
+            gravity: base.gravity,
+        }))
+    }
+
+    /// The elevation (m) and its slope at `(x, z)` (world, m) of the cell
+    /// values `value(ix, iz)` (0 outside the region): bilinear between the
+    /// cell centres, the slope bilinear between central differences there.
+    fn field(&self, x: f64, z: f64, value: impl Fn(i64, i64) -> f64) -> (f64, [f64; 2]) {
+        let d = self.region.cell();
+        let (x0, z0) = self.corner();
+        let (u, v) = ((x - x0) / d - 0.5, (z - z0) / d - 0.5);
+        let (i, j) = (u.floor(), v.floor());
+        let (fu, fv) = (u - i, v - j);
+        let (i, j) = (i as i64, j as i64);
+        let weights = [
+            (0, 0, (1.0 - fu) * (1.0 - fv)),
+            (1, 0, fu * (1.0 - fv)),
+            (0, 1, (1.0 - fu) * fv),
+            (1, 1, fu * fv),
+        ];
+        let (mut h, mut sx, mut sz) = (0.0, 0.0, 0.0);
+        for (di, dj, w) in weights {
+            let (a, b) = (i + di, j + dj);
+            h += w * value(a, b);
+            sx += w * (value(a + 1, b) - value(a - 1, b)) / (2.0 * d);
+            sz += w * (value(a, b + 1) - value(a, b - 1)) / (2.0 * d);
+        }
+        (h, [sx, sz])
     }
 
     /// Moves the region to be centred as near `centre` (`(x, z)`, world,
@@ -338,13 +498,66 @@ impl InteractiveWaves {
         Ok(())
     }
 
+    /// What the surface has become, for saving: the region's centre, the
+    /// time, the sponge's energy and each cell's elevation and potential.
+    pub fn state(&self) -> WavesState {
+        WavesState {
+            centre: self.region.centre,
+            time: self.time,
+            absorbed: self.absorbed,
+            h: self.h.clone(),
+            phi: self.phi.clone(),
+        }
+    }
+
+    /// Takes a state [`InteractiveWaves::state`] saved from a surface over
+    /// a region of the same size and cells; the pressure is cleared.
+    ///
+    /// # Errors
+    /// As [`InteractiveWaves::set_state`], and [`WaterError::Parameter`]
+    /// for a centre, time or absorbed energy that is not finite.
+    pub fn restore(&mut self, state: &WavesState) -> Result<(), WaterError> {
+        for (name, value) in [
+            ("waves.centre", state.centre[0] + state.centre[1]),
+            ("waves.time", state.time),
+            ("waves.absorbed", state.absorbed),
+        ] {
+            if !value.is_finite() {
+                return Err(WaterError::Parameter { name, value });
+            }
+        }
+        self.set_state(&state.h, &state.phi)?;
+        self.region.centre = state.centre;
+        self.time = state.time;
+        self.absorbed = state.absorbed;
+        self.clear_pressure();
+        Ok(())
+    }
+
     /// The energy of the waves in the region, J: `½ ρ ∫ (g h² + φ |k| φ) dA`.
-    pub fn energy(&mut self) -> f64 {
+    pub fn energy(&self) -> f64 {
+        self.energy_about(&[])
+    }
+
+    /// The energy of the waves about the depressions `held` (cells and
+    /// depths, m, as [`InteractiveWaves::pressed`] returns them: the
+    /// surface the hulls pressing them hold at rest), J:
+    /// `½ ρ ∫ (g (h + d)² + φ |k| φ) dA`. With the bodies' presses this is
+    /// the energy their motion radiated and that is still in the region;
+    /// with none it is [`InteractiveWaves::energy`].
+    pub fn energy_about(&self, held: &[&[(usize, f64)]]) -> f64 {
         let n = self.region.cells;
         let area = self.region.cell().powi(2);
-        let potential: f64 =
-            self.h.iter().map(|h| h * h).sum::<f64>() * 0.5 * self.density * self.gravity * area;
-        let phi = self.transform(&self.phi.clone());
+        let mut h = self.h.clone();
+        for cells in held {
+            for &(cell, depth) in *cells {
+                if let Some(h) = h.get_mut(cell) {
+                    *h += depth;
+                }
+            }
+        }
+        let potential: f64 = h.iter().map(|h| h * h).sum::<f64>() * 0.5 * self.density * self.gravity * area;
+        let phi = self.transform(&self.phi, &mut vec![Complex::default(); n * n]);
         let kinetic: f64 = self.k.iter().zip(&phi).map(|(k, p)| k * p.norm_sqr()).sum();
         potential + 0.5 * self.density * kinetic * area / (n * n) as f64
     }
@@ -356,23 +569,23 @@ impl InteractiveWaves {
     }
 
     /// The 2-D forward transform of `values` (unnormalised).
-    fn transform(&mut self, values: &[f64]) -> Vec<Complex<f64>> {
+    fn transform(&self, values: &[f64], scratch: &mut [Complex<f64>]) -> Vec<Complex<f64>> {
         let mut data: Vec<Complex<f64>> = values.iter().map(|&v| Complex::new(v, 0.0)).collect();
-        self.fft2(&mut data, true);
+        self.fft2(&mut data, true, scratch);
         data
     }
 
     /// The 2-D transform in place: the rows, then the columns (as rows of
     /// the transpose), the rows in parallel (each row's transform is the
     /// same on any number of threads).
-    fn fft2(&mut self, data: &mut [Complex<f64>], forward: bool) {
+    fn fft2(&self, data: &mut [Complex<f64>], forward: bool, scratch: &mut [Complex<f64>]) {
         let n = self.region.cells;
         let fft = if forward { &self.forward } else { &self.inverse };
         let rows = |data: &mut [Complex<f64>]| data.par_chunks_mut(n * 8).for_each(|c| fft.process(c));
         rows(data);
-        transpose(data, &mut self.scratch, n);
-        rows(&mut self.scratch);
-        transpose(&self.scratch, data, n);
+        transpose(data, scratch, n);
+        rows(scratch);
+        transpose(scratch, data, n);
     }
 
     /// Advances the surface by `dt` (s) with the pressure held over the
@@ -397,12 +610,13 @@ impl InteractiveWaves {
         }
         let n = self.region.cells;
         let g = self.gravity;
-        let mut h = self.transform(&self.h.clone());
-        let mut phi = self.transform(&self.phi.clone());
+        let mut scratch = std::mem::take(&mut self.scratch);
+        let mut h = self.transform(&self.h, &mut scratch);
+        let mut phi = self.transform(&self.phi, &mut scratch);
         let p = if self.pressure.iter().all(|&p| p == 0.0) {
             vec![Complex::default(); n * n]
         } else {
-            self.transform(&self.pressure.clone())
+            self.transform(&self.pressure, &mut scratch)
         };
         if self.turn.as_ref().is_none_or(|(t, _)| *t != dt) {
             let turn = self
@@ -439,8 +653,9 @@ impl InteractiveWaves {
                 .sum();
             0.5 * self.density * sum * self.region.cell().powi(2) / (n * n) as f64
         });
-        self.fft2(&mut h, false);
-        self.fft2(&mut phi, false);
+        self.fft2(&mut h, false, &mut scratch);
+        self.fft2(&mut phi, false, &mut scratch);
+        self.scratch = scratch;
         let scale = 1.0 / (n * n) as f64;
         for i in 0..n * n {
             self.h[i] = h[i].re * scale;
@@ -485,6 +700,46 @@ fn transpose(from: &[Complex<f64>], to: &mut [Complex<f64>], n: usize) {
         for c in 0..n {
             to[c * n + r] = from[r * n + c];
         }
+    }
+}
+
+/// `base` with the waves on it, less one body's own depression: what
+/// [`InteractiveWaves::water_for`] samples.
+struct OnWaves<'a> {
+    base: &'a dyn crate::Surface,
+    waves: &'a InteractiveWaves,
+    /// The body's own cells and depths, in increasing cell order.
+    own: &'a [(usize, f64)],
+}
+
+impl OnWaves<'_> {
+    fn cell_value(&self, ix: i64, iz: i64) -> f64 {
+        let n = self.waves.region.cells as i64;
+        if !((0..n).contains(&ix) && (0..n).contains(&iz)) {
+            return 0.0;
+        }
+        let cell = (iz * n + ix) as usize;
+        let own = self
+            .own
+            .binary_search_by_key(&cell, |&(c, _)| c)
+            .map_or(0.0, |i| self.own[i].1);
+        self.waves.h[cell] + own
+    }
+}
+
+impl crate::Surface for OnWaves<'_> {
+    fn height(&self, x: f64, z: f64, t: f64) -> f64 {
+        self.base.height(x, z, t) + self.waves.field(x, z, |i, j| self.cell_value(i, j)).0
+    }
+
+    fn velocity(&self, p: &nalgebra::Point3<f64>, t: f64) -> nalgebra::Vector3<f64> {
+        self.base.velocity(p, t)
+    }
+
+    fn slope(&self, x: f64, z: f64, t: f64, hint: &[f64; 2]) -> [f64; 2] {
+        let base = self.base.slope(x, z, t, hint);
+        let (_, s) = self.waves.field(x, z, |i, j| self.cell_value(i, j));
+        [base[0] + s[0], base[1] + s[1]]
     }
 }
 

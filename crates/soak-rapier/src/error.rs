@@ -148,6 +148,17 @@ pub enum SoakError {
         /// What is wrong.
         reason: String,
     },
+    /// The interactive waves were refused (their region or sponge) or
+    /// failed to advance (a time step that is not finite and > 0).
+    #[error("waves: {0}")]
+    Waves(#[source] soak_hydro::WaterError),
+    /// A saved state has interactive waves and the generator none, or the
+    /// other way round, or its waves do not fit the generator's region.
+    #[error("saved state: {reason}")]
+    StateWaves {
+        /// What does not match.
+        reason: String,
+    },
     /// A flooding setting was given for a body without flooding.
     #[error("body `{name}` has no flooding")]
     NoFlooding {

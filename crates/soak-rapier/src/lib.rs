@@ -20,8 +20,8 @@ pub mod scene;
 pub use self::error::{SceneError, SoakError};
 pub use self::firewall::{FIREWALL_MEMORY, Firewall, FirewallEvent};
 pub use self::generator::{
-    Backend, BodyDesc, BodyRunState, Effects, ForceGenerator, GeneratorState, Impact, ImpactHoles,
-    SlamReport, Slamming, SoakBody, SoakId,
+    Backend, BodyDesc, BodyRunState, CoupledWavesState, Effects, ForceGenerator, GeneratorState, Impact,
+    ImpactHoles, SlamReport, Slamming, SoakBody, SoakId, WaveCoupling,
 };
 pub use self::scene::{LoadedScene, Scene};
 pub use self::simulation::{BodyReport, Sample, SavedSimulation, SimBody, Simulation, water_of};

@@ -18,6 +18,7 @@ use super::force_generator::{ForceGenerator, Impact};
 use super::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
 use super::inertial::Inertial;
 use super::rapier_body::apply_wrench;
+use super::waves::{CoupledWaves, Pressed};
 use crate::convert;
 use crate::error::SoakError;
 
@@ -86,7 +87,13 @@ impl ForceGenerator {
         let lookahead = (substeps - 1.0) / (2.0 * substeps) * dt;
         let t = self.time;
         let step = self.steps;
-        let bounds = self.water.surface.height_bounds(t);
+        // The interactive waves raise the highest crest by theirs.
+        let crest = self.waves.as_deref().map_or(0.0, |w| w.solver.highest());
+        let bounds = self
+            .water
+            .surface
+            .height_bounds(t)
+            .map(|(lo, hi)| (lo, hi + crest));
 
         // 1. Which bodies need texel work, at which predicted state.
         // Each body's options are made where they are needed from what every
@@ -132,8 +139,15 @@ impl ForceGenerator {
             } else {
                 0.0
             };
+            // A body that pressed on the waves last step is not skipped:
+            // it floats on its own depression taken back out.
+            let pressing = self
+                .waves
+                .as_deref()
+                .is_some_and(|w| w.own.get(k).is_some_and(|own| !own.is_empty()));
             if let Some((_, highest)) = bounds
                 && centre.y - radius - reach > highest
+                && !pressing
             {
                 b.dry_skips += 1;
                 b.forces = HydroForces {
@@ -162,16 +176,37 @@ impl ForceGenerator {
         // heights (`None`: a plane, or the exact read). A body whose
         // sampling fails (a state that is not finite) is evaluated on the
         // water itself, which reports the error.
-        let seas: Vec<Option<Water>> = {
-            let (bodies, water) = (&self.bodies, &self.water);
+        // With interactive waves, a body over their region presses its
+        // columns under the base water on them (the pressure a body puts on
+        // the waves does not depend on the waves), and floats on the water
+        // with the waves on it less that depression, sampled on the waves'
+        // cells.
+        let (seas, pressed): (Vec<Option<Water>>, Vec<Option<Pressed>>) = {
+            let (bodies, water, waves) = (&self.bodies, &self.water, self.waves.as_deref());
             work.par_iter()
                 .map(|(k, state)| {
                     let b = &bodies[*k];
-                    soak_hydro::sampled_water(&b.atlas, water, state, t, &shared.of(b))
+                    let options = shared.of(b);
+                    let sea = soak_hydro::sampled_water(&b.atlas, water, state, t, &options)
                         .ok()
-                        .flatten()
+                        .flatten();
+                    let Some(w) = waves else {
+                        return (sea, None);
+                    };
+                    let base = sea.as_ref().unwrap_or(water);
+                    let buoyant = !matches!(b.effects.buoyancy, None | Some(BuoyancyMode::Off));
+                    let own = if buoyant {
+                        w.solver.pressed(&b.atlas, base, state, t).unwrap_or_default()
+                    } else {
+                        Vec::new()
+                    };
+                    let with_velocity = options.drag.is_some();
+                    match w.solver.water_for(base, &b.atlas, state, &own, t, with_velocity) {
+                        Ok(Some(on)) => (Some(on), Some(own)),
+                        _ => (sea, None),
+                    }
                 })
-                .collect()
+                .unzip()
         };
 
         // 2. Evaluate: one GPU batch, or every body in one parallel pass on
@@ -231,6 +266,16 @@ impl ForceGenerator {
         } else {
             Vec::new()
         };
+
+        // A body whose evaluation failed presses nothing.
+        if let Some(w) = self.waves.as_deref_mut() {
+            let pressed = pressed
+                .into_iter()
+                .zip(&results)
+                .map(|(p, r)| p.filter(|_| r.is_ok()))
+                .collect();
+            press_waves(w, self.bodies.len(), &work, pressed);
+        }
 
         // 3. The firewall, then Rapier.
         for (i, (((k, state), result), sea)) in work.iter().zip(results).zip(&seas).enumerate() {
@@ -395,6 +440,33 @@ impl ForceGenerator {
         Ok(stuck)
     }
 
+    /// Advances the interactive waves (if the generator has them, see
+    /// [`ForceGenerator::with_waves`]) by `dt` (s) under the pressure the
+    /// bodies put on them at [`ForceGenerator::apply`], then moves their
+    /// region to follow the bodies. [`ForceGenerator::step`] calls it after
+    /// `apply`; call it yourself (once per step, after `apply`, before
+    /// stepping the world) when driving Rapier yourself. Nothing without
+    /// waves.
+    ///
+    /// # Errors
+    /// [`SoakError::Waves`] for a `dt` that is not finite and > 0 (the
+    /// waves are then unchanged).
+    pub fn step_waves(&mut self, dt: f64) -> Result<(), SoakError> {
+        let Some(w) = self.waves.as_deref_mut() else {
+            return Ok(());
+        };
+        w.solver.step(dt).map_err(SoakError::Waves)?;
+        if w.rule.follow
+            && let Some(centre) = w.follow
+        {
+            let shift = w.solver.recentre(centre);
+            for own in &mut w.own {
+                w.solver.shift_cells(own, shift);
+            }
+        }
+        Ok(())
+    }
+
     /// Advances the generator's clock (for moving waves) by `dt` seconds.
     pub fn advance(&mut self, dt: f64) {
         self.time += dt;
@@ -423,6 +495,7 @@ impl ForceGenerator {
         self.flood(&mut world.bodies, &world.colliders, dt)?;
         self.apply(&mut world.bodies, &params);
         self.wet(&world.bodies, dt)?;
+        self.step_waves(dt)?;
         world.step();
         self.advance(dt);
         self.tear(world)?;
@@ -544,6 +617,39 @@ fn slam_step(
         force: f,
         torque: (point - com).cross(&f),
     }
+}
+
+/// Puts this step's presses on the waves: the pressure is what the bodies
+/// in `work` pressed now (`pressed`, in `work`'s order; `None` for a body
+/// that pressed nothing), every other body's depression is cleared, the
+/// first press is held at rest when asked, and the region's next centre is
+/// the middle of the bodies that pressed.
+fn press_waves(
+    w: &mut CoupledWaves,
+    bodies: usize,
+    work: &[(usize, BodyState)],
+    pressed: Vec<Option<Pressed>>,
+) {
+    w.own.resize_with(bodies, Vec::new);
+    w.own.iter_mut().for_each(Vec::clear);
+    w.solver.clear_pressure();
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for ((k, state), cells) in work.iter().zip(pressed) {
+        let Some(cells) = cells.filter(|c| !c.is_empty()) else {
+            continue;
+        };
+        w.solver.add_pressure(&cells);
+        if w.settle_pending {
+            w.solver.hold(&cells);
+        }
+        let p = state.pose.translation.vector;
+        lo = [lo[0].min(p.x), lo[1].min(p.z)];
+        hi = [hi[0].max(p.x), hi[1].max(p.z)];
+        w.own[*k] = cells;
+    }
+    w.settle_pending = false;
+    w.follow = (lo[0] <= hi[0]).then(|| [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])]);
 }
 
 /// What every body's [`HydroOptions`] share in a step.

@@ -18,6 +18,7 @@ use soak_wet::{Environment, Wetting};
 use super::body::{FloodSettings, Shape, SoakBody, with_extra};
 use super::config::{Backend, BodyDesc, SoakId};
 use super::rapier_body::{check_not_too_light, push_mass};
+use super::waves::{CoupledWaves, WaveCoupling};
 use crate::error::SoakError;
 use crate::firewall::Firewall;
 
@@ -74,6 +75,9 @@ pub struct ForceGenerator {
     pub(super) firewall: Firewall,
     pub(super) environment: Environment,
     pub(super) impacts: Vec<Impact>,
+    /// Interactive waves, when the scene has them (boxed: a pointer's
+    /// width when off).
+    pub(super) waves: Option<Box<CoupledWaves>>,
     #[cfg(feature = "gpu")]
     pub(super) gpu: Option<crate::gpu::GpuBackend>,
 }
@@ -107,6 +111,7 @@ impl ForceGenerator {
             firewall: Firewall::default(),
             environment: Environment::default(),
             impacts: Vec::new(),
+            waves: None,
             #[cfg(feature = "gpu")]
             gpu: None,
         }
@@ -174,6 +179,49 @@ impl ForceGenerator {
     /// [`ForceGenerator::with_sea_velocity`]).
     pub fn sea_velocity(&self) -> SeaVelocity {
         self.sea_velocity
+    }
+
+    /// The same generator with interactive waves on its water (see
+    /// [`WaveCoupling`]): every body with buoyancy presses on them and
+    /// floats on them from the next step. The waves take the water's
+    /// density and gravity now.
+    ///
+    /// # Errors
+    /// [`SoakError::Waves`] for a region or sponge that is refused (see
+    /// [`InteractiveWaves::new`](soak_hydro::InteractiveWaves::new)).
+    pub fn with_waves(mut self, rule: WaveCoupling) -> Result<Self, SoakError> {
+        let solver = soak_hydro::InteractiveWaves::new(
+            rule.region(),
+            self.water.gravity,
+            self.water.density,
+            rule.sponge,
+        )
+        .map_err(SoakError::Waves)?;
+        self.waves = Some(Box::new(CoupledWaves {
+            solver,
+            rule,
+            own: Vec::new(),
+            settle_pending: rule.settle,
+            follow: None,
+        }));
+        Ok(self)
+    }
+
+    /// The interactive waves, if the generator has them
+    /// ([`ForceGenerator::with_waves`]): their surface, energy and the
+    /// energy their sponge took.
+    pub fn waves(&self) -> Option<&soak_hydro::InteractiveWaves> {
+        self.waves.as_deref().map(|w| &w.solver)
+    }
+
+    /// The cells body `id` pressed on the interactive waves at the last
+    /// step and the depth (m) in each: its depression, which
+    /// [`ForceGenerator::waves`]' elevation holds. Empty without waves.
+    pub fn pressed(&self, id: SoakId) -> &[(usize, f64)] {
+        self.waves
+            .as_deref()
+            .and_then(|w| w.own.get(id.0))
+            .map_or(&[], |v| v.as_slice())
     }
 
     /// The fluid.

@@ -21,8 +21,10 @@ mod inertial;
 mod predicted_step;
 mod rapier_body;
 mod state;
+mod waves;
 
 pub use body::{SlamReport, SoakBody};
 pub use config::{Backend, BodyDesc, Effects, ImpactHoles, Slamming, SoakId};
 pub use force_generator::{ForceGenerator, Impact};
 pub use state::{BodyRunState, GeneratorState};
+pub use waves::{CoupledWavesState, WaveCoupling};

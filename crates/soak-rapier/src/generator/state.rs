@@ -99,6 +99,10 @@ pub struct GeneratorState {
     /// The weather wet bodies dry in.
     #[serde(default)]
     pub environment: Environment,
+    /// The interactive waves, if the generator has them: their surface
+    /// and what each body pressed at the last step.
+    #[serde(default)]
+    pub waves: Option<super::waves::CoupledWavesState>,
 }
 
 impl ForceGenerator {
@@ -125,6 +129,7 @@ impl ForceGenerator {
                 })
                 .collect(),
             environment: self.environment,
+            waves: self.waves.as_deref().map(|w| w.state()),
         }
     }
 
@@ -161,6 +166,37 @@ impl ForceGenerator {
                 return Err(SoakError::StateFlooding {
                     name: b.name.clone(),
                     saved: s.flooding.is_some(),
+                });
+            }
+        }
+        match (self.waves.as_deref_mut(), &state.waves) {
+            (None, None) => {}
+            (Some(w), Some(saved)) => {
+                if saved.own.len() > self.bodies.len() {
+                    return Err(SoakError::StateWaves {
+                        reason: format!(
+                            "the waves hold presses for {} bodies, the generator has {}",
+                            saved.own.len(),
+                            self.bodies.len()
+                        ),
+                    });
+                }
+                w.solver
+                    .restore(&saved.surface)
+                    .map_err(|e| SoakError::StateWaves {
+                        reason: format!("the waves: {e}"),
+                    })?;
+                w.own = saved.own.clone();
+                w.settle_pending = saved.settle_pending;
+                w.follow = None;
+            }
+            (mine, _) => {
+                return Err(SoakError::StateWaves {
+                    reason: if mine.is_some() {
+                        "it has no interactive waves, the generator has".into()
+                    } else {
+                        "it has interactive waves, the generator has none".into()
+                    },
                 });
             }
         }
