@@ -208,6 +208,62 @@ impl InteractiveWaves {
             + fv * ((1.0 - fu) * at(i, j + 1) + fu * at(i + 1, j + 1))
     }
 
+    /// The crests along a ray: the distances (m) from `from` (`(x, z)`,
+    /// world, m) along `heading` (radians from +x towards +z) between
+    /// `near` and `far` where the elevation has a local maximum above 0,
+    /// the profile read every tenth of a cell. For a ring's crests.
+    pub fn crests(&self, from: [f64; 2], heading: f64, near: f64, far: f64) -> Vec<f64> {
+        let step = 0.1 * self.region.cell();
+        let samples = ((far - near) / step).ceil().max(2.0) as usize;
+        let (s, c) = heading.sin_cos();
+        let profile: Vec<(f64, f64)> = (0..=samples)
+            .map(|k| {
+                let r = near + (far - near) * k as f64 / samples as f64;
+                (r, self.height(from[0] + r * c, from[1] + r * s))
+            })
+            .collect();
+        profile
+            .windows(3)
+            .filter(|w| w[1].1 > w[0].1 && w[1].1 >= w[2].1 && w[1].1 > 0.0)
+            .map(|w| w[1].0)
+            .collect()
+    }
+
+    /// The half-angle (degrees) of the wake of a source at `source`
+    /// (`(x, z)`, world, m) moving along `heading` (radians from +x towards
+    /// +z), seen `behind` metres behind it, on the side to its right of
+    /// the track (+z for heading 0): across the track, the local amplitude
+    /// (the largest |h| within a metre along the track) rises to the cusp
+    /// waves' peak and then falls off as Airy's function does past a
+    /// caustic; the caustic, Kelvin's line, is taken where it has fallen to
+    /// `Ai(0)/max Ai = 0.663` of that peak (the peak lies inside the line
+    /// and nears it only slowly with the distance behind). Read at 0.1°
+    /// steps up to 40°.
+    pub fn wake_half_angle(&self, source: [f64; 2], heading: f64, behind: f64) -> f64 {
+        let (s, c) = heading.sin_cos();
+        let amplitudes: Vec<f64> = (0..=400)
+            .map(|j| {
+                let across = behind * (0.1 * j as f64).to_radians().tan();
+                (0..=20)
+                    .map(|k| {
+                        let along = -behind - 1.0 + 0.1 * k as f64;
+                        let x = source[0] + along * c - across * s;
+                        let z = source[1] + along * s + across * c;
+                        self.height(x, z).abs()
+                    })
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        let (peak, max) = amplitudes
+            .iter()
+            .enumerate()
+            .fold((0, 0.0), |a, (j, &v)| if v > a.1 { (j, v) } else { a });
+        let edge = (peak..amplitudes.len())
+            .find(|&j| amplitudes[j] < 0.663 * max)
+            .unwrap_or(amplitudes.len());
+        0.1 * edge as f64
+    }
+
     /// Clears the pressure applied at the surface.
     pub fn clear_pressure(&mut self) {
         self.pressure.iter_mut().for_each(|p| *p = 0.0);

@@ -43,19 +43,8 @@ fn a_rings_crests_are_where_the_group_velocity_carries_them() {
         }
         // Crests along +x, between 2 m and 24 m from the centre (the
         // sponge starts at 28 m), found as local maxima of the profile
-        // sampled finely, refined by a parabola.
-        let samples: Vec<(f64, f64)> = (0..=2200)
-            .map(|k| {
-                let r = 2.0 + 22.0 * k as f64 / 2200.0;
-                (r, waves.height(r, 0.0))
-            })
-            .collect();
-        let mut crests = Vec::new();
-        for w in samples.windows(3) {
-            if w[1].1 > w[0].1 && w[1].1 >= w[2].1 && w[1].1 > 0.0 {
-                crests.push(w[1].0);
-            }
-        }
+        // read every tenth of a cell.
+        let crests = waves.crests([0.0, 0.0], 0.0, 2.0, 24.0);
         let phase = |r: f64| G * t * t / (4.0 * r);
         // Pairs of crests whose waves have at least six cells a wavelength
         // (the wavelength at r is 8π r²/(g t²)), where
@@ -77,33 +66,6 @@ fn a_rings_crests_are_where_the_group_velocity_carries_them() {
         }
     }
     assert!(checked >= 6, "{checked} crest pairs");
-}
-
-/// The wake's half-angle seen `s` metres behind a source at `source_x`
-/// (moving along +x at z = 0): across the track, the local amplitude (the
-/// largest |h| within a metre along the track) rises to the cusp waves'
-/// peak and then falls off as Airy's function does past a caustic; the
-/// caustic itself, Kelvin's line, is where it has fallen to
-/// `Ai(0)/max Ai = 0.663` of that peak (the peak lies inside the line, and
-/// nears it only slowly with the distance behind).
-fn wake_angle(waves: &InteractiveWaves, source_x: f64, s: f64) -> f64 {
-    let x = source_x - s;
-    let amplitudes: Vec<f64> = (0..=400)
-        .map(|j| {
-            let z = s * (0.1 * j as f64).to_radians().tan();
-            (0..=20)
-                .map(|k| waves.height(x - 1.0 + 0.1 * k as f64, z).abs())
-                .fold(0.0, f64::max)
-        })
-        .collect();
-    let (peak, max) = amplitudes
-        .iter()
-        .enumerate()
-        .fold((0, 0.0), |a, (j, &v)| if v > a.1 { (j, v) } else { a });
-    let edge = (peak..amplitudes.len())
-        .find(|&j| amplitudes[j] < 0.663 * max)
-        .unwrap_or(amplitudes.len());
-    0.1 * edge as f64
 }
 
 /// A round pressure patch (a hull of draft 5 cm, σ = 0.3 m, its draft
@@ -134,7 +96,7 @@ fn a_towed_source_leaves_a_kelvin_wake_of_19_5_degrees_at_two_speeds() {
         let source = start + speed * steps as f64 * dt;
         let angles: Vec<f64> = [11.0, 14.0, 17.0, 20.0]
             .iter()
-            .map(|&s| wake_angle(&waves, source, s))
+            .map(|&s| waves.wake_half_angle([source, 0.0], 0.0, s))
             .collect();
         let mean = angles.iter().sum::<f64>() / angles.len() as f64;
         println!(

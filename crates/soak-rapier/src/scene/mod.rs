@@ -116,6 +116,10 @@ pub struct Scene {
     /// What to record.
     #[serde(default)]
     pub output: OutputSpec,
+    /// Interactive waves the bodies make and float on (`[waves]`, keys of
+    /// [`WaveCoupling`](crate::WaveCoupling); absent: none).
+    #[serde(default)]
+    pub waves: Option<crate::WaveCoupling>,
 }
 
 /// What a run records.

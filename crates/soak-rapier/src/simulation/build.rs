@@ -122,6 +122,11 @@ impl Simulation {
             .with_backend(scene.backend)
             .with_sea_sampling(scene.water.sampling.unwrap_or_default())
             .with_sea_velocity(scene.water.velocity.unwrap_or_default());
+        if let Some(waves) = scene.waves {
+            soak = soak
+                .with_waves(waves)
+                .map_err(|e| loaded.invalid("waves", e.to_string()))?;
+        }
         let mut weather = None;
         if let Some(env) = &scene.environment {
             soak.set_environment(env.environment())
