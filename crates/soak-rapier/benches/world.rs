@@ -1,13 +1,15 @@
 //! Step time of a Rapier world with N floating spheres (N = 1, 10, 100,
 //! 1000; builtin sphere at 128²): Rapier alone, Rapier with the force
 //! generator, and with every body registered but its effects switched off
-//! (which should cost nothing measurable).
+//! (which should cost nothing measurable). Then ten bodies on the
+//! interactive waves they make (64 m at 0.25 m and at 0.5 m cells) against
+//! the same ten without.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions, builtin};
 use soak_hydro::{Drag, MassModel, Water};
-use soak_rapier::{BodyDesc, Effects, ForceGenerator};
+use soak_rapier::{BodyDesc, Effects, ForceGenerator, WaveCoupling};
 
 /// How the bodies are driven.
 #[derive(Clone, Copy)]
@@ -92,5 +94,53 @@ fn step(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, step);
+/// Ten spheres in a row 3 m apart, floating with buoyancy and drag, on
+/// interactive waves of `cells` per 64 m side (none for `None`).
+fn waves_world(atlas: &std::sync::Arc<Atlas>, cells: Option<usize>) -> (PhysicsWorld, ForceGenerator) {
+    let mut world = PhysicsWorld::new();
+    world.integration_parameters.dt = 1.0 / 60.0;
+    let mut soak = ForceGenerator::new(Water::calm(0.0));
+    if let Some(cells) = cells {
+        soak = soak
+            .with_waves(WaveCoupling {
+                cells,
+                ..WaveCoupling::default()
+            })
+            .unwrap();
+    }
+    for i in 0..10 {
+        let x = 3.0 * i as f32 - 13.5;
+        let handle = world
+            .bodies
+            .insert(RigidBodyBuilder::dynamic().translation(Vector::new(x, -0.1, 0.0)));
+        let desc = BodyDesc {
+            name: format!("sphere {i}"),
+            atlas: atlas.clone(),
+            mass_model: MassModel::Solid { density: 500.0 },
+            effects: Effects::buoyancy().with_drag(Drag::default()),
+        };
+        soak.register(&mut world.bodies, &world.colliders, handle, desc)
+            .unwrap();
+    }
+    (world, soak)
+}
+
+fn waves(c: &mut Criterion) {
+    let atlas =
+        std::sync::Arc::new(Atlas::bake(&builtin::sphere(0.5, 32, 16), BakeOptions::square(128)).unwrap());
+    let mut g = c.benchmark_group("waves_step");
+    g.sample_size(10);
+    for (label, cells) in [("none", None), ("64m_128", Some(128)), ("64m_256", Some(256))] {
+        let (mut w, mut soak) = waves_world(&atlas, cells);
+        for _ in 0..30 {
+            soak.step(&mut w).unwrap();
+        }
+        g.bench_function(BenchmarkId::new("ten_bodies", label), |b| {
+            b.iter(|| soak.step(&mut w).unwrap())
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, step, waves);
 criterion_main!(benches);

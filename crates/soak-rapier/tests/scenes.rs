@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use soak_rapier::{LoadedScene, SceneError, Simulation};
+use soak_rapier::{LoadedScene, SavedSimulation, SceneError, Simulation};
 
 fn data(name: &str) -> PathBuf {
     [env!("CARGO_MANIFEST_DIR"), "..", "..", "data", name]
@@ -305,4 +305,47 @@ fn permeability_without_a_graph_is_refused() {
         e.to_string().contains("bodies[0].permeability") && e.to_string().contains("line 8"),
         "{e}"
     );
+}
+
+/// `data/scenes/passing_boat.toml`: the boat's wake reaches the buoy and
+/// rocks it; the same scene without its `[waves]` table leaves the buoy
+/// still. Saved with its waves half-way and resumed, the run equals the
+/// straight one bit for bit.
+#[test]
+fn a_passing_boat_rocks_the_buoy_and_a_save_keeps_the_waves() {
+    let path = data("scenes/passing_boat.toml");
+    let scene = LoadedScene::from_file(&path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let calm_text = text.replace("[waves]\nsize = 64.0\ncells = 256\n", "");
+    assert_ne!(calm_text, text);
+    let calm = LoadedScene::from_str(&calm_text, &path).unwrap();
+    let tilt = |scene: &LoadedScene, steps: u64| {
+        let mut sim = Simulation::from_scene(scene).unwrap();
+        let mut most: f64 = 0.0;
+        for _ in 0..steps {
+            sim.step().unwrap();
+            let up = soak_rapier::convert::rotation(*sim.world.bodies[sim.bodies[1].handle].rotation())
+                * nalgebra::Vector3::y();
+            most = most.max(up.y.clamp(-1.0, 1.0).acos().to_degrees());
+        }
+        (most, sim)
+    };
+    let (with, straight) = tilt(&scene, 720);
+    let (without, _) = tilt(&calm, 720);
+    println!("the buoy's largest tilt over 12 s: {with:.2}° with the waves, {without:.2}° without");
+    assert!(with > 5.0, "{with}°");
+    assert!(without < 1.0, "{without}°");
+
+    let mut first = Simulation::from_scene(&scene).unwrap();
+    for _ in 0..360 {
+        first.step().unwrap();
+    }
+    let bytes = first.save(&scene).unwrap().to_bytes().unwrap();
+    drop(first);
+    let mut resumed = Simulation::resume(&SavedSimulation::from_bytes(&bytes).unwrap()).unwrap();
+    for _ in 360..720 {
+        resumed.step().unwrap();
+    }
+    assert_eq!(straight.soak.state(), resumed.soak.state());
+    assert!(resumed.soak.state().waves.is_some());
 }

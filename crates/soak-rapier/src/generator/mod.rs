@@ -7,7 +7,8 @@
 //! `config` (what a body registers with), `body` ([`SoakBody`]),
 //! `rapier_body` (what is written into a Rapier body), `predicted_step`
 //! (the energy guard's prediction of Rapier's step), `implicit` (the
-//! implicit heave, pitch and roll integrator), `force_generator`
+//! implicit heave, pitch and roll integrator), `waves` (the interactive
+//! waves bodies make, [`WaveCoupling`]), `force_generator`
 //! ([`ForceGenerator`] and its set-up), `state` (saving and restoring) and
 //! `driver` (each step's work). The GPU backend (`crate::gpu`) depends on
 //! `body` alone. This file only re-exports their public items.
