@@ -45,6 +45,45 @@ impl WaveRegion {
     }
 }
 
+/// The elevation of an [`InteractiveWaves`] at one time
+/// ([`InteractiveWaves::snapshot`]), e.g. for drawing the surface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WaveHeights {
+    /// The region it covers.
+    pub region: WaveRegion,
+    /// Elevation per cell, m (cell `(ix, iz)` at `iz · n + ix`).
+    pub heights: Vec<f64>,
+}
+
+impl WaveHeights {
+    /// The elevation at `(x, z)` (world, m), bilinear between cell
+    /// centres; 0 outside the region (and for heights of the wrong length).
+    pub fn height(&self, x: f64, z: f64) -> f64 {
+        if self.heights.len() != self.region.cells * self.region.cells {
+            return 0.0;
+        }
+        bilinear(&self.region, &self.heights, x, z)
+    }
+}
+
+/// The elevation `h` (per cell of `region`) at `(x, z)` (world, m),
+/// bilinear between cell centres; 0 outside the cells' centres.
+fn bilinear(region: &WaveRegion, h: &[f64], x: f64, z: f64) -> f64 {
+    let n = region.cells;
+    let d = region.cell();
+    let half = 0.5 * region.size;
+    let (x0, z0) = (region.centre[0] - half, region.centre[1] - half);
+    let (u, v) = ((x - x0) / d - 0.5, (z - z0) / d - 0.5);
+    if !(u >= 0.0 && v >= 0.0 && u <= (n - 1) as f64 && v <= (n - 1) as f64) {
+        return 0.0;
+    }
+    let (i, j) = ((u as usize).min(n - 2), (v as usize).min(n - 2));
+    let (fu, fv) = (u - i as f64, v - j as f64);
+    let at = |i: usize, j: usize| h[j * n + i];
+    (1.0 - fv) * ((1.0 - fu) * at(i, j) + fu * at(i + 1, j))
+        + fv * ((1.0 - fu) * at(i, j + 1) + fu * at(i + 1, j + 1))
+}
+
 /// What an [`InteractiveWaves`] evolves ([`InteractiveWaves::state`]).
 #[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct WavesState {
@@ -194,18 +233,15 @@ impl InteractiveWaves {
     /// The elevation at `(x, z)` (world, m), bilinear between cell centres;
     /// 0 outside the region.
     pub fn height(&self, x: f64, z: f64) -> f64 {
-        let n = self.region.cells;
-        let d = self.region.cell();
-        let (x0, z0) = self.corner();
-        let (u, v) = ((x - x0) / d - 0.5, (z - z0) / d - 0.5);
-        if !(u >= 0.0 && v >= 0.0 && u <= (n - 1) as f64 && v <= (n - 1) as f64) {
-            return 0.0;
+        bilinear(&self.region, &self.h, x, z)
+    }
+
+    /// The elevation now, to keep or draw ([`WaveHeights`]).
+    pub fn snapshot(&self) -> WaveHeights {
+        WaveHeights {
+            region: self.region,
+            heights: self.h.clone(),
         }
-        let (i, j) = ((u as usize).min(n - 2), (v as usize).min(n - 2));
-        let (fu, fv) = (u - i as f64, v - j as f64);
-        let at = |i: usize, j: usize| self.h[j * n + i];
-        (1.0 - fv) * ((1.0 - fu) * at(i, j) + fu * at(i + 1, j))
-            + fv * ((1.0 - fu) * at(i, j + 1) + fu * at(i + 1, j + 1))
     }
 
     /// The crests along a ray: the distances (m) from `from` (`(x, z)`,

@@ -384,6 +384,10 @@ impl SceneRenderer {
             (None, Some(level)) => Some(RenderWater::plane(level)),
             (None, None) => None,
         };
+        // The waves the bodies make, on the water.
+        if let Some(waves) = sim.soak.waves() {
+            scene.water = scene.water.take().map(|w| w.with_waves(waves.snapshot()));
+        }
         scene.objects = objects;
         scene.view = self.options.view.into();
         scene.arrows.extend(pipes);

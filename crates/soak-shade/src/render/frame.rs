@@ -218,6 +218,19 @@ fn upload_objects(
         .collect()
 }
 
+/// Where the surface point resting over `(x, z)` (m) is: a plane's, a
+/// Gerstner particle's, raised by interactive waves where it has gone.
+fn surface_point(shape: &WaterShape, x: f64, z: f64) -> Point3<f64> {
+    match shape {
+        WaterShape::Plane { level } => Point3::new(x, *level, z),
+        WaterShape::Gerstner { sea, time } => sea.particle(x, z, *time),
+        WaterShape::Interactive { base, waves } => {
+            let p = surface_point(base, x, z);
+            Point3::new(p.x, p.y + waves.height(p.x, p.z), p.z)
+        }
+    }
+}
+
 /// The water grid around the camera's target, culled to the view, and its
 /// uniform.
 fn upload_water(gpu: &FrameGpu<'_>, scene: &RenderScene) -> Option<WaterDraw> {
@@ -226,9 +239,7 @@ fn upload_water(gpu: &FrameGpu<'_>, scene: &RenderScene) -> Option<WaterDraw> {
         let (cx, cz) = (scene.camera.target.x, scene.camera.target.z);
         let (vertices, all) = match &w.shape {
             WaterShape::Plane { level } => water_grid(cx, cz, w.extent, 2, |x, z| Point3::new(x, *level, z)),
-            WaterShape::Gerstner { sea, time } => {
-                water_grid(cx, cz, w.extent, w.resolution, |x, z| sea.particle(x, z, *time))
-            }
+            shape => water_grid(cx, cz, w.extent, w.resolution, |x, z| surface_point(shape, x, z)),
         };
         let (width, height) = (gpu.targets.width, gpu.targets.height);
         let view_proj = scene.camera.view_projection(f64::from(width) / f64::from(height));
@@ -372,4 +383,55 @@ pub(super) fn scene_bytes(scene: &RenderScene) -> u64 {
         bytes += 40 * u64::from(w.resolution) * u64::from(w.resolution);
     }
     bytes
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Interactive waves raise the base water by their elevation where
+    /// they are (a plane's point, or a Gerstner particle's), and nothing
+    /// outside their region.
+    #[test]
+    fn interactive_waves_raise_the_base_surface() {
+        let region = soak_hydro::WaveRegion {
+            centre: [0.0, 0.0],
+            size: 8.0,
+            cells: 8,
+        };
+        // A ramp along x: cell (ix, iz) at 0.1 ix m.
+        let heights = (0..64).map(|i| 0.1 * (i % 8) as f64).collect();
+        let waves = soak_hydro::WaveHeights { region, heights };
+        let shape = WaterShape::Interactive {
+            base: Box::new(WaterShape::Plane { level: 2.0 }),
+            waves,
+        };
+        // Cell centres at −3.5, −2.5, …: x = 0 is half-way between cells 3 and 4.
+        let p = surface_point(&shape, 0.0, 0.0);
+        assert!((p.y - 2.35).abs() < 1e-12, "{p}");
+        assert_eq!(surface_point(&shape, 50.0, 0.0).y, 2.0);
+        let sea = soak_hydro::Gerstner::new(
+            0.0,
+            vec![soak_hydro::GerstnerWave {
+                amplitude: 0.2,
+                wavelength: 10.0,
+                direction_deg: 0.0,
+                steepness: 0.5,
+                phase: 0.0,
+            }],
+            9.81,
+        )
+        .unwrap();
+        let particle = sea.particle(1.0, 0.5, 3.0);
+        let on_sea = WaterShape::Interactive {
+            base: Box::new(WaterShape::Gerstner { sea, time: 3.0 }),
+            waves: soak_hydro::WaveHeights {
+                region,
+                heights: vec![0.25; 64],
+            },
+        };
+        let q = surface_point(&on_sea, 1.0, 0.5);
+        assert_eq!((q.x, q.z), (particle.x, particle.z));
+        assert!((q.y - particle.y - 0.25).abs() < 1e-12);
+    }
 }

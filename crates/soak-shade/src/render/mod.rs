@@ -66,8 +66,8 @@ pub use pipelines::shader_sources;
 pub use procedural::{blotches, fractal_noise, speckled, value_noise, wood_planks};
 pub use renderer::{Renderer, RendererOptions};
 pub use scene::{
-    Albedo, Arrow, DebugView, DirectionalLight, Environment, LiquidImage, RenderObject, RenderScene,
-    RenderWater, ToneMap, WaterShape,
+    Albedo, Arrow, DebugView, DirectionalLight, Environment, INTERACTIVE_RESOLUTION, LiquidImage,
+    RenderObject, RenderScene, RenderWater, ToneMap, WaterShape,
 };
 /// The device helpers every GPU path of soak shares, re-exported from soak-gpu.
 pub use soak_gpu::{GpuError, adapter_label, headless_device, is_software, test_device};

@@ -222,7 +222,22 @@ pub enum WaterShape {
         /// Time, s.
         time: f64,
     },
+    /// Interactive waves (the waves bodies make,
+    /// [`soak_hydro::InteractiveWaves::snapshot`]) on `base`, a plane or a
+    /// sea: the base's grid raised by the waves' elevation, drawn at least
+    /// [`INTERACTIVE_RESOLUTION`] vertices a side so that a wake shows.
+    Interactive {
+        /// The water under the waves.
+        base: Box<WaterShape>,
+        /// The waves' elevation.
+        waves: soak_hydro::WaveHeights,
+    },
 }
+
+/// The fewest grid vertices a side [`WaterShape::Interactive`] is drawn
+/// with (the grid is finest round the camera's target: about 4 cm apart
+/// there and 20 cm half-way out at the default extent).
+pub const INTERACTIVE_RESOLUTION: u32 = 512;
 
 /// The water surface: shape and look. Fresnel-shaded (reflects the sky and
 /// the sun), semi-transparent (objects below show through, darkened).
@@ -254,6 +269,17 @@ impl RenderWater {
     /// A Gerstner sea at time `time` (s) with the default look.
     pub fn gerstner(sea: soak_hydro::Gerstner, time: f64) -> Self {
         Self::with_shape(WaterShape::Gerstner { sea, time })
+    }
+
+    /// The same water with interactive waves on it (see
+    /// [`WaterShape::Interactive`]).
+    pub fn with_waves(mut self, waves: soak_hydro::WaveHeights) -> Self {
+        self.shape = WaterShape::Interactive {
+            base: Box::new(self.shape),
+            waves,
+        };
+        self.resolution = self.resolution.max(INTERACTIVE_RESOLUTION);
+        self
     }
 
     fn with_shape(shape: WaterShape) -> Self {

@@ -75,6 +75,18 @@ impl RenderScene {
                 WaterShape::Gerstner { time, .. } if !time.is_finite() => {
                     return Err(bad(format!("time {time} is not finite")));
                 }
+                WaterShape::Interactive { waves, .. } => {
+                    let n = waves.region.cells;
+                    if waves.heights.len() != n * n {
+                        return Err(bad(format!(
+                            "interactive waves: {} heights for {n}×{n} cells",
+                            waves.heights.len()
+                        )));
+                    }
+                    if let Some(h) = waves.heights.iter().find(|h| !h.is_finite()) {
+                        return Err(bad(format!("interactive waves: height {h} is not finite")));
+                    }
+                }
                 _ => {}
             }
         }
