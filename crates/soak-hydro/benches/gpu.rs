@@ -17,7 +17,7 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
-use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuHydro, adapter_label, headless_device, is_software};
+use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuHydro, GpuWaves, adapter_label, headless_device, is_software};
 use soak_hydro::{
     BodyState, Drag, Gerstner, GerstnerWave, HydroOptions, MassModel, MassProperties, SeaSampling, Water,
     evaluate,
@@ -166,5 +166,45 @@ fn gpu(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, gpu);
+/// The interactive waves' step on the device: 64 m at 0.5 m and 0.25 m
+/// cells (one submission; the elevation read back, as a coupled step needs
+/// it), against the CPU's step of the same region in the same run.
+fn waves(c: &mut Criterion) {
+    let Ok((device, queue, info)) = headless_device() else {
+        eprintln!("no GPU adapter: skipping the GPU waves bench");
+        return;
+    };
+    let tag = format!(
+        "{:?}{}",
+        info.backend,
+        if is_software(&info) { "-software" } else { "" }
+    )
+    .to_lowercase();
+    let mut g = c.benchmark_group("waves_step");
+    g.sample_size(10);
+    for cells in [128usize, 256] {
+        let region = soak_hydro::WaveRegion {
+            centre: [0.0, 0.0],
+            size: 64.0,
+            cells,
+        };
+        let mut cpu = soak_hydro::InteractiveWaves::new(region, 9.81, 1000.0, 16).unwrap();
+        cpu.add_gaussian(0.0, 0.0, 0.5, 0.05);
+        let pressure = cpu.pressure_mut().to_vec();
+        let mut gpu = GpuWaves::new(&device, &queue, region, 9.81, 16).unwrap();
+        gpu.set_pressure(&pressure).unwrap();
+        g.bench_function(BenchmarkId::new(format!("gpu_{tag}"), cells), |b| {
+            b.iter(|| {
+                gpu.step(1.0 / 60.0).unwrap();
+                gpu.heights().unwrap()
+            })
+        });
+        g.bench_function(BenchmarkId::new("cpu", cells), |b| {
+            b.iter(|| cpu.step(1.0 / 60.0).unwrap())
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, gpu, waves);
 criterion_main!(benches);

@@ -66,6 +66,35 @@ impl WaveHeights {
     }
 }
 
+/// What [`InteractiveWaves::new`] refuses (shared with the GPU solver).
+pub(crate) fn check_waves(
+    region: &WaveRegion,
+    gravity: f64,
+    density: f64,
+    sponge: usize,
+) -> Result<(), WaterError> {
+    let bad = |name: &'static str, value: f64| Err(WaterError::Parameter { name, value });
+    if !(region.size.is_finite() && region.size > 0.0) {
+        return bad("waves.size", region.size);
+    }
+    if region.cells < 8 || region.cells % 2 == 1 {
+        return bad("waves.cells", region.cells as f64);
+    }
+    if !region.centre.iter().all(|c| c.is_finite()) {
+        return bad("waves.centre", region.centre[0] + region.centre[1]);
+    }
+    if !(gravity.is_finite() && gravity > 0.0) {
+        return bad("waves.gravity", gravity);
+    }
+    if !(density.is_finite() && density > 0.0) {
+        return bad("waves.density", density);
+    }
+    if 4 * sponge > region.cells {
+        return bad("waves.sponge", sponge as f64);
+    }
+    Ok(())
+}
+
 /// The elevation `h` (per cell of `region`) at `(x, z)` (world, m),
 /// bilinear between cell centres; 0 outside the cells' centres.
 fn bilinear(region: &WaveRegion, h: &[f64], x: f64, z: f64) -> f64 {
@@ -157,25 +186,7 @@ impl InteractiveWaves {
     /// not finite and > 0, fewer than 8 cells or an odd count, or a sponge
     /// wider than a quarter of the region.
     pub fn new(region: WaveRegion, gravity: f64, density: f64, sponge: usize) -> Result<Self, WaterError> {
-        let bad = |name: &'static str, value: f64| Err(WaterError::Parameter { name, value });
-        if !(region.size.is_finite() && region.size > 0.0) {
-            return bad("waves.size", region.size);
-        }
-        if region.cells < 8 || region.cells % 2 == 1 {
-            return bad("waves.cells", region.cells as f64);
-        }
-        if !region.centre.iter().all(|c| c.is_finite()) {
-            return bad("waves.centre", region.centre[0] + region.centre[1]);
-        }
-        if !(gravity.is_finite() && gravity > 0.0) {
-            return bad("waves.gravity", gravity);
-        }
-        if !(density.is_finite() && density > 0.0) {
-            return bad("waves.density", density);
-        }
-        if 4 * sponge > region.cells {
-            return bad("waves.sponge", sponge as f64);
-        }
+        check_waves(&region, gravity, density, sponge)?;
         let n = region.cells;
         let mut planner = FftPlanner::new();
         Ok(Self {

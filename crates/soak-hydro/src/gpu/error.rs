@@ -49,6 +49,10 @@ pub enum GpuHydroError {
     /// The mass model is invalid.
     #[error(transparent)]
     Mass(#[from] HydroError),
+    /// Interactive waves on the GPU: a region, step, state or pressure
+    /// refused.
+    #[error("waves: {0}")]
+    Waves(WaterError),
     /// Deformation: the vertex count differs from the baked mesh's.
     #[error("{given} vertex positions for an atlas baked from {expected} vertices")]
     VertexCount {

@@ -39,6 +39,7 @@ mod kernels;
 mod layout;
 mod mass_properties;
 mod surface;
+mod waves;
 pub mod wgsl;
 
 pub use batch::GpuBody;
@@ -48,3 +49,4 @@ pub use hydro::{GpuHydro, GpuOptions};
 pub use kernels::kernel_sources;
 /// The device helpers every GPU path of soak shares, re-exported from soak-gpu.
 pub use soak_gpu::{GpuError, adapter_label, headless_device, is_software, test_device};
+pub use waves::GpuWaves;
