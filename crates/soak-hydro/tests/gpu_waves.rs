@@ -37,7 +37,7 @@ fn the_gpu_steps_the_waves_as_the_cpu_does() {
         cpu.set_state(&h, &vec![0.0; n * n]).unwrap();
         gpu.set_state(&h, &vec![0.0; n * n]).unwrap();
         cpu.add_gaussian(5.0, 0.0, 0.4, 0.03);
-        gpu.set_pressure(&cpu.pressure_mut().to_vec()).unwrap();
+        gpu.set_pressure(cpu.pressure_mut()).unwrap();
         for _ in 0..90 {
             cpu.step(1.0 / 30.0).unwrap();
             gpu.step(1.0 / 30.0).unwrap();
