@@ -218,6 +218,11 @@ impl InteractiveWaves {
         &self.region
     }
 
+    /// The gravity the waves fall under, m/s².
+    pub fn gravity(&self) -> f64 {
+        self.gravity
+    }
+
     /// Time stepped so far, s.
     pub fn time(&self) -> f64 {
         self.time
@@ -314,6 +319,11 @@ impl InteractiveWaves {
     /// Clears the pressure applied at the surface.
     pub fn clear_pressure(&mut self) {
         self.pressure.iter_mut().for_each(|p| *p = 0.0);
+    }
+
+    /// The pressure over density held at the surface, per cell, m²/s².
+    pub fn pressure(&self) -> &[f64] {
+        &self.pressure
     }
 
     /// The pressure over density applied at the surface this step, per cell,

@@ -13,6 +13,9 @@ use crate::generator::body::SoakBody;
 pub(crate) struct GpuBackend {
     hydro: GpuHydro,
     atlases: Vec<GpuAtlasId>,
+    /// The caller's device and queue, for the interactive waves.
+    pub(crate) device: wgpu::Device,
+    pub(crate) queue: wgpu::Queue,
 }
 
 impl std::fmt::Debug for GpuBackend {
@@ -28,6 +31,8 @@ impl GpuBackend {
         Ok(Self {
             hydro: GpuHydro::new(device, queue)?,
             atlases: Vec::new(),
+            device: device.clone(),
+            queue: queue.clone(),
         })
     }
 

@@ -455,16 +455,8 @@ impl ForceGenerator {
         let Some(w) = self.waves.as_deref_mut() else {
             return Ok(());
         };
-        w.solver.step(dt).map_err(SoakError::Waves)?;
-        if w.rule.follow
-            && let Some(centre) = w.follow
-        {
-            let shift = w.solver.recentre(centre);
-            for own in &mut w.own {
-                w.solver.shift_cells(own, shift);
-            }
-        }
-        Ok(())
+        w.step(dt)?;
+        w.follow()
     }
 
     /// Advances the generator's clock (for moving waves) by `dt` seconds.
@@ -642,6 +634,7 @@ fn press_waves(
         w.solver.add_pressure(&cells);
         if w.settle_pending {
             w.solver.hold(&cells);
+            w.moved = true;
         }
         let p = state.pose.translation.vector;
         lo = [lo[0].min(p.x), lo[1].min(p.z)];

@@ -127,6 +127,9 @@ impl ForceGenerator {
         for b in &self.bodies {
             gpu.upload(&b.atlas)?;
         }
+        if let Some(w) = self.waves.as_deref_mut() {
+            w.on_gpu(device, queue)?;
+        }
         self.gpu = Some(gpu);
         Ok(self)
     }
@@ -197,13 +200,22 @@ impl ForceGenerator {
             rule.sponge,
         )
         .map_err(SoakError::Waves)?;
-        self.waves = Some(Box::new(CoupledWaves {
+        #[cfg_attr(not(feature = "gpu"), allow(unused_mut))]
+        let mut waves = Box::new(CoupledWaves {
             solver,
             rule,
             own: Vec::new(),
             settle_pending: rule.settle,
             follow: None,
-        }));
+            #[cfg(feature = "gpu")]
+            gpu: None,
+            moved: false,
+        });
+        #[cfg(feature = "gpu")]
+        if let Some(gpu) = &self.gpu {
+            waves.on_gpu(&gpu.device, &gpu.queue)?;
+        }
+        self.waves = Some(waves);
         Ok(self)
     }
 

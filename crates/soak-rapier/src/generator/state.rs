@@ -189,6 +189,7 @@ impl ForceGenerator {
                 w.own = saved.own.clone();
                 w.settle_pending = saved.settle_pending;
                 w.follow = None;
+                w.moved = true;
             }
             (mine, _) => {
                 return Err(SoakError::StateWaves {

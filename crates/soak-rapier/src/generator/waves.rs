@@ -22,6 +22,13 @@ use soak_hydro::{InteractiveWaves, WaveRegion, WavesState};
 /// body's buoyancy is the pressure it puts on the waves, Newton's third law
 /// cell by cell.
 ///
+/// With a GPU backend ([`ForceGenerator::with_gpu`](super::ForceGenerator::with_gpu),
+/// before or after this) the waves step on the device
+/// ([`GpuWaves`](soak_hydro::gpu::GpuWaves), f32; their cells per side must
+/// then be a power of two) and the generator's copy takes their elevation
+/// and potential after each step; the sponge's energy
+/// ([`InteractiveWaves::absorbed`]) is then not counted.
+///
 /// The surface the drag reads is the base water's (the waves' orbital
 /// velocity is not counted), and a body's [`Effects::added_mass`] (if
 /// set) is on top of the inertia the waves already give it.
@@ -92,6 +99,14 @@ pub(crate) struct CoupledWaves {
     /// Where the region follows to at the next step: the middle of the
     /// bodies that pressed, `(x, z)`, m.
     pub(crate) follow: Option<[f64; 2]>,
+    /// The same surface stepped on the GPU, when the generator has a GPU
+    /// backend: `solver` then mirrors it after each step.
+    #[cfg(feature = "gpu")]
+    pub(crate) gpu: Option<soak_hydro::gpu::GpuWaves>,
+    /// The CPU's surface changed since the GPU's copy was made (a held
+    /// depression, a shifted region, a restored state): the GPU takes it
+    /// before its next step.
+    pub(crate) moved: bool,
 }
 
 /// What the generator's waves have become, for saving.
@@ -107,6 +122,69 @@ pub struct CoupledWavesState {
 }
 
 impl CoupledWaves {
+    /// Steps the surface by `dt` (s) under the pressure the bodies put on
+    /// it: on the GPU when it has one there (the CPU's copy then takes the
+    /// device's elevation and potential), else on the CPU.
+    pub(crate) fn step(&mut self, dt: f64) -> Result<(), crate::error::SoakError> {
+        #[cfg(feature = "gpu")]
+        if let Some(gpu) = &mut self.gpu {
+            if self.moved {
+                let state = self.solver.state();
+                gpu.set_state(&state.h, &state.phi)?;
+            }
+            self.moved = false;
+            gpu.set_pressure(self.solver.pressure())?;
+            gpu.step(dt)?;
+            let (h, phi) = gpu.state()?;
+            let mut state = self.solver.state();
+            state.h = h;
+            state.phi = phi;
+            state.time += dt;
+            return self
+                .solver
+                .restore(&state)
+                .map_err(crate::error::SoakError::Waves);
+        }
+        self.solver.step(dt).map_err(crate::error::SoakError::Waves)
+    }
+
+    /// Moves the region to follow the bodies (see [`WaveCoupling::follow`]),
+    /// renumbering their presses, and the GPU's copy with it.
+    pub(crate) fn follow(&mut self) -> Result<(), crate::error::SoakError> {
+        let Some(centre) = self.follow.filter(|_| self.rule.follow) else {
+            return Ok(());
+        };
+        let shift = self.solver.recentre(centre);
+        if shift == (0, 0) {
+            return Ok(());
+        }
+        for own in &mut self.own {
+            self.solver.shift_cells(own, shift);
+        }
+        self.moved = true;
+        Ok(())
+    }
+
+    /// The GPU's copy of the surface, on `device`, from the CPU's now.
+    #[cfg(feature = "gpu")]
+    pub(crate) fn on_gpu(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<(), crate::error::SoakError> {
+        let mut gpu = soak_hydro::gpu::GpuWaves::new(
+            device,
+            queue,
+            *self.solver.region(),
+            self.solver.gravity(),
+            self.rule.sponge,
+        )?;
+        let state = self.solver.state();
+        gpu.set_state(&state.h, &state.phi)?;
+        self.gpu = Some(gpu);
+        Ok(())
+    }
+
     pub(crate) fn state(&self) -> CoupledWavesState {
         CoupledWavesState {
             surface: self.solver.state(),
