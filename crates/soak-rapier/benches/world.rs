@@ -96,10 +96,14 @@ fn step(c: &mut Criterion) {
 
 /// Ten spheres in a row 3 m apart, floating with buoyancy and drag, on
 /// interactive waves of `cells` per 64 m side (none for `None`).
-fn waves_world(atlas: &std::sync::Arc<Atlas>, cells: Option<usize>) -> (PhysicsWorld, ForceGenerator) {
+fn waves_world(
+    atlas: &std::sync::Arc<Atlas>,
+    cells: Option<usize>,
+    soak: ForceGenerator,
+) -> (PhysicsWorld, ForceGenerator) {
     let mut world = PhysicsWorld::new();
     world.integration_parameters.dt = 1.0 / 60.0;
-    let mut soak = ForceGenerator::new(Water::calm(0.0));
+    let mut soak = soak;
     if let Some(cells) = cells {
         soak = soak
             .with_waves(WaveCoupling {
@@ -131,13 +135,35 @@ fn waves(c: &mut Criterion) {
     let mut g = c.benchmark_group("waves_step");
     g.sample_size(10);
     for (label, cells) in [("none", None), ("64m_128", Some(128)), ("64m_256", Some(256))] {
-        let (mut w, mut soak) = waves_world(&atlas, cells);
+        let (mut w, mut soak) = waves_world(&atlas, cells, ForceGenerator::new(Water::calm(0.0)));
         for _ in 0..30 {
             soak.step(&mut w).unwrap();
         }
         g.bench_function(BenchmarkId::new("ten_bodies", label), |b| {
             b.iter(|| soak.step(&mut w).unwrap())
         });
+    }
+    // The same on the GPU backend (bodies and waves on the device), when
+    // there is an adapter; a software one times the CPU running the kernels.
+    #[cfg(feature = "gpu")]
+    if let Ok((device, queue, info)) = soak_hydro::gpu::headless_device() {
+        let tag = if soak_hydro::gpu::is_software(&info) {
+            "gpu_software"
+        } else {
+            "gpu"
+        };
+        for (label, cells) in [("none", None), ("64m_128", Some(128)), ("64m_256", Some(256))] {
+            let soak = ForceGenerator::new(Water::calm(0.0))
+                .with_gpu(&device, &queue)
+                .unwrap();
+            let (mut w, mut soak) = waves_world(&atlas, cells, soak);
+            for _ in 0..30 {
+                soak.step(&mut w).unwrap();
+            }
+            g.bench_function(BenchmarkId::new(format!("ten_bodies_{tag}"), label), |b| {
+                b.iter(|| soak.step(&mut w).unwrap())
+            });
+        }
     }
     g.finish();
 }
