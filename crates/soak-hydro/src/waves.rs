@@ -281,6 +281,29 @@ impl InteractiveWaves {
             .collect()
     }
 
+    /// Crests of a ring against the deep-water group velocity, `t` seconds
+    /// after the disturbance that sent it out, under `gravity` (m/s²): for
+    /// each pair of neighbouring crests (distances from the disturbance, m,
+    /// increasing, as [`InteractiveWaves::crests`] gives them) whose waves
+    /// are at least `shortest` long (m; the wavelength at `r` is
+    /// `8π r²/(g t²)`) and where stationary phase holds (the phase
+    /// `g t²/(4r)` over 3π at the outer crest), the inner and outer
+    /// distance and the phase's step between them over 2π: 1 where each
+    /// wavelength is where its group velocity `½ √(g/k)` has carried it
+    /// (Cauchy–Poisson).
+    pub fn phase_steps(crests: &[f64], t: f64, gravity: f64, shortest: f64) -> Vec<(f64, f64, f64)> {
+        let tau = 2.0 * std::f64::consts::PI;
+        let phase = |r: f64| gravity * t * t / (4.0 * r);
+        crests
+            .windows(2)
+            .filter(|pair| {
+                let wavelength = 4.0 * tau * pair[0] * pair[0] / (gravity * t * t);
+                wavelength >= shortest && phase(pair[1]) >= 1.5 * tau
+            })
+            .map(|pair| (pair[0], pair[1], (phase(pair[0]) - phase(pair[1])) / tau))
+            .collect()
+    }
+
     /// The half-angle (degrees) of the wake of a source at `source`
     /// (`(x, z)`, world, m) moving along `heading` (radians from +x towards
     /// +z), seen `behind` metres behind it, on the side to its right of

@@ -45,18 +45,10 @@ fn a_rings_crests_are_where_the_group_velocity_carries_them() {
         // sponge starts at 28 m), found as local maxima of the profile
         // read every tenth of a cell.
         let crests = waves.crests([0.0, 0.0], 0.0, 2.0, 24.0);
-        let phase = |r: f64| G * t * t / (4.0 * r);
-        // Pairs of crests whose waves have at least six cells a wavelength
-        // (the wavelength at r is 8π r²/(g t²)), where
-        // stationary phase holds (the phase g t²/(4r) over 3π: far enough
-        // out along the ring, at least a wavelength and a half of it).
-        for pair in crests.windows(2) {
-            let (r1, r2) = (pair[0], pair[1]);
-            let wavelength = 8.0 * std::f64::consts::PI * r1 * r1 / (G * t * t);
-            if wavelength < 6.0 * size / cells as f64 || phase(r2) < 3.0 * std::f64::consts::PI {
-                continue;
-            }
-            let ratio = (phase(r1) - phase(r2)) / (2.0 * std::f64::consts::PI);
+        // Pairs of crests whose waves have at least six cells a
+        // wavelength, where stationary phase holds (far enough out along
+        // the ring, at least a wavelength and a half of it).
+        for (r1, r2, ratio) in InteractiveWaves::phase_steps(&crests, t, G, 6.0 * size / cells as f64) {
             println!("| {t} | {r1:.2} | {r2:.2} | {ratio:.3} |");
             assert!(
                 (ratio - 1.0).abs() < 0.1,

@@ -6,7 +6,7 @@
 
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions, builtin};
-use soak_hydro::{MassModel, Water};
+use soak_hydro::{InteractiveWaves, MassModel, Water};
 use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakError, SoakId, WaveCoupling};
 
 const RHO: f64 = 1000.0;
@@ -212,15 +212,9 @@ fn a_dropped_stones_ring_spreads_at_the_group_velocity() {
             continue;
         }
         let crests = soak.waves().unwrap().crests([0.0, 0.0], 0.0, 2.0, 24.0);
-        let phase = |r: f64| g * t * t / (4.0 * r);
+        // Inside the leading crest; waves of six cells and more.
         let inside = crests.len().saturating_sub(1);
-        for pair in crests[..inside].windows(2) {
-            let (r1, r2) = (pair[0], pair[1]);
-            let wavelength = 8.0 * std::f64::consts::PI * r1 * r1 / (g * t * t);
-            if wavelength < 6.0 * 0.25 || phase(r2) < 3.0 * std::f64::consts::PI {
-                continue;
-            }
-            let ratio = (phase(r1) - phase(r2)) / (2.0 * std::f64::consts::PI);
+        for (r1, r2, ratio) in InteractiveWaves::phase_steps(&crests[..inside], t, g, 6.0 * 0.25) {
             println!("| {t:.2} | {r1:.2} | {r2:.2} | {ratio:.3} |");
             assert!(
                 (ratio - 1.0).abs() < 0.1,
