@@ -5,7 +5,7 @@
 //! at most 4 bodies, `builtin:` meshes with at most 24 segments (other
 //! meshes become `builtin:box`), atlases of at most 32², at most 8 steps,
 //! graph files only from `data/graphs/`, the height field from
-//! `fuzz/heightfield.csv`. Nothing may panic; when every number is in a
+//! `fuzz/heightfield.csv`, interactive waves of at most 64² cells. Nothing may panic; when every number is in a
 //! physical range, every body must stay finite.
 #![no_main]
 
@@ -70,6 +70,11 @@ fuzz_target!(|data: &[u8]| {
     s.bodies.truncate(MAX_BODIES);
     if s.backend == Backend::Gpu {
         s.backend = Backend::Tiled;
+    }
+    // Interactive waves: at most 64 cells a side (a fuzz run's budget; the
+    // limit on what a scene may ask for is the loader's to check).
+    if let Some(w) = &mut s.waves {
+        w.cells = w.cells.min(64);
     }
     if s.water.kind == WaterKind::HeightField {
         s.water.file = Some(repo().join("fuzz/heightfield.csv").display().to_string());

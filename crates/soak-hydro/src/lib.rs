@@ -46,7 +46,7 @@ pub use self::water::{
     SurfaceKind, SurfacePatch, Unbounded, WATER_DENSITY, Water,
 };
 pub use self::water_plane::{WaterPlane, water_plane};
-pub use self::waves::{InteractiveWaves, WaveHeights, WaveRegion, WavesState};
+pub use self::waves::{InteractiveWaves, MAX_WAVE_CELLS, WaveHeights, WaveRegion, WavesState};
 
 /// The types most users need.
 pub mod prelude {

@@ -27,6 +27,10 @@ use serde::Serialize;
 
 use crate::error::WaterError;
 
+/// Most cells along a side of an [`InteractiveWaves`] region (2048² cells
+/// hold about 300 MB of state and plans).
+pub const MAX_WAVE_CELLS: usize = 2048;
+
 /// The square region an [`InteractiveWaves`] covers.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct WaveRegion {
@@ -34,7 +38,7 @@ pub struct WaveRegion {
     pub centre: [f64; 2],
     /// Side, m.
     pub size: f64,
-    /// Cells per side (≥ 8, even).
+    /// Cells per side (even, 8 to [`MAX_WAVE_CELLS`]).
     pub cells: usize,
 }
 
@@ -183,8 +187,9 @@ impl InteractiveWaves {
     ///
     /// # Errors
     /// [`WaterError::Parameter`] for a region, gravity or density that is
-    /// not finite and > 0, fewer than 8 cells or an odd count, or a sponge
-    /// wider than a quarter of the region.
+    /// not finite and > 0, fewer than 8 cells, more than
+    /// [`MAX_WAVE_CELLS`] or an odd count, or a sponge wider than a quarter
+    /// of the region.
     pub fn new(region: WaveRegion, gravity: f64, density: f64, sponge: usize) -> Result<Self, WaterError> {
         check_waves(&region, gravity, density, sponge)?;
         let n = region.cells;

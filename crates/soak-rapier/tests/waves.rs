@@ -242,6 +242,10 @@ fn a_bad_wave_region_is_refused() {
             sponge: 100,
             ..WaveCoupling::default()
         },
+        WaveCoupling {
+            cells: 1 << 20,
+            ..WaveCoupling::default()
+        },
     ] {
         let err = ForceGenerator::new(Water::calm(0.0))
             .with_waves(rule)

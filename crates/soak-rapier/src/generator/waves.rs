@@ -41,8 +41,10 @@ pub struct WaveCoupling {
     pub centre: [f64; 2],
     /// Side of the square region, m. Default 64.
     pub size: f64,
-    /// Cells per side (even, ≥ 8; a product of small primes transforms
-    /// fastest). Default 256 (0.25 m cells at the default size).
+    /// Cells per side (even, 8 to
+    /// [`MAX_WAVE_CELLS`](soak_hydro::MAX_WAVE_CELLS); a product of small
+    /// primes transforms fastest, a power of two on the GPU). Default 256
+    /// (0.25 m cells at the default size).
     pub cells: usize,
     /// Cells along the border that absorb the waves reaching it (at most a
     /// quarter of `cells`). Default 16.
