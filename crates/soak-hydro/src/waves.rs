@@ -81,7 +81,7 @@ pub(crate) fn check_waves(
     if !(region.size.is_finite() && region.size > 0.0) {
         return bad("waves.size", region.size);
     }
-    if region.cells < 8 || region.cells % 2 == 1 {
+    if region.cells < 8 || region.cells % 2 == 1 || region.cells > MAX_WAVE_CELLS {
         return bad("waves.cells", region.cells as f64);
     }
     if !region.centre.iter().all(|c| c.is_finite()) {
