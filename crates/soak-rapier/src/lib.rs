@@ -1,10 +1,8 @@
 #![doc = include_str!("../README.md")]
 
+mod bodies;
 mod error;
-mod firewall;
-mod generator;
-#[cfg(feature = "gpu")]
-mod gpu;
+mod force_generator;
 mod simulation;
 
 // Public: free functions between nalgebra and Rapier's types, named as `convert::pose(..)`:
@@ -17,21 +15,50 @@ pub mod hull;
 // Public: the many spec types of a scene file, named as `scene::BodySpec`.
 pub mod scene;
 
+pub use self::bodies::{RapierBodies, RapierBodiesRef};
 pub use self::error::{SceneError, SoakError};
-pub use self::firewall::{FIREWALL_MEMORY, Firewall, FirewallEvent};
-pub use self::generator::{
-    Backend, BodyDesc, BodyRunState, CoupledWavesState, Effects, ForceGenerator, GeneratorState, Impact,
-    ImpactHoles, SlamReport, Slamming, SoakBody, SoakId, WaveCoupling,
-};
+pub use self::force_generator::{ForceGenerator, SoakBody, step_params};
 pub use self::scene::{LoadedScene, Scene};
 pub use self::simulation::{BodyReport, Sample, SavedSimulation, SimBody, Simulation, water_of};
+pub use soak_driver::{
+    Backend, BodyDesc, BodyRunState, CoupledWavesState, Effects, FIREWALL_MEMORY, Firewall, FirewallEvent,
+    GeneratorState, Impact, ImpactHoles, SlamReport, Slamming, SoakId, WaveCoupling,
+};
+/// The engine-neutral driver [`ForceGenerator`] adapts to Rapier.
+pub use soak_driver;
 /// Water entering hulls (the liquid graph of [`Effects::flooding`]).
 pub use soak_graph;
 /// Surface wetting (the liquid texture of [`Effects::wetting`]).
 pub use soak_wet;
 
+/// A [`SoakBody`]'s last forces in Rapier's vector type (f32, as handed to
+/// Rapier; [`SoakBody::applied`] and [`SoakBody::forces`] have them in f64).
+pub trait RapierSoakBody {
+    /// The force handed to Rapier at the last step, world frame, N.
+    fn applied_force(&self) -> rapier3d::math::Vector;
+    /// The torque about the centre of mass handed to Rapier at the last
+    /// step, world frame, N·m.
+    fn applied_torque(&self) -> rapier3d::math::Vector;
+    /// Its centre of buoyancy at the last step, world, m (its centre of
+    /// mass when dry); in f64 as soak computed it:
+    /// [`forces()`](SoakBody::forces)`.center_of_buoyancy`.
+    fn center_of_buoyancy(&self) -> rapier3d::math::Vector;
+}
+
+impl RapierSoakBody for SoakBody {
+    fn applied_force(&self) -> rapier3d::math::Vector {
+        convert::to_vector(&self.applied().force)
+    }
+    fn applied_torque(&self) -> rapier3d::math::Vector {
+        convert::to_vector(&self.applied().torque)
+    }
+    fn center_of_buoyancy(&self) -> rapier3d::math::Vector {
+        convert::point_to_vector(&self.forces().center_of_buoyancy)
+    }
+}
+
 /// The types most users need.
 pub mod prelude {
-    pub use crate::{BodyDesc, Effects, ForceGenerator, SoakId};
+    pub use crate::{BodyDesc, Effects, ForceGenerator, RapierSoakBody, SoakId};
     pub use soak_hydro::{BuoyancyMode, Drag, MassModel, Water};
 }

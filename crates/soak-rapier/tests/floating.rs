@@ -4,7 +4,7 @@ use nalgebra::{Point3, UnitQuaternion, Vector3};
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::{Drag, MassModel, Water};
-use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakId, convert};
+use soak_rapier::{BodyDesc, Effects, ForceGenerator, RapierSoakBody, SoakId, convert};
 
 struct Sim {
     world: PhysicsWorld,

@@ -62,7 +62,7 @@ mod wetting;
 
 use serde::{Deserialize, Serialize};
 
-use crate::generator::Backend;
+use crate::Backend;
 
 pub use self::bodies::{Auto, BodySpec, ColliderSpec, DEFAULT_TOLERANCE, MassSpec, ResolutionSpec};
 pub use self::key_path::line_of;

@@ -13,7 +13,7 @@ use soak_hydro::{AddedMass, DragTexels, Gerstner, HeightField, MassModel, Plane,
 use super::{SimBody, Simulation};
 use crate::convert;
 use crate::error::SceneError;
-use crate::generator::{BodyDesc, Effects, ForceGenerator};
+use crate::{BodyDesc, Effects, ForceGenerator};
 use crate::scene::{
     ColliderSpec, DEFAULT_TOLERANCE, InitialLiquid, LoadedScene, MassSpec, ResolutionSpec, WaterKind,
     WettingSpec,
@@ -135,7 +135,7 @@ impl Simulation {
                 .track()
                 .map_err(|e| loaded.invalid("environment.keys", e.to_string()))?;
         }
-        if scene.backend == crate::generator::Backend::Gpu {
+        if scene.backend == crate::Backend::Gpu {
             soak = with_gpu(soak).map_err(|message| SceneError::Invalid {
                 path: loaded.path.clone(),
                 line: loaded.line_of("backend"),

@@ -13,7 +13,7 @@ use serde::Serialize;
 
 use crate::convert;
 use crate::error::SoakError;
-use crate::generator::{ForceGenerator, SoakId};
+use crate::{ForceGenerator, SoakId};
 
 pub use self::build::water_of;
 pub use self::saved::SavedSimulation;

@@ -21,7 +21,7 @@ pub struct SavedSimulation {
     /// (`PhysicsWorld` is serialisable but not `Clone`).
     pub world: Vec<u8>,
     /// The force generator's state, with the liquid inside flooding bodies.
-    pub generator: crate::generator::GeneratorState,
+    pub generator: crate::GeneratorState,
     /// Which permeable regions have opened.
     pub punched: Vec<bool>,
     /// Which splashes have landed.
@@ -54,7 +54,7 @@ impl Simulation {
         Ok(SavedSimulation {
             scene_path: scene.path.clone(),
             scene_text: scene.text.clone(),
-            world: postcard::to_stdvec(&self.world)?,
+            world: postcard::to_stdvec(&self.world).map_err(|e| SoakError::World { reason: format!("the Rapier world: {e}") })?,
             generator: self.soak.state(),
             punched: self.holes.iter().map(|h| h.2).collect(),
             splashed: self.splashes.iter().map(|s| s.1).collect(),

@@ -1,8 +1,8 @@
 //! The inertia a step moves ([`Inertial`]): the body's mass and inertia,
 //! plus the added mass of the water it sets moving where it has one
-//! ([`Effects::added_mass`](super::Effects::added_mass)), and the wrench
-//! that makes Rapier, which moves the body's mass alone, move the body as
-//! the two would move ([`Inertial::for_rapier`]).
+//! ([`Effects::added_mass`](crate::Effects::added_mass)), and the wrench
+//! that makes the engine, which moves the body's mass alone, move the body as
+//! the two would move ([`Inertial::for_engine`]).
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use soak_hydro::{AddedMass, Wrench};
@@ -16,7 +16,7 @@ use soak_hydro::{AddedMass, Wrench};
 /// is the same as moving the larger mass. It can only slow the body's
 /// answer to a force, never make it overshoot, at any time step.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Inertial {
+pub(crate) struct Inertial {
     /// The body's mass, kg.
     mass: f64,
     /// The inertia about the centre of mass, object axes, kg·m²: the
@@ -28,7 +28,7 @@ pub(super) struct Inertial {
 
 impl Inertial {
     /// The body's own mass (kg) and inertia (object axes, kg·m²).
-    pub(super) fn plain(mass: f64, inertia: &Matrix3<f64>) -> Self {
+    pub(crate) fn plain(mass: f64, inertia: &Matrix3<f64>) -> Self {
         Self {
             mass,
             inertia: *inertia,
@@ -40,7 +40,7 @@ impl Inertial {
     /// `density` (kg/m³) and the body's `submerged_volume` (m³), turned by
     /// `rotation`. Where the added mass is nil (the body dry) or the sum
     /// cannot be inverted, the body's own.
-    pub(super) fn with_added(
+    pub(crate) fn with_added(
         mass: f64,
         inertia: &Matrix3<f64>,
         added: &AddedMass,
@@ -64,18 +64,18 @@ impl Inertial {
     }
 
     /// The body's mass, kg.
-    pub(super) fn mass(&self) -> f64 {
+    pub(crate) fn mass(&self) -> f64 {
         self.mass
     }
 
     /// The inertia a torque turns, object axes, kg·m².
-    pub(super) fn inertia(&self) -> &Matrix3<f64> {
+    pub(crate) fn inertia(&self) -> &Matrix3<f64> {
         &self.inertia
     }
 
     /// The mass a vertical force alone accelerates, kg: `m`, or
     /// `1/((m I + M_a)⁻¹)_yy`.
-    pub(super) fn vertical(&self) -> f64 {
+    pub(crate) fn vertical(&self) -> f64 {
         match &self.linear {
             None => self.mass,
             Some((_, inverse)) => 1.0 / inverse[(1, 1)],
@@ -84,7 +84,7 @@ impl Inertial {
 
     /// The linear acceleration under `force` (N, gravity aside) and gravity
     /// `g` (m/s², along −y).
-    pub(super) fn acceleration(&self, force: &Vector3<f64>, g: f64) -> Vector3<f64> {
+    pub(crate) fn acceleration(&self, force: &Vector3<f64>, g: f64) -> Vector3<f64> {
         match &self.linear {
             None => force / self.mass - Vector3::y() * g,
             Some((_, inverse)) => inverse * (force - Vector3::y() * (self.mass * g)),
@@ -93,7 +93,7 @@ impl Inertial {
 
     /// The force (gravity aside) that accelerates the body by `a` under
     /// gravity `g`: the inverse of [`Inertial::acceleration`].
-    pub(super) fn force_for(&self, a: &Vector3<f64>, g: f64) -> Vector3<f64> {
+    pub(crate) fn force_for(&self, a: &Vector3<f64>, g: f64) -> Vector3<f64> {
         match &self.linear {
             None => self.mass * (a + Vector3::y() * g),
             Some((total, _)) => total * a + Vector3::y() * (self.mass * g),
@@ -102,7 +102,7 @@ impl Inertial {
 
     /// The change of the translational kinetic energy from `v0` to `v1`
     /// (m/s), the water's included, J.
-    pub(super) fn kinetic_change(&self, v1: &Vector3<f64>, v0: &Vector3<f64>) -> f64 {
+    pub(crate) fn kinetic_change(&self, v1: &Vector3<f64>, v0: &Vector3<f64>) -> f64 {
         match &self.linear {
             None => 0.5 * self.mass * (v1.norm_squared() - v0.norm_squared()),
             Some((total, _)) => 0.5 * (v1.dot(&(total * v1)) - v0.dot(&(total * v0))),
@@ -110,16 +110,16 @@ impl Inertial {
     }
 
     /// Whether an added mass is counted.
-    pub(super) fn has_added(&self) -> bool {
+    pub(crate) fn has_added(&self) -> bool {
         self.linear.is_some()
     }
 
-    /// The wrench Rapier must be given, moving the body's `own` inertia
+    /// The wrench the engine must be given, moving the body's `own` inertia
     /// (object axes) and its mass alone, for the body turned by `rotation`
     /// to move as the body and the water it sets moving would under `w`
     /// (about the centre of mass, world) and gravity `g`: the same linear
     /// and angular accelerations. Without an added mass, `w` itself.
-    pub(super) fn for_rapier(
+    pub(crate) fn for_engine(
         &self,
         w: &Wrench,
         own: &Matrix3<f64>,
@@ -148,7 +148,7 @@ mod tests {
     use super::*;
 
     /// A sphere's added mass, `½ ρ V`, in every direction: a force moves
-    /// the body as it would move `m + ½ ρ V`, and the Rapier wrench gives
+    /// the body as it would move `m + ½ ρ V`, and the engine's wrench gives
     /// the body's own mass that acceleration.
     #[test]
     fn a_spheres_added_mass_slows_every_answer_by_the_same_factor() {
@@ -167,10 +167,10 @@ mod tests {
         let want = (w.force - Vector3::y() * m * g) / total;
         assert!((a - want).norm() < 1e-12 * want.norm());
         assert!((inertial.force_for(&a, g) - w.force).norm() < 1e-9 * w.force.norm());
-        let rapier = inertial.for_rapier(&w, &inertia, &UnitQuaternion::identity(), g);
-        assert!((rapier.force / m - Vector3::y() * g - want).norm() < 1e-9 * want.norm());
+        let engine = inertial.for_engine(&w, &inertia, &UnitQuaternion::identity(), g);
+        assert!((engine.force / m - Vector3::y() * g - want).norm() < 1e-9 * want.norm());
         // A sphere has no rotational added mass: the torque is untouched.
-        assert!((rapier.torque - w.torque).norm() < 1e-12);
+        assert!((engine.torque - w.torque).norm() < 1e-12);
         // Dry: the body's own.
         let dry = Inertial::with_added(m, &inertia, &added, &UnitQuaternion::identity(), rho, 0.0);
         assert!(!dry.has_added());

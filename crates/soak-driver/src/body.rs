@@ -5,62 +5,64 @@
 use std::sync::Arc;
 
 use nalgebra::{Point3, Vector3};
-use rapier3d::math::Vector;
-use rapier3d::prelude::RigidBodyHandle;
 use serde::Serialize;
 use soak_bake::Atlas;
 use soak_graph::Flooding;
 use soak_hydro::{HydroForces, MassModel, MassProperties, TiledAtlas, Water, Wrench};
 use soak_wet::Wetting;
 
-use super::config::Effects;
+use crate::config::Effects;
 
-/// A body driven by the generator.
+/// A body the driver drives: the engine's body `handle` names (`H`: a
+/// Rapier `RigidBodyHandle`, a Bevy `Entity`), its atlas, mass, effects
+/// and what the last step gave it. Its centre of buoyancy at the last
+/// step is [`forces()`](SoakBody::forces)`.center_of_buoyancy`; the
+/// adapters add readers in their engine's vector types.
 #[derive(Debug)]
-pub struct SoakBody {
-    pub(super) name: String,
-    pub(super) handle: RigidBodyHandle,
-    pub(super) atlas: Arc<Atlas>,
+pub struct SoakBody<H> {
+    pub(crate) name: String,
+    pub(crate) handle: H,
+    pub(crate) atlas: Arc<Atlas>,
     /// The atlas' volume and the bounds the stiff-step treatment uses,
     /// computed when the atlas is set (each is a pass over the texels).
-    pub(super) shape: Shape,
+    pub(crate) shape: Shape,
     /// The atlas' tiles, shared by the bodies that share the atlas.
-    pub(super) tiled: Option<Arc<TiledAtlas>>,
-    pub(super) mass_model: MassModel,
+    pub(crate) tiled: Option<Arc<TiledAtlas>>,
+    pub(crate) mass_model: MassModel,
     /// Mass from the model alone.
-    pub(super) model_mass: MassProperties,
+    pub(crate) model_mass: MassProperties,
     /// Mass carried besides the model (liquid inside, a gas, a payload), local frame.
-    pub(super) extra_mass: Option<MassProperties>,
-    /// `model_mass` combined with `extra_mass`: what Rapier has.
-    pub(super) mass: MassProperties,
+    pub(crate) extra_mass: Option<MassProperties>,
+    /// `model_mass` combined with `extra_mass`: what the engine has.
+    pub(crate) mass: MassProperties,
     /// Its effects, with the flooding and wetting states: a body without
     /// them holds no liquid graph, no liquid texture and no field.
-    pub(super) effects: Effects,
-    pub(super) forces: HydroForces,
-    pub(super) applied: Wrench,
+    pub(crate) effects: Effects,
+    pub(crate) forces: HydroForces,
+    pub(crate) applied: Wrench,
     /// The water's inertial reaction at the last step (zero without an
     /// added mass).
-    pub(super) added_force: Wrench,
-    pub(super) dry_skips: u64,
+    pub(crate) added_force: Wrench,
+    pub(crate) dry_skips: u64,
     /// What the last wetting step did (meaningful with wetting only).
-    pub(super) wet_report: soak_wet::StepReport,
+    pub(crate) wet_report: soak_wet::StepReport,
     /// The flooding's settings and last report (meaningful with flooding only).
-    pub(super) flood: FloodSettings,
+    pub(crate) flood: FloodSettings,
     /// Slamming's state, with slamming only.
-    pub(super) slam: Option<Box<SlamState>>,
+    pub(crate) slam: Option<Box<SlamState>>,
 }
 
 /// What slamming keeps between steps: plain values, no allocation.
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct SlamState {
+pub(crate) struct SlamState {
     /// The water-plane's added mass at the last evaluation, kg (`None`
     /// before the first).
-    pub(super) last_added: Option<f64>,
+    pub(crate) last_added: Option<f64>,
     /// The last step's slamming.
-    pub(super) report: SlamReport,
+    pub(crate) report: SlamReport,
 }
 
-/// One step's slamming ([`Slamming`](super::Slamming)) and the largest
+/// One step's slamming ([`Slamming`](crate::Slamming)) and the largest
 /// force so far.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct SlamReport {
@@ -75,7 +77,7 @@ pub struct SlamReport {
     pub rate: f64,
     /// The downward speed of the water-plane's centroid, m/s.
     pub speed: f64,
-    /// Whether the cap ([`Slamming::cap`](super::Slamming::cap)) held the
+    /// Whether the cap ([`Slamming::cap`](crate::Slamming::cap)) held the
     /// force back.
     pub capped: bool,
     /// The largest slamming force of the run so far, N, and the
@@ -88,23 +90,26 @@ pub struct SlamReport {
 /// What a flooding body carries besides its liquid graph; plain values, no
 /// allocation.
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct FloodSettings {
+pub(crate) struct FloodSettings {
     /// Fixed mass carried with the liquid (ballast, cargo), local frame.
-    pub(super) ballast: Option<MassProperties>,
+    pub(crate) ballast: Option<MassProperties>,
     /// Density of the liquid inside, kg/m³; the fluid's when `None`.
-    pub(super) density: Option<f64>,
+    pub(crate) density: Option<f64>,
     /// What the last flooding step did.
-    pub(super) last: soak_graph::StepReport,
+    pub(crate) last: soak_graph::StepReport,
 }
 
-impl SoakBody {
+impl<H: Copy> SoakBody<H> {
+    /// The engine's body.
+    pub fn handle(&self) -> H {
+        self.handle
+    }
+}
+
+impl<H> SoakBody<H> {
     /// The name given at registration.
     pub fn name(&self) -> &str {
         &self.name
-    }
-    /// The Rapier body.
-    pub fn handle(&self) -> RigidBodyHandle {
-        self.handle
     }
     /// Its atlas (object frame = the rigid body's local frame).
     pub fn atlas(&self) -> &Atlas {
@@ -118,7 +123,7 @@ impl SoakBody {
     pub fn extra_mass(&self) -> Option<&MassProperties> {
         self.extra_mass.as_ref()
     }
-    /// Its current mass properties, local frame, as handed to Rapier.
+    /// Its current mass properties, local frame, as handed to the engine.
     pub fn mass_properties(&self) -> &MassProperties {
         &self.mass
     }
@@ -130,7 +135,7 @@ impl SoakBody {
     pub fn forces(&self) -> &HydroForces {
         &self.forces
     }
-    /// The force and torque handed to Rapier at the last step, world frame
+    /// The force and torque handed to the engine at the last step, world frame
     /// (N and N·m about the centre of mass; f64, as soak summed them).
     pub fn applied(&self) -> &Wrench {
         &self.applied
@@ -138,25 +143,16 @@ impl SoakBody {
     /// The reaction of the water the body sets moving at the last step,
     /// world frame (N and N·m about the centre of mass): `−M_a a` with the
     /// accelerations the step ends with, zero without an added mass
-    /// ([`Effects::added_mass`](super::Effects::added_mass)) or dry. It is
+    /// ([`Effects::added_mass`](crate::Effects::added_mass)) or dry. It is
     /// already part of [`SoakBody::applied`]: the buoyancy and drag the
-    /// water exerts, plus this, are what Rapier was handed.
+    /// water exerts, plus this, are what the engine was handed.
     pub fn added_mass_force(&self) -> &Wrench {
         &self.added_force
     }
     /// The last step's slamming and the peak so far, if slamming is on
-    /// ([`Effects::slamming`](super::Effects::slamming)).
+    /// ([`Effects::slamming`](crate::Effects::slamming)).
     pub fn slamming(&self) -> Option<&SlamReport> {
         self.slam.as_ref().map(|s| &s.report)
-    }
-    /// The force handed to Rapier at the last step, world frame, N.
-    pub fn applied_force(&self) -> Vector {
-        crate::convert::to_vector(&self.applied.force)
-    }
-    /// The torque about the centre of mass handed to Rapier at the last
-    /// step, world frame, N·m.
-    pub fn applied_torque(&self) -> Vector {
-        crate::convert::to_vector(&self.applied.torque)
     }
     /// Its volume under water at the last step, m³ (0 when dry or skipped
     /// above the crests).
@@ -176,18 +172,12 @@ impl SoakBody {
     pub fn volume(&self) -> f64 {
         self.shape.volume
     }
-    /// Its centre of buoyancy at the last step, world, m (its centre of
-    /// mass when dry); in f64 as soak computed it:
-    /// [`forces()`](Self::forces)`.center_of_buoyancy`.
-    pub fn center_of_buoyancy(&self) -> Vector {
-        crate::convert::point_to_vector(&self.forces.center_of_buoyancy)
-    }
     /// Steps at which the body was above the highest crest and skipped.
     pub fn dry_skips(&self) -> u64 {
         self.dry_skips
     }
     /// Its wetting state, if wetting is on ([`Effects::wetting`]; see also
-    /// [`ForceGenerator::set_wetting`](super::ForceGenerator::set_wetting)).
+    /// [`Driver::set_wetting`](crate::Driver::set_wetting)).
     pub fn wetting(&self) -> Option<&Wetting> {
         self.effects.wetting.as_ref()
     }
@@ -216,7 +206,7 @@ impl SoakBody {
         self.effects.flooding.as_ref().and(self.flood.ballast.as_ref())
     }
     /// Density of the liquid inside in `water`, kg/m³: the one set
-    /// ([`ForceGenerator::set_liquid_density`](super::ForceGenerator::set_liquid_density)),
+    /// ([`Driver::set_liquid_density`](crate::Driver::set_liquid_density)),
     /// else `water`'s. `None` without flooding.
     pub fn liquid_density(&self, water: &Water) -> Option<f64> {
         self.effects
@@ -232,7 +222,7 @@ impl SoakBody {
     }
     /// What the body carries besides its mass model when flooding is on:
     /// ballast combined with the liquid inside (if it has any), or `None`.
-    pub(super) fn flooding_extra(&self, water: &Water) -> Option<Option<MassProperties>> {
+    pub(crate) fn flooding_extra(&self, water: &Water) -> Option<Option<MassProperties>> {
         let liquid = self.liquid_mass(water)?;
         Some(match (self.flood.ballast, liquid.mass > 0.0) {
             (Some(b), true) => Some(b.combine(&liquid)),
@@ -245,21 +235,21 @@ impl SoakBody {
 
 /// What the per-step work needs of a body's atlas, computed once per atlas.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Shape {
+pub(crate) struct Shape {
     /// Enclosed volume, m³ (absolute value).
-    pub(super) volume: f64,
+    pub(crate) volume: f64,
     /// An upper bound on the water-plane area in any pose, m²: the smaller
     /// of `π r²` (`r` the bounding radius) and half the surface area (a
     /// closed surface's projection on any plane, counted once from above
     /// and once from below, is at most its area). The second is the tight
     /// one for long thin bodies: a 200:1 rod's is 1/80 of its `π r²`.
-    pub(super) water_plane: f64,
+    pub(crate) water_plane: f64,
     /// Thickness `3V/A`, m: the radius of a sphere, about the width of a rod.
-    pub(super) thickness: f64,
+    pub(crate) thickness: f64,
 }
 
 impl Shape {
-    pub(super) fn of(atlas: &Atlas) -> Self {
+    pub(crate) fn of(atlas: &Atlas) -> Self {
         let r = atlas.bounding_radius();
         let area = atlas.area();
         let volume = atlas.volume().abs();
@@ -271,7 +261,7 @@ impl Shape {
     }
 }
 
-pub(super) fn with_extra(model: &MassProperties, extra: Option<&MassProperties>) -> MassProperties {
+pub(crate) fn with_extra(model: &MassProperties, extra: Option<&MassProperties>) -> MassProperties {
     match extra {
         Some(e) => model.combine(e),
         None => *model,

@@ -1,4 +1,4 @@
-//! The GPU backend of the force generator: every body's atlas on the device,
+//! The GPU backend of the driver: every body's atlas on the device,
 //! all bodies evaluated in one batch per step.
 
 use nalgebra::Point3;
@@ -7,7 +7,7 @@ use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuHydro};
 use soak_hydro::{BodyState, HydroForces, HydroOptions, Water};
 
 use crate::error::SoakError;
-use crate::generator::body::SoakBody;
+use crate::body::SoakBody;
 
 /// Device-side atlases in registration order.
 pub(crate) struct GpuBackend {
@@ -52,13 +52,13 @@ impl GpuBackend {
     /// One batch for the bodies in `work` (index, state) with their
     /// `options`, each on its sampled sea where `seas` has one (else on
     /// `water`).
-    pub(crate) fn evaluate(
+    pub(crate) fn evaluate<H>(
         &self,
-        bodies: &[SoakBody],
+        bodies: &[SoakBody<H>],
         water: &Water,
         seas: &[Option<Water>],
         work: &[(usize, BodyState)],
-        options: &dyn Fn(&SoakBody) -> HydroOptions,
+        options: &dyn Fn(&SoakBody<H>) -> HydroOptions,
         t: f64,
     ) -> Result<Vec<HydroForces>, soak_hydro::gpu::GpuHydroError> {
         let batch: Vec<GpuBody<'_>> = work

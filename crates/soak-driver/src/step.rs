@@ -1,60 +1,51 @@
-//! The per-step driver: [`ForceGenerator::flood`] (advance the liquid
-//! inside flooding bodies and hand its mass to Rapier),
-//! [`ForceGenerator::apply`] (predict each body's pose, evaluate its
-//! buoyancy and drag, pass them through the firewall and hand them to
-//! Rapier), [`ForceGenerator::wet`], [`ForceGenerator::splash`], and
-//! [`ForceGenerator::step`], which does a whole step.
+//! Each step's work: [`Driver::flood`] (advance the liquid inside
+//! flooding bodies and hand its mass to the engine), [`Driver::apply`]
+//! (predict each body's pose, evaluate its buoyancy and drag, pass them
+//! through the firewall and hand them to the engine), [`Driver::wet`],
+//! [`Driver::splash`], [`Driver::step_waves`], and
+//! [`Driver::before_step`] and [`Driver::after_step`], which do a whole
+//! step around the engine's.
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
-use rapier3d::prelude::{ColliderSet, IntegrationParameters, PhysicsWorld, RigidBodySet};
 use rayon::prelude::*;
 use soak_hydro::{
     BodyState, BuoyancyMode, HydroForces, HydroOptions, MassProperties, Water, WaterPlane, Wrench,
 };
 
-use super::body::{SlamReport, SlamState, SoakBody};
-use super::config::{Slamming, SoakId};
-use super::force_generator::{ForceGenerator, Impact};
-use super::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
-use super::inertial::Inertial;
-use super::rapier_body::apply_wrench;
-use super::waves::{CoupledWaves, Pressed};
-use crate::convert;
+use crate::body::{SlamReport, SlamState, SoakBody};
+use crate::config::{Slamming, SoakId};
+use crate::driver::{Driver, Impact};
+use crate::engine::{Bodies, BodiesMut, EngineBody, Handle, StepParams};
 use crate::error::SoakError;
+use crate::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
+use crate::inertial::Inertial;
+use crate::waves::{CoupledWaves, Pressed};
 
-impl ForceGenerator {
+impl<H: Handle> Driver<H> {
     /// Advances the liquid inside every flooding body by `dt` (s) at the
-    /// generator's time, with the body's pose as Rapier has it now and the
-    /// generator's water (wall exchange, then redistribution; see
+    /// driver's time, with the body's pose as the engine has it now and the
+    /// driver's water (wall exchange, then redistribution; see
     /// [`Flooding::step`](soak_graph::Flooding::step)), and, when the liquid
-    /// changed, hands its mass plus any ballast to Rapier
-    /// ([`ForceGenerator::sync_liquid_mass`]). Bodies without flooding are
-    /// not visited beyond a check. [`ForceGenerator::step`] calls it first;
-    /// call it yourself (once per step, after
-    /// [`ForceGenerator::sync_gravity`] and before [`ForceGenerator::apply`])
-    /// when driving Rapier yourself.
+    /// changed, hands its mass plus any ballast to the engine
+    /// ([`Driver::sync_liquid_mass`]). Bodies without flooding are
+    /// not visited beyond a check. [`Driver::before_step`] calls it first.
     ///
-    /// The liquid's pressure uses the generator's fluid gravity, which
-    /// [`ForceGenerator::sync_gravity`] makes the world's.
+    /// The liquid's pressure uses the driver's fluid gravity
+    /// ([`Driver::set_gravity`]).
     ///
     /// # Errors
-    /// A flooding body Rapier no longer has, a liquid step that failed (the
-    /// body's liquid is then unchanged), invalid mass properties.
-    pub fn flood(
-        &mut self,
-        bodies: &mut RigidBodySet,
-        colliders: &ColliderSet,
-        dt: f64,
-    ) -> Result<(), SoakError> {
+    /// A flooding body the engine no longer has, a liquid step that failed
+    /// (the body's liquid is then unchanged), invalid mass properties.
+    pub fn flood<B: BodiesMut<Handle = H> + ?Sized>(&mut self, bodies: &mut B, dt: f64) -> Result<(), SoakError> {
         for k in 0..self.bodies.len() {
             let b = &mut self.bodies[k];
             let Some(flooding) = &mut b.effects.flooding else {
                 continue;
             };
-            let rb = bodies
-                .get(b.handle)
-                .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
-            let pose = convert::pose(rb.position());
+            let pose = bodies
+                .body(b.handle)
+                .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?
+                .pose;
             let report = flooding
                 .step(&b.atlas, &pose, &self.water, self.time, dt)
                 .map_err(|source| SoakError::Flow {
@@ -63,27 +54,27 @@ impl ForceGenerator {
                 })?;
             b.flood.last = report;
             if report.changed() {
-                self.sync_liquid_mass(SoakId(k), bodies, colliders)?;
+                self.sync_liquid_mass(SoakId(k), bodies)?;
             }
         }
         Ok(())
     }
 
-    /// Evaluates every body's buoyancy and drag and applies them as forces and torques
-    /// (resetting the previous step's), for the Rapier step that `params`
-    /// describe. Does not advance time, flood ([`ForceGenerator::flood`])
-    /// nor wet bodies ([`ForceGenerator::wet`]); [`ForceGenerator::step`]
-    /// does all four.
+    /// Evaluates every body's buoyancy and drag and hands them to the
+    /// engine as the force and torque of its next step (replacing the
+    /// previous step's), for the step `step` describes. Does not advance
+    /// time, flood ([`Driver::flood`]) nor wet bodies ([`Driver::wet`]);
+    /// [`Driver::before_step`] does all of them.
     ///
-    /// Rapier holds an external force constant over its `s` solver substeps,
+    /// The engine holds an external force constant over its `s` substeps,
     /// which makes any position-dependent force (a spring, buoyancy) gain
     /// energy every step. Evaluating the force at the pose predicted
     /// `β = (s − 1)/(2s)` of a step ahead makes the step area-preserving
     /// again (exactly so for a linear restoring force), so a floating body
     /// bobs for minutes without its amplitude growing or decaying.
-    pub fn apply(&mut self, bodies: &mut RigidBodySet, params: &IntegrationParameters) {
-        let dt = params.dt as f64;
-        let substeps = params.num_solver_iterations.max(1) as f64;
+    pub fn apply<B: BodiesMut<Handle = H> + ?Sized>(&mut self, bodies: &mut B, step_params: &StepParams) {
+        let dt = step_params.dt;
+        let substeps = step_params.substeps_f64();
         let lookahead = (substeps - 1.0) / (2.0 * substeps) * dt;
         let t = self.time;
         let step = self.steps;
@@ -106,16 +97,18 @@ impl ForceGenerator {
             sea_velocity: self.sea_velocity,
         };
         let mut work: Vec<(usize, BodyState)> = Vec::new();
+        // What the engine said of each body in `work`, in the same order.
+        let mut engine: Vec<EngineBody> = Vec::new();
         let mut slamming = false;
         for (k, b) in self.bodies.iter_mut().enumerate() {
             if !b.effects.needs_hydrostatics() {
                 continue;
             }
-            let Some(rb) = bodies.get_mut(b.handle) else {
+            let Some(rb) = bodies.body(b.handle) else {
                 continue;
             };
-            let (v, w) = (convert::vector(rb.linvel()), convert::vector(rb.angvel()));
-            let now = convert::pose(rb.position());
+            let (v, w) = (rb.linear_velocity, rb.angular_velocity);
+            let now = rb.pose;
             // Predicted pose: the centre of mass moves with v, the body turns with ω.
             let com = now * b.mass.center_of_mass;
             let rotation = UnitQuaternion::from_scaled_axis(w * lookahead) * now.rotation;
@@ -130,12 +123,12 @@ impl ForceGenerator {
             // cannot reach the water within the step, falling at g.
             let centre = state.pose * b.atlas.origin();
             let radius = b.atlas.bounding_radius();
-            let reach = if implicit_weight(&self.water, &b.shape, rb.mass() as f64, dt, substeps)
+            let reach = if implicit_weight(&self.water, &b.shape, rb.mass, dt, substeps)
                 >= IMPLICIT_NEGLIGIBLE
             {
                 let c = (substeps + 1.0) / (2.0 * substeps);
                 (1.0 - lookahead / dt) * dt * (-v.y).max(0.0)
-                    + c * dt * dt * self.water.gravity * rb.gravity_scale().abs() as f64
+                    + c * dt * dt * self.water.gravity * rb.gravity_scale.abs()
             } else {
                 0.0
             };
@@ -154,7 +147,7 @@ impl ForceGenerator {
                     center_of_buoyancy: state.pose * b.mass.center_of_mass,
                     ..HydroForces::default()
                 };
-                apply_wrench(rb, &Wrench::default());
+                bodies.set_wrench(b.handle, &Wrench::default());
                 b.applied = Wrench::default();
                 b.added_force = Wrench::default();
                 if let Some(slam) = &mut b.slam {
@@ -169,6 +162,7 @@ impl ForceGenerator {
             }
             slamming |= b.slam.is_some();
             work.push((k, state));
+            engine.push(rb);
         }
 
         // The sea, sampled once per body over its footprint, read by the
@@ -277,28 +271,26 @@ impl ForceGenerator {
             press_waves(w, self.bodies.len(), &work, pressed);
         }
 
-        // 3. The firewall, then Rapier.
-        for (i, (((k, state), result), sea)) in work.iter().zip(results).zip(&seas).enumerate() {
+        // 3. The firewall, then the engine.
+        for (i, ((((k, state), result), sea), rb)) in
+            work.iter().zip(results).zip(&seas).zip(&engine).enumerate()
+        {
             let b = &mut self.bodies[*k];
             let options = &shared.of(b);
-            let Some(rb) = bodies.get_mut(b.handle) else {
-                continue;
-            };
             let forces = match result {
                 Ok(f) => f,
                 Err(e) => {
                     self.firewall.reject(step, &b.name, "body state", e);
-                    let keep = b.applied;
-                    apply_wrench(rb, &keep);
+                    bodies.set_wrench(b.handle, &b.applied);
                     continue;
                 }
             };
             // What the step moves: the body, and with an added mass the
             // water it sets moving (as much of it as is under water now).
             let inertial = match &b.effects.added_mass {
-                None => Inertial::plain(rb.mass() as f64, &b.mass.inertia),
+                None => Inertial::plain(rb.mass, &b.mass.inertia),
                 Some(added) => Inertial::with_added(
-                    rb.mass() as f64,
+                    rb.mass,
                     &b.mass.inertia,
                     added,
                     &state.pose.rotation,
@@ -362,13 +354,13 @@ impl ForceGenerator {
             // With an added mass: the wrench that gives the body alone the
             // accelerations the body and the water would take.
             let applied = if inertial.has_added() {
-                let g = self.water.gravity * rb.gravity_scale() as f64;
-                let rapier = inertial.for_rapier(&wrench, &b.mass.inertia, &state.pose.rotation, g);
-                if rapier.is_finite() { rapier } else { wrench }
+                let g = self.water.gravity * rb.gravity_scale;
+                let engine = inertial.for_engine(&wrench, &b.mass.inertia, &state.pose.rotation, g);
+                if engine.is_finite() { engine } else { wrench }
             } else {
                 wrench
             };
-            apply_wrench(rb, &applied);
+            bodies.set_wrench(b.handle, &applied);
             b.added_force = Wrench {
                 force: applied.force - wrench.force,
                 torque: applied.torque - wrench.torque,
@@ -379,26 +371,24 @@ impl ForceGenerator {
     }
 
     /// Advances the liquid texture of every wet body by `dt` (s) at the
-    /// generator's time, with the body's pose as Rapier has it now and the
-    /// generator's water and environment: absorption through the submerged
+    /// driver's time, with the body's pose as the engine has it now and the
+    /// driver's water and environment: absorption through the submerged
     /// texels, evaporation from the others, then the body's own diffusion
     /// (see [`Wetting::step`](soak_wet::Wetting::step)). Bodies without wetting
-    /// are not visited beyond a check. [`ForceGenerator::step`] calls it
-    /// before stepping the world; call it yourself (once per step, before
-    /// [`ForceGenerator::advance`]) when driving Rapier yourself.
+    /// are not visited beyond a check. [`Driver::before_step`] calls it.
     ///
     /// A body whose pose is not finite is skipped and the firewall records
     /// it; invalid wetting settings are an error.
-    pub fn wet(&mut self, bodies: &RigidBodySet, dt: f64) -> Result<(), SoakError> {
+    pub fn wet<B: Bodies<Handle = H> + ?Sized>(&mut self, bodies: &B, dt: f64) -> Result<(), SoakError> {
         let (t, step) = (self.time, self.steps);
         for b in &mut self.bodies {
             let Some(wetting) = &mut b.effects.wetting else {
                 continue;
             };
-            let Some(rb) = bodies.get(b.handle) else {
+            let Some(rb) = bodies.body(b.handle) else {
                 continue;
             };
-            let pose = convert::pose(rb.position());
+            let pose = rb.pose;
             let finite = pose.translation.vector.iter().all(|c| c.is_finite())
                 && pose.rotation.coords.iter().all(|c| c.is_finite());
             if !finite {
@@ -416,22 +406,25 @@ impl ForceGenerator {
         Ok(())
     }
 
-    /// Drops `splash` on every wet body, each at its pose as Rapier has it
-    /// now; returns the volume that stuck (m³, summed over the bodies; the
-    /// rest ran off saturated texels or landed on no body). Bodies without
-    /// wetting are not touched.
+    /// Drops `splash` on every wet body, each at its pose as the engine has
+    /// it now; returns the volume that stuck (m³, summed over the bodies;
+    /// the rest ran off saturated texels or landed on no body). Bodies
+    /// without wetting are not touched.
     ///
     /// # Errors
     /// An invalid splash, or a wet body whose pose is not finite.
-    pub fn splash(&mut self, bodies: &RigidBodySet, splash: &soak_wet::Splash) -> Result<f64, SoakError> {
+    pub fn splash<B: Bodies<Handle = H> + ?Sized>(
+        &mut self,
+        bodies: &B,
+        splash: &soak_wet::Splash,
+    ) -> Result<f64, SoakError> {
         let mut stuck = 0.0;
         for b in &mut self.bodies {
-            let (Some(wetting), Some(rb)) = (&mut b.effects.wetting, bodies.get(b.handle)) else {
+            let (Some(wetting), Some(rb)) = (&mut b.effects.wetting, bodies.body(b.handle)) else {
                 continue;
             };
-            let pose = convert::pose(rb.position());
             stuck += wetting
-                .splash(&b.atlas, &pose, splash)
+                .splash(&b.atlas, &rb.pose, splash)
                 .map_err(|source| SoakError::Wet {
                     name: b.name.clone(),
                     source,
@@ -440,13 +433,11 @@ impl ForceGenerator {
         Ok(stuck)
     }
 
-    /// Advances the interactive waves (if the generator has them, see
-    /// [`ForceGenerator::with_waves`]) by `dt` (s) under the pressure the
-    /// bodies put on them at [`ForceGenerator::apply`], then moves their
-    /// region to follow the bodies. [`ForceGenerator::step`] calls it after
-    /// `apply`; call it yourself (once per step, after `apply`, before
-    /// stepping the world) when driving Rapier yourself. Nothing without
-    /// waves.
+    /// Advances the interactive waves (if the driver has them, see
+    /// [`Driver::with_waves`]) by `dt` (s) under the pressure the
+    /// bodies put on them at [`Driver::apply`], then moves their
+    /// region to follow the bodies. [`Driver::before_step`] calls it
+    /// after `apply`. Nothing without waves.
     ///
     /// # Errors
     /// [`SoakError::Waves`] for a `dt` that is not finite and > 0 (the
@@ -459,87 +450,79 @@ impl ForceGenerator {
         w.follow()
     }
 
-    /// Advances the generator's clock (for moving waves) by `dt` seconds.
+    /// Advances the driver's clock (for moving waves) by `dt` seconds and
+    /// counts the step. [`Driver::after_step`] does it.
     pub fn advance(&mut self, dt: f64) {
         self.time += dt;
         self.steps += 1;
     }
 
-    /// Makes the fluid's hydrostatic gravity the world's (m/s²). [`ForceGenerator::step`]
-    /// does this every step; call it when driving Rapier yourself.
-    pub fn sync_gravity(&mut self, world: &PhysicsWorld) {
-        self.water.gravity = convert::vector(world.gravity).norm();
+    /// Sets the fluid's hydrostatic gravity, m/s² (the length of the
+    /// engine's gravity vector: keep the two the same, as the adapters do
+    /// every step).
+    pub fn set_gravity(&mut self, gravity: f64) {
+        self.water.gravity = gravity;
     }
 
-    /// One step of every body's effects and of the world: advances the
-    /// liquid inside flooding bodies ([`ForceGenerator::flood`]), applies
-    /// the fluid forces ([`ForceGenerator::apply`]), wets the wet bodies
-    /// over the step ([`ForceGenerator::wet`]), steps the world once and
-    /// advances time. The fluid's gravity follows the world's.
+    /// Everything the driver does before the engine steps: advances the
+    /// liquid inside flooding bodies ([`Driver::flood`]), hands the engine
+    /// the fluid forces ([`Driver::apply`]), wets the wet bodies over the
+    /// step ([`Driver::wet`]) and steps the interactive waves
+    /// ([`Driver::step_waves`]). Then step the engine once by `step.dt`,
+    /// and call [`Driver::after_step`].
     ///
     /// # Errors
-    /// A flooding or wetting step that failed (see [`ForceGenerator::flood`]
-    /// and [`ForceGenerator::wet`]); the world is then not stepped.
-    pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<(), SoakError> {
-        self.sync_gravity(world);
-        let dt = world.integration_parameters.dt as f64;
-        let params = world.integration_parameters;
-        self.flood(&mut world.bodies, &world.colliders, dt)?;
-        self.apply(&mut world.bodies, &params);
-        self.wet(&world.bodies, dt)?;
-        self.step_waves(dt)?;
-        world.step();
+    /// A flooding, wetting or waves step that failed (see
+    /// [`Driver::flood`], [`Driver::wet`] and [`Driver::step_waves`]):
+    /// do not step the engine then.
+    pub fn before_step<B: BodiesMut<Handle = H> + ?Sized>(
+        &mut self,
+        bodies: &mut B,
+        step: &StepParams,
+    ) -> Result<(), SoakError> {
+        self.flood(bodies, step.dt)?;
+        self.apply(bodies, step);
+        self.wet(bodies, step.dt)?;
+        self.step_waves(step.dt)
+    }
+
+    /// What the driver does once the engine has stepped by `dt` (s):
+    /// advances its clock ([`Driver::advance`]). An engine whose contacts
+    /// can tear holes calls [`Driver::tear`] after it.
+    pub fn after_step(&mut self, dt: f64) {
         self.advance(dt);
-        self.tear(world)?;
-        Ok(())
     }
 
-    /// Opens the holes the last Rapier step's hard contacts call for
-    /// ([`ImpactHoles`](super::ImpactHoles)), recording them in
-    /// [`ForceGenerator::impacts`]. [`ForceGenerator::step`] calls it after
-    /// the world's step; call it yourself after stepping the world when
-    /// driving the parts one by one.
+    /// Opens the holes the engine's last step's hard contacts call for
+    /// ([`ImpactHoles`](crate::ImpactHoles)), recording them in
+    /// [`Driver::impacts`]. `contacts(handle)` lists the contact pairs of
+    /// the body `handle` names after the step: each pair's impulse over
+    /// the step (N·s) and its deepest contact point (world, m), in the
+    /// engine's order. Only bodies with an impact rule are asked; a pair
+    /// whose impulse is not above the rule's threshold is passed over.
     ///
     /// # Errors
-    /// A missing Rapier body.
-    pub fn tear(&mut self, world: &PhysicsWorld) -> Result<(), SoakError> {
+    /// A body with an impact rule the engine no longer has.
+    pub fn tear<B: Bodies<Handle = H> + ?Sized>(
+        &mut self,
+        bodies: &B,
+        mut contacts: impl FnMut(H) -> Vec<(f64, Point3<f64>)>,
+    ) -> Result<(), SoakError> {
         self.impacts.clear();
         for k in 0..self.bodies.len() {
             let b = &self.bodies[k];
             let Some(rule) = b.effects.impact_holes else {
                 continue;
             };
-            let rb = world
-                .bodies
-                .get(b.handle)
-                .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?;
-            let body_pose = convert::pose(rb.position());
-            // Each pair over the threshold, at its deepest contact, in the
-            // order Rapier keeps the body's colliders and their pairs.
-            let mut blows: Vec<(Point3<f64>, f64)> = Vec::new();
-            for &ch in rb.colliders() {
-                let Some(collider) = world.colliders.get(ch) else {
-                    continue;
-                };
-                let collider_pose = convert::pose(collider.position());
-                for pair in world.narrow_phase.contact_pairs_with(ch) {
-                    let impulse = pair.total_impulse_magnitude() as f64;
-                    if impulse.is_nan() || impulse <= rule.impulse {
-                        continue;
-                    }
-                    let Some((_, contact)) = pair.find_deepest_contact() else {
-                        continue;
-                    };
-                    let local = if pair.collider1 == ch {
-                        contact.local_p1
-                    } else {
-                        contact.local_p2
-                    };
-                    let world_point =
-                        collider_pose * Point3::new(local.x as f64, local.y as f64, local.z as f64);
-                    blows.push((body_pose.inverse_transform_point(&world_point), impulse));
-                }
-            }
+            let body_pose = bodies
+                .body(b.handle)
+                .ok_or_else(|| SoakError::MissingBody { name: b.name.clone() })?
+                .pose;
+            let blows: Vec<(Point3<f64>, f64)> = contacts(b.handle)
+                .into_iter()
+                .filter(|(impulse, _)| !impulse.is_nan() && *impulse > rule.impulse)
+                .map(|(impulse, point)| (body_pose.inverse_transform_point(&point), impulse))
+                .collect();
             for (centre, impulse) in blows {
                 let texels = self.open_hole(SoakId(k), centre, rule.radius)?;
                 self.impacts.push(Impact {
@@ -655,7 +638,7 @@ struct SharedOptions {
 
 impl SharedOptions {
     /// Body `b`'s options: its buoyancy mode, drag and added mass.
-    fn of(&self, b: &SoakBody) -> HydroOptions {
+    fn of<H>(&self, b: &SoakBody<H>) -> HydroOptions {
         HydroOptions {
             buoyancy: b.effects.buoyancy.unwrap_or(BuoyancyMode::Off),
             drag: b.effects.drag,

@@ -1,11 +1,11 @@
-//! The NaN firewall: nothing non-finite or absurd reaches Rapier.
+//! The NaN firewall: nothing non-finite or absurd reaches the engine.
 
 use serde::Serialize;
 
 /// One rejected quantity.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FirewallEvent {
-    /// Generator step at which it happened.
+    /// The driver's step at which it happened.
     pub step: u64,
     /// The soak body's name.
     pub body: String,

@@ -1,14 +1,15 @@
 //! The generator's evolving state, for saving and restoring: each body's
 //! [`BodyRunState`], the whole [`GeneratorState`], and
-//! [`ForceGenerator::state`] and [`ForceGenerator::restore_state`].
+//! [`Driver::state`] and [`Driver::restore_state`].
 
 use serde::{Deserialize, Serialize};
 use soak_graph::FloodingState;
 use soak_hydro::{HydroForces, MassModel, MassProperties, Wrench};
 use soak_wet::{Environment, StepReport, Wetting};
 
-use super::body::with_extra;
-use super::force_generator::ForceGenerator;
+use crate::body::with_extra;
+use crate::driver::Driver;
+use crate::engine::Handle;
 use crate::error::SoakError;
 
 /// What a body's run changes, for saving: its mass model and extra mass,
@@ -22,7 +23,7 @@ pub struct BodyRunState {
     pub extra_mass: Option<MassProperties>,
     /// Hydrostatics of the last step.
     pub forces: HydroForces,
-    /// What was handed to Rapier at the last step.
+    /// What was handed to the engine at the last step.
     pub applied: Wrench,
     /// Dry steps skipped so far.
     pub dry_skips: u64,
@@ -86,7 +87,7 @@ fn same_wetting(a: &Wetting, b: &Wetting) -> bool {
         && a.ledger() == b.ledger()
 }
 
-/// The evolving state of a [`ForceGenerator`] (not its atlases or water,
+/// The evolving state of a [`Driver`] (not its atlases or water,
 /// which come from the scene).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct GeneratorState {
@@ -102,10 +103,10 @@ pub struct GeneratorState {
     /// The interactive waves, if the generator has them: their surface
     /// and what each body pressed at the last step.
     #[serde(default)]
-    pub waves: Option<super::waves::CoupledWavesState>,
+    pub waves: Option<crate::waves::CoupledWavesState>,
 }
 
-impl ForceGenerator {
+impl<H: Handle> Driver<H> {
     /// The evolving state, for saving.
     pub fn state(&self) -> GeneratorState {
         GeneratorState {
@@ -133,8 +134,8 @@ impl ForceGenerator {
         }
     }
 
-    /// Restores a state saved from a generator with the same bodies (and
-    /// the same liquid graphs in the flooding ones). The Rapier world is
+    /// Restores a state saved from a driver with the same bodies (and
+    /// the same liquid graphs in the flooding ones). The engine's world is
     /// restored separately (its bodies already carry the saved mass
     /// properties). Wetting is on afterwards for the bodies the state has
     /// it for.

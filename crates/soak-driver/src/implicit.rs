@@ -3,23 +3,23 @@
 //! ([`implicit_heave`]), and how implicit the step is ([`implicit_weight`]).
 
 use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
-use rapier3d::prelude::RigidBody;
 use soak_hydro::{BodyState, BuoyancyMode, HydroOptions, SurfaceKind, Water, Wrench};
 
-use super::body::{Shape, SoakBody};
-use super::inertial::Inertial;
-use super::predicted_step::Step;
+use crate::body::{Shape, SoakBody};
+use crate::engine::EngineBody;
+use crate::inertial::Inertial;
+use crate::predicted_step::Step;
 
 /// Below this weight `θ` of the implicit part of the heave step (see
 /// [`implicit_heave`]) the step is left explicit, and the evaluations the
 /// implicit solve needs are saved: it would change the net vertical force
 /// by about `θ` of itself.
-pub(super) const IMPLICIT_NEGLIGIBLE: f64 = 1e-3;
+pub(crate) const IMPLICIT_NEGLIGIBLE: f64 = 1e-3;
 
 /// `θ = w⁴/(1 + w⁴)`, `w = c ρ_w g A dt²/m` with `A` the bound
 /// [`Shape::water_plane`]: how implicit the heave step is (see
 /// [`implicit_heave`]).
-pub(super) fn implicit_weight(water: &Water, shape: &Shape, m: f64, dt: f64, substeps: f64) -> f64 {
+pub(crate) fn implicit_weight(water: &Water, shape: &Shape, m: f64, dt: f64, substeps: f64) -> f64 {
     let c = (substeps + 1.0) / (2.0 * substeps);
     let w = c * water.density * water.gravity * shape.water_plane * dt * dt / m;
     let w4 = (w * w) * (w * w);
@@ -29,11 +29,11 @@ pub(super) fn implicit_weight(water: &Water, shape: &Shape, m: f64, dt: f64, sub
 /// The buoyancy with its restoring part integrated implicitly in heave,
 /// where the body is stiff for the step.
 ///
-/// Rapier holds the force constant over the step, so a buoyancy whose heave
+/// The engine holds the force constant over the step, so a buoyancy whose heave
 /// period is shorter than the step (a light millimetre body at dt = 1/10 s)
 /// is applied far beyond the pose it was evaluated at and flings the body
 /// out of the water, or lets it fall for a whole step before the water
-/// answers. Rapier's symplectic Euler over `s` substeps `h = dt/s` with a
+/// answers. The engine's symplectic Euler (Rapier's) over `s` substeps `h = dt/s` with a
 /// constant acceleration `a` moves the centre of mass to
 ///
 /// `y' = y + dt v + c dt² a`, `c = (s + 1)/(2s)`.
@@ -73,11 +73,11 @@ pub(super) fn implicit_weight(water: &Water, shape: &Shape, m: f64, dt: f64, sub
 /// ([`Inertial::vertical`]), `a = (F_y + D_y − m_b g)/m` with `m_b` the
 /// body's own mass, and the pitch and roll turn the inertia with its
 /// rotational added part. The wrench returned is the one that moves the
-/// two; [`Inertial::for_rapier`] makes it the one Rapier, moving the body
+/// two; [`Inertial::for_engine`] makes it the one the engine, moving the body
 /// alone, must be given.
 ///
 /// Last, the step is checked for energy ([`Step::without_energy_gain`]):
-/// the generator predicts Rapier's step from the pose now under the
+/// the driver predicts the engine's step from the pose now under the
 /// wrench, and where the body would end it with more energy than it began
 /// with (kinetic, gravity's and the columns'
 /// [`HydroForces::potential`](soak_hydro::HydroForces::potential),
@@ -87,9 +87,9 @@ pub(super) fn implicit_weight(water: &Water, shape: &Shape, m: f64, dt: f64, sub
 /// in the water, a square rod rolling over) then damps the motion instead
 /// of flinging the body.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn implicit_heave(
-    b: &SoakBody,
-    rb: &RigidBody,
+pub(crate) fn implicit_heave<H>(
+    b: &SoakBody<H>,
+    rb: &EngineBody,
     water: &Water,
     state: &BodyState,
     options: &HydroOptions,
@@ -114,7 +114,7 @@ pub(super) fn implicit_heave(
     if theta.is_nan() || theta < IMPLICIT_NEGLIGIBLE {
         return buoyancy;
     }
-    let g = water.gravity * rb.gravity_scale() as f64;
+    let g = water.gravity * rb.gravity_scale;
     let v = state.linear_velocity.y;
     let options = HydroOptions {
         drag: None,
@@ -245,8 +245,8 @@ pub(super) fn implicit_heave(
         drag,
         dt,
         substeps,
-        rb.is_fast_rotation_allowed(),
-        rb.gyroscopic_forces_enabled(),
+        rb.fast_rotation,
+        rb.gyroscopic,
     ) else {
         return implicit;
     };

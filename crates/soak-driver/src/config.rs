@@ -17,10 +17,10 @@ use soak_wet::Wetting;
 /// Effects left off allocate and cost nothing.
 ///
 /// Register a body with its effects through [`BodyDesc`]; the generator
-/// keeps them ([`SoakBody::effects`](super::SoakBody::effects)) and lets
+/// keeps them ([`SoakBody::effects`](crate::SoakBody::effects)) and lets
 /// them change between steps
-/// ([`ForceGenerator::set_wetting`](super::ForceGenerator::set_wetting),
-/// [`ForceGenerator::flooding_mut`](super::ForceGenerator::flooding_mut)).
+/// ([`Driver::set_wetting`](crate::Driver::set_wetting),
+/// [`Driver::flooding_mut`](crate::Driver::flooding_mut)).
 #[derive(Clone, Debug, Default)]
 pub struct Effects {
     /// Buoyancy, and in which mode; `None` for none.
@@ -57,7 +57,7 @@ pub struct Effects {
     /// fraction and counted implicitly in the step: a bubble rises at no
     /// more than about `2 g`, a floating body heaves with the period of its
     /// mass and the water's. The buoyancy, the drag's implicit solve and
-    /// the stiff-step treatment all move the larger mass; Rapier is handed
+    /// the stiff-step treatment all move the larger mass; the engine is handed
     /// the wrench that gives the body alone the same accelerations
     /// (contacts still see the body's own mass). `None`: the body's mass
     /// alone, and a body lighter than a millionth of the fluid it
@@ -80,7 +80,7 @@ pub struct Effects {
 /// momentum the new added mass takes, `F = (dm/dt) w` upwards at the
 /// water-plane's centroid (`w` the downward speed of that point), is
 /// applied, and reported with its peak
-/// ([`SoakBody::slamming`](super::SoakBody::slamming)). For a 2-D wedge it
+/// ([`SoakBody::slamming`](crate::SoakBody::slamming)). For a 2-D wedge it
 /// is von Kármán's `ρ π V c ċ` per length; Wagner's theory, with the water
 /// piled up along the body, gives a wetted width `π/2` wider and more force
 /// at small deadrise. The water's own vertical motion (a sea) is not
@@ -112,7 +112,7 @@ impl Slamming {
 /// step, every contact pair of the body's colliders whose impulse over the
 /// step (the sum of its contact impulses, N·s) exceeds `impulse` opens
 /// every texel within `radius` (m) of the pair's deepest contact point on
-/// the body ([`ForceGenerator::open_hole`](super::ForceGenerator::open_hole)):
+/// the body ([`Driver::open_hole`](crate::Driver::open_hole)):
 /// water flows through it freely from the next step. A body resting on
 /// another presses with `m g Δt` per step, far below a blow's impulse.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -157,25 +157,26 @@ impl Effects {
     ///
     /// # Example
     /// ```
-    /// use rapier3d::prelude::*;
+    /// use nalgebra::Isometry3;
     /// use soak_bake::{Atlas, BakeOptions, builtin};
+    /// use soak_driver::{BodyDesc, Driver, Effects, FreeBodies, StepParams};
     /// use soak_hydro::{Drag, DragTexels, MassModel, Water};
-    /// use soak_rapier::{BodyDesc, Effects, ForceGenerator};
     ///
     /// let mesh = builtin::sphere(0.5, 48, 24);
-    /// let mut world = PhysicsWorld::new();
-    /// let handle = world.bodies.insert(RigidBodyBuilder::dynamic().linvel(Vector::new(1.0, 0.0, 0.0)));
-    /// let mut soak = ForceGenerator::new(Water::calm(0.0));
+    /// let mut engine = FreeBodies::new(9.81);
+    /// let handle = engine.insert(Isometry3::identity());
+    /// engine.get_mut(handle).unwrap().linear_velocity.x = 1.0;
+    /// let mut soak = Driver::new(Water::calm(0.0));
     /// let effects = Effects::buoyancy()
     ///     .with_drag(Drag::default())
     ///     .with_drag_texels(DragTexels::bake(&mesh, 64)?.into());
-    /// soak.register(&mut world.bodies, &world.colliders, handle, BodyDesc {
+    /// soak.register(&mut engine, handle, BodyDesc {
     ///     name: "buoy".into(),
     ///     atlas: Atlas::bake(&mesh, BakeOptions::square(512))?.into(),
     ///     mass_model: MassModel::Solid { density: 500.0 },
     ///     effects,
     /// })?;
-    /// soak.step(&mut world)?;
+    /// soak.before_step(&mut engine, &StepParams::new(1.0 / 60.0, 4))?;
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn with_drag_texels(mut self, texels: Arc<DragTexels>) -> Self {
@@ -194,30 +195,31 @@ impl Effects {
     ///
     /// # Example
     /// ```
-    /// use nalgebra::Point3;
-    /// use rapier3d::prelude::*;
+    /// use nalgebra::{Isometry3, Point3};
     /// use soak_bake::{Atlas, BakeOptions, builtin};
+    /// use soak_driver::{BodyDesc, Driver, Effects, FreeBodies, StepParams};
     /// use soak_graph::{Flooding, FlowOptions, LiquidGraph, Node, Permeability};
     /// use soak_hydro::{MassModel, Water};
-    /// use soak_rapier::{BodyDesc, Effects, ForceGenerator};
     ///
-    /// let mut world = PhysicsWorld::new();
-    /// world.integration_parameters.dt = 1.0 / 30.0;
-    /// let handle = world.bodies.insert(RigidBodyBuilder::dynamic());
+    /// let mut engine = FreeBodies::new(9.81);
+    /// let step = StepParams::new(1.0 / 30.0, 4);
+    /// let handle = engine.insert(Isometry3::identity());
     /// let atlas = Atlas::bake(&builtin::cuboid(1.0, 1.0, 1.0), BakeOptions::square(32))?;
     /// let mut permeability = Permeability::watertight(&atlas);
     /// permeability.paint(&atlas, Point3::new(0.0, -0.5, 0.0), 0.2, 1e-6)?; // a hole in the bottom
     /// let graph = LiquidGraph::new(vec![Node::new("hold", Point3::origin(), 1.0).with_height(1.0)], vec![])?;
     /// let flooding = Flooding::for_atlas(&atlas, graph, permeability, FlowOptions::default())?;
-    /// let mut soak = ForceGenerator::new(Water::calm(0.0));
-    /// let id = soak.register(&mut world.bodies, &world.colliders, handle, BodyDesc {
+    /// let mut soak = Driver::new(Water::calm(0.0));
+    /// let id = soak.register(&mut engine, handle, BodyDesc {
     ///     name: "box".into(),
     ///     atlas: atlas.into(),
     ///     mass_model: MassModel::Shell { areal_density: 20.0 },
     ///     effects: Effects::buoyancy().with_flooding(flooding),
     /// })?;
     /// for _ in 0..300 {
-    ///     soak.step(&mut world)?;
+    ///     soak.before_step(&mut engine, &step)?;
+    ///     engine.step(&step);
+    ///     soak.after_step(step.dt);
     /// }
     /// // Water came in and the body is heavier by its mass.
     /// let inside = soak.flooding(id).unwrap().inside();
@@ -236,26 +238,28 @@ impl Effects {
     ///
     /// # Example
     /// ```
-    /// use rapier3d::prelude::*;
+    /// use nalgebra::Isometry3;
     /// use soak_bake::{Atlas, BakeOptions, builtin};
+    /// use soak_driver::{BodyDesc, Driver, Effects, FreeBodies, StepParams};
     /// use soak_hydro::{AddedMass, MassModel, Water};
-    /// use soak_rapier::{BodyDesc, Effects, ForceGenerator};
     ///
     /// // A hollow sphere of 1 kg/m³, 10 m down: buoyancy alone would fling it
     /// // up at a thousand g, the water it must push aside holds it to 2 g.
-    /// let mut world = PhysicsWorld::new();
-    /// let handle = world.bodies.insert(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, -10.0, 0.0)));
+    /// let mut engine = FreeBodies::new(9.81);
+    /// let handle = engine.insert(Isometry3::translation(0.0, -10.0, 0.0));
     /// let atlas = Atlas::bake(&builtin::sphere(0.5, 48, 24), BakeOptions::square(128))?;
     /// let added = AddedMass::of_atlas(&atlas)?;
-    /// let mut soak = ForceGenerator::new(Water::calm(0.0));
-    /// soak.register(&mut world.bodies, &world.colliders, handle, BodyDesc {
+    /// let mut soak = Driver::new(Water::calm(0.0));
+    /// soak.register(&mut engine, handle, BodyDesc {
     ///     name: "bubble".into(),
     ///     atlas: atlas.into(),
     ///     mass_model: MassModel::Solid { density: 1.0 },
     ///     effects: Effects::buoyancy().with_added_mass(added),
     /// })?;
-    /// soak.step(&mut world)?;
-    /// let a = world.bodies[handle].linvel().y / world.integration_parameters.dt;
+    /// let step = StepParams::new(1.0 / 60.0, 4);
+    /// soak.before_step(&mut engine, &step)?;
+    /// engine.step(&step);
+    /// let a = engine.get(handle).unwrap().linear_velocity.y / step.dt;
     /// assert!((a / 9.81 - 2.0).abs() < 0.05, "{a} m/s²");
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
@@ -303,11 +307,11 @@ pub enum Backend {
     #[default]
     Tiled,
     /// All bodies in one GPU batch per step (the `gpu` feature; see
-    /// `ForceGenerator::with_gpu`); the tiled path stands by on the CPU.
+    /// `Driver::with_gpu`); the tiled path stands by on the CPU.
     Gpu,
 }
 
-/// Identifies a body registered with a [`ForceGenerator`](super::ForceGenerator).
+/// Identifies a body registered with a [`Driver`](crate::Driver).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub struct SoakId(pub usize);
 

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use soak_hydro::{InteractiveWaves, WaveRegion, WavesState};
 
 /// Interactive waves under the bodies
-/// ([`ForceGenerator::with_waves`](super::ForceGenerator::with_waves)): an
+/// ([`Driver::with_waves`](crate::Driver::with_waves)): an
 /// [`InteractiveWaves`] surface over a square region (linear deep water,
 /// every mode turning at `ω = √(g k)`, exact whatever the step) laid over
 /// the generator's water (a plane or a sea).
@@ -22,7 +22,7 @@ use soak_hydro::{InteractiveWaves, WaveRegion, WavesState};
 /// body's buoyancy is the pressure it puts on the waves, Newton's third law
 /// cell by cell.
 ///
-/// With a GPU backend ([`ForceGenerator::with_gpu`](super::ForceGenerator::with_gpu),
+/// With a GPU backend ([`Driver::with_gpu`](crate::Driver::with_gpu),
 /// before or after this) the waves step on the device
 /// ([`GpuWaves`](soak_hydro::gpu::GpuWaves), f32; their cells per side must
 /// then be a power of two) and the generator's copy takes their elevation
@@ -33,7 +33,7 @@ use soak_hydro::{InteractiveWaves, WaveRegion, WavesState};
 /// velocity is not counted), and a body's [`Effects::added_mass`] (if
 /// set) is on top of the inertia the waves already give it.
 ///
-/// [`Effects::added_mass`]: super::Effects::with_added_mass
+/// [`Effects::added_mass`]: crate::Effects::with_added_mass
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct WaveCoupling {

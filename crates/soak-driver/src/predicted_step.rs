@@ -1,19 +1,22 @@
-//! The energy guard's prediction of Rapier's step: [`Step`], a copy of
-//! Rapier's substep integration of one body (symplectic Euler, the
-//! gyroscopic correction, the cap on the spin), and the check that the
-//! step creates no energy ([`Step::without_energy_gain`]).
+//! The energy guard's prediction of the engine's step: [`Step`], a copy
+//! of Rapier's substep integration of one body (symplectic Euler, the
+//! gyroscopic correction, the cap on the spin), the check that the step
+//! creates no energy ([`Step::without_energy_gain`]), and the same
+//! prediction for adapters to test their engine against
+//! ([`predict_step`]).
 
 use nalgebra::{Isometry3, Matrix3, Point3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use soak_hydro::{BodyState, MassProperties, PrincipalInertia, Wrench};
 
-use super::inertial::Inertial;
+use crate::engine::{EngineBody, StepParams};
+use crate::inertial::Inertial;
 
-/// Rapier's step of one body as the generator predicts it: from the pose
+/// The engine's step of one body as the driver predicts it: from the pose
 /// now, under a constant buoyancy wrench, the drag and gravity, over
 /// `substeps` substeps of symplectic Euler (`y' = y + dt v + c dt² a`,
 /// `v' = v + dt a`, `c = (s + 1)/(2s)`; the turn with Rapier's
 /// gyroscopic correction and cap on the spin, see [`Step::end`]).
-pub(super) struct Step<'a> {
+pub(crate) struct Step<'a> {
     dt: f64,
     /// `(s + 1)/(2s)` for `s` substeps: the step moves the centre by
     /// `dt ((1 − c) v₀ + c v₁)`.
@@ -82,7 +85,7 @@ struct StepEnd {
 
 impl<'a> Step<'a> {
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn new(
+    pub(crate) fn new(
         state: &BodyState,
         mass: &'a MassProperties,
         inertial: Inertial,
@@ -238,7 +241,7 @@ impl<'a> Step<'a> {
     /// damped instead. Where the body is deep now (`u` says it is not at
     /// the surface: see `HydroForces::deep`) or its potential cannot be
     /// evaluated, `w` is returned.
-    pub(super) fn without_energy_gain(
+    pub(crate) fn without_energy_gain(
         &self,
         w: Wrench,
         u: impl Fn(Isometry3<f64>) -> Option<(f64, bool)>,
@@ -288,97 +291,71 @@ impl<'a> Step<'a> {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use rapier3d::prelude::{PhysicsWorld, RigidBodyBuilder};
+/// Where the engine's step takes a body, as the driver predicts it
+/// ([`predict_step`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PredictedStep {
+    /// The pose of the body's own frame at the end of the step, world, m.
+    pub pose: Isometry3<f64>,
+    /// Linear velocity of the centre of mass at the end of the step, m/s.
+    pub linear_velocity: Vector3<f64>,
+    /// Angular velocity at the end of the step, rad/s.
+    pub angular_velocity: Vector3<f64>,
+}
 
-    use super::super::rapier_body::{apply_wrench, push_mass};
-    use crate::convert;
-
-    /// The energy check judges the step Rapier will take: its prediction
-    /// (substeps, the turn through `(1, h ω/2)` normalised, the cap on the
-    /// angular speed) against Rapier's own step, at an ordinary step and at
-    /// one whose spin Rapier caps at π/4.
-    #[test]
-    fn the_predicted_step_is_the_one_rapier_takes() {
-        for (spin, dt) in [(0.7, 1.0 / 60.0), (60.0, 1.0 / 10.0)] {
-            let mut world = PhysicsWorld::new();
-            world.integration_parameters.dt = dt as f32;
-            let pose = Isometry3::from_parts(
-                Translation3::new(0.3, -0.2, 0.1),
-                UnitQuaternion::from_euler_angles(0.2, -0.1, 0.4),
-            );
-            let (v0, w0) = (Vector3::new(0.4, -1.1, 0.2), Vector3::new(0.3, -0.5, 1.0) * spin);
-            let handle = world.bodies.insert(
-                RigidBodyBuilder::dynamic()
-                    .pose(convert::to_pose(&pose))
-                    .linvel(convert::to_vector(&v0))
-                    .angvel(convert::to_vector(&w0)),
-            );
-            let mass = MassProperties {
-                mass: 2.0,
-                center_of_mass: Point3::new(0.05, -0.02, 0.01),
-                inertia: Matrix3::new(0.3, 0.01, 0.0, 0.01, 0.5, 0.02, 0.0, 0.02, 0.7),
-            };
-            push_mass("test", &mut world.bodies[handle], &world.colliders, &mass).unwrap();
-            let wrench = Wrench {
-                force: Vector3::new(1.0, 25.0, -2.0),
-                torque: Vector3::new(0.2, -0.1, 0.3),
-            };
-            apply_wrench(&mut world.bodies[handle], &wrench);
-            // The state the generator evaluates at: β dt ahead.
-            let substeps = world.integration_parameters.num_solver_iterations.max(1) as f64;
-            let lookahead = (substeps - 1.0) / (2.0 * substeps) * dt;
-            let rotation = UnitQuaternion::from_scaled_axis(w0 * lookahead) * pose.rotation;
-            let com = (pose * mass.center_of_mass).coords + v0 * lookahead;
-            let state = BodyState {
-                pose: Isometry3::from_parts(
-                    Translation3::from(com - rotation * mass.center_of_mass.coords),
-                    rotation,
-                ),
-                linear_velocity: v0,
-                angular_velocity: w0,
-            };
-            let g = -world.gravity.y as f64;
-            let step = Step::new(
-                &state,
-                &mass,
-                Inertial::plain(2.0, &mass.inertia),
-                g,
-                Wrench::default(),
-                dt,
-                substeps,
-                false,
-                true,
-            )
-            .unwrap();
-            let end = step.end(&wrench);
-            world.step();
-            let rb = &world.bodies[handle];
-            let close = |a: Vector3<f64>, b: Vector3<f64>, what: &str| {
-                assert!(
-                    (a - b).norm() <= 1e-4 * (1.0 + b.norm()),
-                    "spin {spin}: {what} {a:?} != {b:?}"
-                );
-            };
-            close(end.v, convert::vector(rb.linvel()), "linear velocity");
-            close(end.w, convert::vector(rb.angvel()), "angular velocity");
-            let after = convert::pose(rb.position());
-            close(
-                (step.com0 + end.dx).coords,
-                (after * mass.center_of_mass).coords,
-                "centre of mass",
-            );
-            assert!(
-                end.rotation.angle_to(&after.rotation) <= 1e-4,
-                "spin {spin}: rotation off by {}",
-                end.rotation.angle_to(&after.rotation)
-            );
-            if spin > 10.0 {
-                // The cap was reached: |ω| = π/(4 dt).
-                assert!((end.w.norm() - std::f64::consts::FRAC_PI_4 / dt).abs() < 1e-9);
-            }
-        }
-    }
+/// The engine's step of `body` (mass properties `mass`, the body's own
+/// frame) under the constant `wrench` (world, about the centre of mass)
+/// and gravity `gravity` (m/s² along −y, the body's gravity scale
+/// applied here), as the driver predicts it to keep stiff bodies stable
+/// and to check that no step creates energy: `step.substeps` substeps
+/// `h` of symplectic Euler, each adding `h a` to the velocities, turning
+/// ω by the explicit gyroscopic term (where `body.gyroscopic`), capping
+/// `|ω|` at `π/(4 dt)` (unless `body.fast_rotation`), moving the centre
+/// by `h v` and turning by `(1, h ω/2)` normalised. This is Rapier's
+/// integrator (and bevy_rapier's); an adapter for another engine should
+/// test that its engine steps a body as this says (soak-rapier's
+/// `predicted_step` test does, to 1e-4 relative). `None` for an inertia
+/// that cannot be inverted.
+pub fn predict_step(
+    body: &EngineBody,
+    mass: &MassProperties,
+    wrench: &Wrench,
+    gravity: f64,
+    step: &StepParams,
+) -> Option<PredictedStep> {
+    let (dt, substeps) = (step.dt, step.substeps_f64());
+    // The step is built from the state the driver evaluates at, β dt ahead.
+    let lookahead = (substeps - 1.0) / (2.0 * substeps) * dt;
+    let (v0, w0) = (body.linear_velocity, body.angular_velocity);
+    let rotation = UnitQuaternion::from_scaled_axis(w0 * lookahead) * body.pose.rotation;
+    let com = (body.pose * mass.center_of_mass).coords + v0 * lookahead;
+    let state = BodyState {
+        pose: Isometry3::from_parts(
+            Translation3::from(com - rotation * mass.center_of_mass.coords),
+            rotation,
+        ),
+        linear_velocity: v0,
+        angular_velocity: w0,
+    };
+    let predicted = Step::new(
+        &state,
+        mass,
+        Inertial::plain(body.mass, &mass.inertia),
+        gravity * body.gravity_scale,
+        Wrench::default(),
+        dt,
+        substeps,
+        body.fast_rotation,
+        body.gyroscopic,
+    )?;
+    let end = predicted.end(wrench);
+    let centre = predicted.com0 + end.dx;
+    Some(PredictedStep {
+        pose: Isometry3::from_parts(
+            Translation3::from(centre.coords - end.rotation * mass.center_of_mass.coords),
+            end.rotation,
+        ),
+        linear_velocity: end.v,
+        angular_velocity: end.w,
+    })
 }

@@ -1,0 +1,260 @@
+//! Registering bodies with a [`Driver`] and changing their mass, mass
+//! model and shape between steps.
+
+use std::sync::Arc;
+
+use nalgebra::Point3;
+use soak_hydro::{HydroForces, MassModel, MassProperties, TiledAtlas, Wrench};
+use soak_wet::Wetting;
+
+use crate::body::{FloodSettings, Shape, SoakBody, with_extra};
+use crate::config::{Backend, BodyDesc, SoakId};
+use crate::driver::Driver;
+use crate::engine::{BodiesMut, Handle, check_not_too_light, push_mass};
+use crate::error::SoakError;
+
+impl<H: Handle> Driver<H> {
+    /// Registers the engine's body `handle` with its effects: computes its
+    /// mass properties from the mass model (plus the liquid already inside
+    /// a flooding body) and hands them to the engine. The engine must add
+    /// no mass of its own (an adapter refuses colliders with a density:
+    /// soak owns the body's mass).
+    ///
+    /// # Errors
+    /// A body the engine does not have, invalid mass properties, a wetting
+    /// state made for an atlas of another size, an effect's settings out
+    /// of range.
+    pub fn register<B: BodiesMut<Handle = H> + ?Sized>(
+        &mut self,
+        bodies: &mut B,
+        handle: H,
+        desc: BodyDesc,
+    ) -> Result<SoakId, SoakError> {
+        if bodies.body(handle).is_none() {
+            return Err(SoakError::MissingBody { name: desc.name });
+        }
+        let mass = desc
+            .mass_model
+            .mass_properties(&desc.atlas)
+            .map_err(|source| SoakError::Hydro {
+                name: desc.name.clone(),
+                source,
+            })?;
+        if let Some(w) = &desc.effects.wetting {
+            check_wetting(&desc.name, &desc.atlas, w)?;
+        }
+        if let Some(rule) = &desc.effects.impact_holes {
+            let reason = rule.problem().or_else(|| {
+                desc.effects
+                    .flooding
+                    .as_ref()
+                    .is_none_or(|f| f.permeability().is_none())
+                    .then(|| "needs flooding with a wall (a liquid graph made for the atlas)".to_string())
+            });
+            if let Some(reason) = reason {
+                return Err(SoakError::ImpactHoles {
+                    name: desc.name.clone(),
+                    reason,
+                });
+            }
+        }
+        if let Some(reason) = desc.effects.slamming.and_then(|s| s.problem()) {
+            return Err(SoakError::Slamming {
+                name: desc.name.clone(),
+                reason,
+            });
+        }
+        if let Some(texels) = &desc.effects.drag_texels {
+            texels.check(&desc.atlas).map_err(|source| SoakError::Hydro {
+                name: desc.name.clone(),
+                source,
+            })?;
+        }
+        // The atlas' volume and bounds: a pass over its texels, taken once.
+        let shape = Shape::of(&desc.atlas);
+        check_not_too_light(&desc.name, mass.mass, &desc.effects, &self.water, shape.volume)?;
+        if let Some(added) = &desc.effects.added_mass
+            && !added.is_valid()
+        {
+            return Err(SoakError::Hydro {
+                name: desc.name.clone(),
+                source: soak_hydro::HydroError::AddedMass {
+                    reason: format!("{added:?} is not finite with a volume > 0"),
+                },
+            });
+        }
+        push_mass(&desc.name, bodies, handle, &mass)?;
+        let tiled = (self.backend != Backend::PerTexel && desc.effects.needs_hydrostatics())
+            .then(|| shared_tiles(&self.bodies, &desc.atlas));
+        #[cfg(feature = "gpu")]
+        if let Some(gpu) = &mut self.gpu {
+            gpu.upload(&desc.atlas)?;
+        }
+        self.bodies.push(SoakBody {
+            name: desc.name,
+            handle,
+            shape,
+            atlas: desc.atlas,
+            tiled,
+            mass_model: desc.mass_model,
+            model_mass: mass,
+            extra_mass: None,
+            mass,
+            effects: desc.effects,
+            forces: HydroForces::default(),
+            applied: Wrench::default(),
+            added_force: Wrench::default(),
+            dry_skips: 0,
+            wet_report: soak_wet::StepReport::default(),
+            flood: FloodSettings::default(),
+            slam: None,
+        });
+        let id = SoakId(self.bodies.len() - 1);
+        if self.bodies[id.0].effects.slamming.is_some() {
+            self.bodies[id.0].slam = Some(Box::default());
+        }
+        if self.bodies[id.0].effects.flooding.is_some() {
+            // The liquid already inside, at once.
+            self.sync_liquid_mass(id, bodies)?;
+        }
+        Ok(id)
+    }
+
+    /// Changes a body's mass model (e.g. a shell density texture that
+    /// changes every frame) and hands the engine the new mass properties at once.
+    pub fn set_mass_model<B: BodiesMut<Handle = H> + ?Sized>(
+        &mut self,
+        id: SoakId,
+        model: MassModel,
+        bodies: &mut B,
+    ) -> Result<(), SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        let mass = model
+            .mass_properties(&b.atlas)
+            .map_err(|source| SoakError::Hydro {
+                name: b.name.clone(),
+                source,
+            })?;
+        let total = with_extra(&mass, b.extra_mass.as_ref());
+        check_not_too_light(&b.name, total.mass, &b.effects, &self.water, b.shape.volume)?;
+        push_mass(&b.name, bodies, b.handle, &total)?;
+        b.mass = with_extra(&mass, b.extra_mass.as_ref());
+        b.model_mass = mass;
+        b.mass_model = model;
+        Ok(())
+    }
+
+    /// Sets the mass a body carries besides its mass model (local frame):
+    /// liquid inside, a gas, a payload. It is combined with the model's
+    /// about the common centre of mass and handed to the engine at once. A
+    /// flooding body's extra mass is its liquid and ballast, set again
+    /// whenever its liquid changes: give it ballast with
+    /// [`Driver::set_ballast`] instead.
+    pub fn set_extra_mass<B: BodiesMut<Handle = H> + ?Sized>(
+        &mut self,
+        id: SoakId,
+        extra: Option<MassProperties>,
+        bodies: &mut B,
+    ) -> Result<(), SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        if let Some(e) = &extra
+            && !e.is_finite()
+        {
+            return Err(SoakError::MassProperties {
+                name: b.name.clone(),
+                reason: format!("extra mass {e:?} is not finite"),
+            });
+        }
+        let total = with_extra(&b.model_mass, extra.as_ref());
+        push_mass(&b.name, bodies, b.handle, &total)?;
+        b.extra_mass = extra;
+        b.mass = total;
+        Ok(())
+    }
+
+    /// Follows a deforming mesh: new vertex positions (local frame, m, same
+    /// topology) refresh the atlas (and the drag texels, if any) from its
+    /// barycentrics (no re-bake) and the mass properties.
+    pub fn deform<B: BodiesMut<Handle = H> + ?Sized>(
+        &mut self,
+        id: SoakId,
+        positions: &[Point3<f64>],
+        bodies: &mut B,
+    ) -> Result<(), SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        let mut atlas = soak_bake::Atlas::clone(&b.atlas);
+        atlas.refresh(positions).map_err(|source| SoakError::Bake {
+            name: b.name.clone(),
+            source,
+        })?;
+        // The drag texels follow the same vertices (a copy of their own:
+        // other bodies may share them).
+        let drag_texels = match &b.effects.drag_texels {
+            Some(texels) => {
+                let mut texels = soak_hydro::DragTexels::clone(texels);
+                texels.refresh(positions).map_err(|source| SoakError::Bake {
+                    name: b.name.clone(),
+                    source,
+                })?;
+                Some(Arc::new(texels))
+            }
+            None => None,
+        };
+        let mass = b
+            .mass_model
+            .mass_properties(&atlas)
+            .map_err(|source| SoakError::Hydro {
+                name: b.name.clone(),
+                source,
+            })?;
+        let total = with_extra(&mass, b.extra_mass.as_ref());
+        let shape = Shape::of(&atlas);
+        check_not_too_light(&b.name, total.mass, &b.effects, &self.water, shape.volume)?;
+        push_mass(&b.name, bodies, b.handle, &total)?;
+        if b.tiled.is_some() {
+            b.tiled = Some(Arc::new(TiledAtlas::new(&atlas)));
+        }
+        if let Some(w) = &mut b.effects.wetting {
+            // The texels moved in object space: rebin the diffusion field.
+            w.refresh_field();
+        }
+        #[cfg(feature = "gpu")]
+        if let Some(gpu) = &mut self.gpu {
+            gpu.deform(id.0, positions)?;
+        }
+        b.shape = shape;
+        b.atlas = Arc::new(atlas);
+        b.effects.drag_texels = drag_texels;
+        b.model_mass = mass;
+        b.mass = total;
+        Ok(())
+    }
+}
+
+
+/// The tiles of `atlas`: those of a body in `bodies` that shares it (the
+/// same `Arc`), or new ones.
+pub(crate) fn shared_tiles<H>(bodies: &[SoakBody<H>], atlas: &Arc<soak_bake::Atlas>) -> Arc<TiledAtlas> {
+    // Bodies of one mesh are usually registered together: look back from
+    // the last.
+    bodies
+        .iter()
+        .rev()
+        .find(|b| Arc::ptr_eq(&b.atlas, atlas))
+        .and_then(|b| b.tiled.clone())
+        .unwrap_or_else(|| Arc::new(TiledAtlas::new(atlas)))
+}
+
+/// Refuses a wetting state made for an atlas of another size.
+pub(crate) fn check_wetting(name: &str, atlas: &soak_bake::Atlas, w: &Wetting) -> Result<(), SoakError> {
+    if w.texels() == atlas.len() {
+        return Ok(());
+    }
+    Err(SoakError::Wet {
+        name: name.to_string(),
+        source: soak_wet::WetError::AtlasMismatch {
+            state: w.texels(),
+            atlas: atlas.len(),
+        },
+    })
+}
