@@ -50,6 +50,8 @@ pub struct SoakBody<H> {
     pub(crate) flood: FloodSettings,
     /// Slamming's state, with slamming only.
     pub(crate) slam: Option<Box<SlamState>>,
+    /// No longer driven ([`Driver::retire`](crate::Driver::retire)).
+    pub(crate) retired: bool,
 }
 
 /// What slamming keeps between steps: plain values, no allocation.
@@ -110,6 +112,11 @@ impl<H> SoakBody<H> {
     /// The name given at registration.
     pub fn name(&self) -> &str {
         &self.name
+    }
+    /// Whether the driver no longer drives it
+    /// ([`Driver::retire`](crate::Driver::retire)).
+    pub fn is_retired(&self) -> bool {
+        self.retired
     }
     /// Its atlas (object frame = the rigid body's local frame).
     pub fn atlas(&self) -> &Atlas {

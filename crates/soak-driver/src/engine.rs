@@ -183,6 +183,8 @@ pub(crate) fn push_mass<B: BodiesMut + ?Sized>(
     if bodies.set_mass_properties(handle, &mass) {
         Ok(())
     } else {
-        Err(SoakError::MissingBody { name: name.to_string() })
+        Err(SoakError::MissingBody {
+            name: name.to_string(),
+        })
     }
 }

@@ -6,8 +6,8 @@ use soak_bake::Atlas;
 use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuHydro};
 use soak_hydro::{BodyState, HydroForces, HydroOptions, Water};
 
-use crate::error::SoakError;
 use crate::body::SoakBody;
+use crate::error::SoakError;
 
 /// Device-side atlases in registration order.
 pub(crate) struct GpuBackend {

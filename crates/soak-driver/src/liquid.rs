@@ -237,5 +237,4 @@ impl<H: Handle> Driver<H> {
         }
         Ok(b)
     }
-
 }

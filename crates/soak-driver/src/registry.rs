@@ -108,6 +108,7 @@ impl<H: Handle> Driver<H> {
             wet_report: soak_wet::StepReport::default(),
             flood: FloodSettings::default(),
             slam: None,
+            retired: false,
         });
         let id = SoakId(self.bodies.len() - 1);
         if self.bodies[id.0].effects.slamming.is_some() {
@@ -229,8 +230,31 @@ impl<H: Handle> Driver<H> {
         b.mass = total;
         Ok(())
     }
+    /// Stops driving body `id` (its engine body was removed, say): its
+    /// effects and the state they hold (liquid texture, liquid graph, its
+    /// press on the waves) are dropped and nothing is evaluated, flooded
+    /// or wetted for it from then on. Its id stays taken (ids are never
+    /// reused) and its atlas is kept while other bodies share it.
+    ///
+    /// # Errors
+    /// An unknown id.
+    pub fn retire(&mut self, id: SoakId) -> Result<(), SoakError> {
+        let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
+        b.effects = crate::Effects::default();
+        b.tiled = None;
+        b.slam = None;
+        b.forces = HydroForces::default();
+        b.applied = Wrench::default();
+        b.added_force = Wrench::default();
+        b.retired = true;
+        if let Some(w) = self.waves.as_deref_mut()
+            && let Some(own) = w.own.get_mut(id.0)
+        {
+            own.clear();
+        }
+        Ok(())
+    }
 }
-
 
 /// The tiles of `atlas`: those of a body in `bodies` that shares it (the
 /// same `Arc`), or new ones.

@@ -52,6 +52,10 @@ pub struct BodyRunState {
     /// after their first step): the next step's impact is its growth.
     #[serde(default)]
     pub slam_added_mass: Option<f64>,
+    /// The body is no longer driven ([`Driver::retire`]): restored, it
+    /// stays retired.
+    #[serde(default)]
+    pub retired: bool,
 }
 
 impl PartialEq for BodyRunState {
@@ -71,6 +75,7 @@ impl PartialEq for BodyRunState {
             && self.ballast == other.ballast
             && self.liquid_density == other.liquid_density
             && self.slam_added_mass == other.slam_added_mass
+            && self.retired == other.retired
             && same_wetting
     }
 }
@@ -127,6 +132,7 @@ impl<H: Handle> Driver<H> {
                     ballast: b.ballast().copied(),
                     liquid_density: b.effects.flooding.as_ref().and(b.flood.density),
                     slam_added_mass: b.slam.as_ref().and_then(|s| s.last_added),
+                    retired: b.retired,
                 })
                 .collect(),
             environment: self.environment,
@@ -163,7 +169,7 @@ impl<H: Handle> Driver<H> {
                     atlas: b.atlas.len(),
                 });
             }
-            if s.flooding.is_some() != b.effects.flooding.is_some() {
+            if s.flooding.is_some() != b.effects.flooding.is_some() && !s.retired && !b.retired {
                 return Err(SoakError::StateFlooding {
                     name: b.name.clone(),
                     saved: s.flooding.is_some(),
@@ -231,6 +237,12 @@ impl<H: Handle> Driver<H> {
             b.wet_report = s.wet_report.unwrap_or_default();
             if let Some(slam) = &mut b.slam {
                 slam.last_added = s.slam_added_mass;
+            }
+            if s.retired {
+                b.effects = crate::Effects::default();
+                b.tiled = None;
+                b.slam = None;
+                b.retired = true;
             }
         }
         self.time = state.time;

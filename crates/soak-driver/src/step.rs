@@ -36,7 +36,11 @@ impl<H: Handle> Driver<H> {
     /// # Errors
     /// A flooding body the engine no longer has, a liquid step that failed
     /// (the body's liquid is then unchanged), invalid mass properties.
-    pub fn flood<B: BodiesMut<Handle = H> + ?Sized>(&mut self, bodies: &mut B, dt: f64) -> Result<(), SoakError> {
+    pub fn flood<B: BodiesMut<Handle = H> + ?Sized>(
+        &mut self,
+        bodies: &mut B,
+        dt: f64,
+    ) -> Result<(), SoakError> {
         for k in 0..self.bodies.len() {
             let b = &mut self.bodies[k];
             let Some(flooding) = &mut b.effects.flooding else {
@@ -123,15 +127,14 @@ impl<H: Handle> Driver<H> {
             // cannot reach the water within the step, falling at g.
             let centre = state.pose * b.atlas.origin();
             let radius = b.atlas.bounding_radius();
-            let reach = if implicit_weight(&self.water, &b.shape, rb.mass, dt, substeps)
-                >= IMPLICIT_NEGLIGIBLE
-            {
-                let c = (substeps + 1.0) / (2.0 * substeps);
-                (1.0 - lookahead / dt) * dt * (-v.y).max(0.0)
-                    + c * dt * dt * self.water.gravity * rb.gravity_scale.abs()
-            } else {
-                0.0
-            };
+            let reach =
+                if implicit_weight(&self.water, &b.shape, rb.mass, dt, substeps) >= IMPLICIT_NEGLIGIBLE {
+                    let c = (substeps + 1.0) / (2.0 * substeps);
+                    (1.0 - lookahead / dt) * dt * (-v.y).max(0.0)
+                        + c * dt * dt * self.water.gravity * rb.gravity_scale.abs()
+                } else {
+                    0.0
+                };
             // A body that pressed on the waves last step is not skipped:
             // it floats on its own depression taken back out.
             let pressing = self

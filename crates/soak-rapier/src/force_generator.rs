@@ -6,9 +6,7 @@
 use std::ops::{Deref, DerefMut};
 
 use nalgebra::Point3;
-use rapier3d::prelude::{
-    ColliderSet, IntegrationParameters, PhysicsWorld, RigidBodyHandle, RigidBodySet,
-};
+use rapier3d::prelude::{ColliderSet, IntegrationParameters, PhysicsWorld, RigidBodyHandle, RigidBodySet};
 use soak_driver::{Backend, BodyDesc, Driver, SoakId, StepParams, WaveCoupling};
 use soak_hydro::{MassModel, MassProperties, SeaSampling, SeaVelocity, Water};
 
@@ -320,8 +318,7 @@ impl ForceGenerator {
         colliders: &ColliderSet,
         dt: f64,
     ) -> Result<(), SoakError> {
-        self.driver
-            .flood(&mut RapierBodies::new(bodies, colliders), dt)
+        self.driver.flood(&mut RapierBodies::new(bodies, colliders), dt)
     }
 
     /// Evaluates every body's buoyancy and drag and applies them as forces
@@ -376,8 +373,10 @@ impl ForceGenerator {
     pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<(), SoakError> {
         self.sync_gravity(world);
         let params = step_params(&world.integration_parameters);
-        self.driver
-            .before_step(&mut RapierBodies::new(&mut world.bodies, &world.colliders), &params)?;
+        self.driver.before_step(
+            &mut RapierBodies::new(&mut world.bodies, &world.colliders),
+            &params,
+        )?;
         world.step();
         self.driver.after_step(params.dt);
         self.tear(world)

@@ -20,12 +20,12 @@ pub use self::error::{SceneError, SoakError};
 pub use self::force_generator::{ForceGenerator, SoakBody, step_params};
 pub use self::scene::{LoadedScene, Scene};
 pub use self::simulation::{BodyReport, Sample, SavedSimulation, SimBody, Simulation, water_of};
+/// The engine-neutral driver [`ForceGenerator`] adapts to Rapier.
+pub use soak_driver;
 pub use soak_driver::{
     Backend, BodyDesc, BodyRunState, CoupledWavesState, Effects, FIREWALL_MEMORY, Firewall, FirewallEvent,
     GeneratorState, Impact, ImpactHoles, SlamReport, Slamming, SoakId, WaveCoupling,
 };
-/// The engine-neutral driver [`ForceGenerator`] adapts to Rapier.
-pub use soak_driver;
 /// Water entering hulls (the liquid graph of [`Effects::flooding`]).
 pub use soak_graph;
 /// Surface wetting (the liquid texture of [`Effects::wetting`]).

@@ -57,8 +57,16 @@ fn the_predicted_step_is_the_one_rapier_takes() {
                 "spin {spin}: {what} {a:?} != {b:?}"
             );
         };
-        close(predicted.linear_velocity, convert::vector(rb.linvel()), "linear velocity");
-        close(predicted.angular_velocity, convert::vector(rb.angvel()), "angular velocity");
+        close(
+            predicted.linear_velocity,
+            convert::vector(rb.linvel()),
+            "linear velocity",
+        );
+        close(
+            predicted.angular_velocity,
+            convert::vector(rb.angvel()),
+            "angular velocity",
+        );
         let after = convert::pose(rb.position());
         close(
             (predicted.pose * mass.center_of_mass).coords,
@@ -71,7 +79,8 @@ fn the_predicted_step_is_the_one_rapier_takes() {
             predicted.pose.rotation.angle_to(&after.rotation)
         );
         if spin > 10.0 {
-            // The cap was reached: |ω| = π/(4 dt).
+            // The cap was reached: |ω| = π/(4 dt), dt as Rapier holds it.
+            let dt = world.integration_parameters.dt as f64;
             assert!((predicted.angular_velocity.norm() - std::f64::consts::FRAC_PI_4 / dt).abs() < 1e-9);
         }
     }

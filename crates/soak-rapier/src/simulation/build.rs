@@ -13,11 +13,11 @@ use soak_hydro::{AddedMass, DragTexels, Gerstner, HeightField, MassModel, Plane,
 use super::{SimBody, Simulation};
 use crate::convert;
 use crate::error::SceneError;
-use crate::{BodyDesc, Effects, ForceGenerator};
 use crate::scene::{
     ColliderSpec, DEFAULT_TOLERANCE, InitialLiquid, LoadedScene, MassSpec, ResolutionSpec, WaterKind,
     WettingSpec,
 };
+use crate::{BodyDesc, Effects, ForceGenerator};
 
 /// Builds the fluid a scene describes.
 pub fn water_of(loaded: &LoadedScene) -> Result<Water, SceneError> {

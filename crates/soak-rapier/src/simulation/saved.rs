@@ -54,7 +54,9 @@ impl Simulation {
         Ok(SavedSimulation {
             scene_path: scene.path.clone(),
             scene_text: scene.text.clone(),
-            world: postcard::to_stdvec(&self.world).map_err(|e| SoakError::World { reason: format!("the Rapier world: {e}") })?,
+            world: postcard::to_stdvec(&self.world).map_err(|e| SoakError::World {
+                reason: format!("the Rapier world: {e}"),
+            })?,
             generator: self.soak.state(),
             punched: self.holes.iter().map(|h| h.2).collect(),
             splashed: self.splashes.iter().map(|s| s.1).collect(),
