@@ -38,6 +38,8 @@
 #[doc(inline)]
 pub use soak_bake as bake;
 #[doc(inline)]
+pub use soak_driver as driver;
+#[doc(inline)]
 pub use soak_graph as graph;
 #[doc(inline)]
 pub use soak_hydro as hydro;
@@ -52,6 +54,12 @@ pub use soak_shade as shade;
 pub use soak_view as view;
 #[doc(inline)]
 pub use soak_wet as wet;
+
+/// The f64 linear algebra soak's core types speak (points, vectors,
+/// isometries): `soak::nalgebra::Point3` for [`hydro::Surface::velocity`],
+/// say, without a dependency of your own. [`rapier::convert`] turns
+/// Rapier's glam types into these and back.
+pub use nalgebra;
 
 /// Any of soak's errors (and any other) for a program's `main` and the
 /// functions it calls: `?` turns each into one, and returned from `main`

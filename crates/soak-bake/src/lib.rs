@@ -39,6 +39,6 @@ pub use self::validate::{
 /// The types most users need.
 pub mod prelude {
     pub use crate::{
-        Atlas, BakeError, BakeOptions, LoadError, Mesh, MeshError, UnwrapOptions, builtin, load_mesh,
+        Atlas, BakeError, BakeOptions, LoadError, Mesh, MeshError, UnwrapOptions, builtin, load_mesh, unwrap,
     };
 }

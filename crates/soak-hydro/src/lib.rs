@@ -51,7 +51,7 @@ pub use self::waves::{InteractiveWaves, MAX_WAVE_CELLS, WaveHeights, WaveRegion,
 /// The types most users need.
 pub mod prelude {
     pub use crate::{
-        BodyState, BuoyancyMode, Drag, HydroForces, HydroOptions, MassModel, MassProperties, Plane,
-        TiledAtlas, Water, evaluate,
+        BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HeightField, HydroForces, HydroOptions,
+        MassModel, MassProperties, Plane, TiledAtlas, Water, evaluate,
     };
 }

@@ -22,6 +22,11 @@ pub enum BuoyancyMode {
 }
 
 /// Drag coefficients.
+///
+/// [`Drag::default()`] is `C_d = 1.0` (a flat plate broadside on: bluff
+/// hulls and crates) with no skin friction (`linear = 0.0`); a buoy or a
+/// ball is nearer `C_d = 0.5`, and skin friction of some tens of N·s/m per
+/// m² damps the slow drift that quadratic drag barely resists.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Drag {
     /// Quadratic pressure-drag coefficient `C_d` (dimensionless); 1.0 is a
@@ -34,6 +39,7 @@ pub struct Drag {
 }
 
 impl Default for Drag {
+    /// `C_d = 1.0`, no skin friction (see [`Drag`]).
     fn default() -> Self {
         Self {
             coefficient: 1.0,
