@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The README's Rapier program, pasted as src/main.rs into a new project
-# that depends on soak by path and on rapier3d as the README says, builds
-# in release and runs.
+# that depends on soak by path (without its default features, as the
+# README says a library takes it) and on rapier3d, builds in release and
+# runs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$(pwd)"
@@ -23,7 +24,7 @@ edition = "2024"
 publish = false
 
 [dependencies]
-soak = { path = "$root" }
+soak = { path = "$root", default-features = false }
 rapier3d = "$rapier"
 
 [workspace]

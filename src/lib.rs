@@ -35,8 +35,14 @@
 //! Scene files (TOML) describe whole simulations: see
 //! [`rapier::scene`] and the `soak` command.
 
+pub mod guide;
+
 #[doc(inline)]
 pub use soak_bake as bake;
+/// Bevy: the plugin over bevy_rapier3d (the `bevy` feature).
+#[cfg(feature = "bevy")]
+#[doc(inline)]
+pub use soak_bevy as bevy;
 #[doc(inline)]
 pub use soak_driver as driver;
 #[doc(inline)]
@@ -45,6 +51,11 @@ pub use soak_graph as graph;
 pub use soak_hydro as hydro;
 #[doc(inline)]
 pub use soak_rapier as rapier;
+/// soak measured against its references (the `report` feature): the
+/// stability matrix, the accuracy report, the scaling bench, charts.
+#[cfg(feature = "report")]
+#[doc(inline)]
+pub use soak_report as report;
 #[doc(inline)]
 pub use soak_shade as shade;
 /// The live window of `soak view`, and the frames of `soak render`

@@ -7,9 +7,14 @@
 //! round, so that the machine's drift falls on all alike): soak-rapier's
 //! generator over rapier3d 0.36, rapier3d alone (the same bodies, their
 //! mass on their colliders), the plugin over bevy_rapier3d 0.36 (rapier3d
-//! 0.35), and bevy_rapier alone. soak's own cost is each engine's step
-//! with soak less the same engine's step without it; the plugin's overhead
-//! is its cost over soak-rapier's.
+//! 0.35), and bevy_rapier alone.
+//!
+//! Two measures of the plugin's overhead: soak's own work in each (the
+//! generator's work before Rapier steps, timed around it; the plugin's
+//! system, which reads every body from the ECS, runs the same driver and
+//! writes the forces and reports back, timed inside it), and the whole
+//! step with soak less the same engine's step without it (which also
+//! counts bevy_rapier handing the changed `ExternalForce`s to Rapier).
 //!
 //! `cargo bench -p soak-bevy --bench plugin` (`-- --bodies N --rounds R`).
 
@@ -171,10 +176,7 @@ fn main() {
     };
     println!("{n} bodies, 128² atlases, calm water, dt = 1/60 s; median of {rounds} steps each, ms");
     println!();
-    println!(
-        "| effects | soak-rapier | rapier alone | soak's cost | soak-bevy | bevy_rapier alone | soak's cost | plugin overhead |"
-    );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    let mut rows = Vec::new();
     let cases = [
         ("buoyancy", Effects::buoyancy()),
         (
@@ -191,7 +193,7 @@ fn main() {
         let mut app = bevy_app(&fleet, n, Some(&effects));
         let mut bare_app = bevy_app(&fleet, n, None);
         let soak = soak.as_mut().expect("a generator");
-        let mut times = [(); 4].map(|_| Vec::with_capacity(rounds));
+        let mut times = [(); 6].map(|_| Vec::with_capacity(rounds));
         // Warm up: the bodies settle, caches fill.
         for _ in 0..60 {
             soak.step(&mut world).expect("steps");
@@ -200,8 +202,20 @@ fn main() {
             bare_app.update();
         }
         for _ in 0..rounds {
+            // ForceGenerator::step, its parts timed.
             let s = Instant::now();
-            soak.step(&mut world).expect("steps");
+            soak.sync_gravity(&world);
+            let params = soak_rapier::step_params(&world.integration_parameters);
+            let inner = Instant::now();
+            soak.before_step(
+                &mut soak_rapier::RapierBodies::new(&mut world.bodies, &world.colliders),
+                &params,
+            )
+            .expect("steps");
+            times[4].push(inner.elapsed().as_secs_f64() * 1e3);
+            world.step();
+            soak.after_step(params.dt);
+            soak.tear(&world).expect("tears");
             times[0].push(s.elapsed().as_secs_f64() * 1e3);
             let s = Instant::now();
             bare.step();
@@ -209,11 +223,32 @@ fn main() {
             let s = Instant::now();
             app.update();
             times[2].push(s.elapsed().as_secs_f64() * 1e3);
+            let system = app.world().resource::<SoakWater>().last_step_time();
+            times[5].push(system.as_secs_f64() * 1e3);
             let s = Instant::now();
             bare_app.update();
             times[3].push(s.elapsed().as_secs_f64() * 1e3);
         }
-        let [a, b, c, d] = times.map(median);
+        rows.push((label, times.map(median)));
+    }
+    println!("soak's own work: the generator's before Rapier's step, the plugin's system");
+    println!();
+    println!("| effects | soak-rapier | soak-bevy | plugin overhead |");
+    println!("|---|---:|---:|---:|");
+    for (label, [.., generator, system]) in &rows {
+        println!(
+            "| {label} | {generator:.3} | {system:.3} | {:+.1} % |",
+            100.0 * (system / generator - 1.0)
+        );
+    }
+    println!();
+    println!("whole steps, and each engine's step with soak less the same without it");
+    println!();
+    println!(
+        "| effects | soak-rapier | rapier alone | soak's cost | soak-bevy | bevy_rapier alone | soak's cost | overhead |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    for (label, [a, b, c, d, ..]) in &rows {
         let (rapier_cost, bevy_cost) = (a - b, c - d);
         println!(
             "| {label} | {a:.3} | {b:.3} | {rapier_cost:.3} | {c:.3} | {d:.3} | {bevy_cost:.3} | {:+.1} % |",

@@ -1,12 +1,11 @@
-//! soak-driver's view of bevy_rapier's bodies ([`BevyBodies`]): a body's
-//! pose from its `Transform`, its velocities from `Velocity`, its gravity
-//! scale, and the engine's settings from Rapier's own body; forces handed
-//! back as `ExternalForce`, mass as `AdditionalMassProperties`.
+//! soak-driver's view of bevy_rapier's bodies ([`Gathered`]): each step
+//! every body's pose from its `Transform`, its velocities from `Velocity`,
+//! its gravity scale and the engine's settings from Rapier's own body, read
+//! in one pass; the forces the driver hands back written as
+//! `ExternalForce`, mass as `AdditionalMassProperties`, in another.
 
 use bevy::prelude::{Entity, Quat, Query, Transform, Vec3};
-use bevy_rapier3d::prelude::{
-    AdditionalMassProperties, ExternalForce, GravityScale, MassProperties, Velocity,
-};
+use bevy_rapier3d::prelude::{GravityScale, MassProperties, Velocity};
 use bevy_rapier3d::rapier::prelude::RigidBodySet;
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use soak_driver::{Bodies, BodiesMut, EngineBody, EngineMass};
@@ -38,23 +37,85 @@ pub(crate) fn engine_pose(t: &Transform) -> Isometry3<f64> {
     )
 }
 
-/// What the plugin reads and writes of a registered body.
-pub(crate) type BodyItem = (
+/// How the driver names a body of the plugin: its entity, and its slot in
+/// the plugin's dense arrays (the body's [`SoakId`](soak_driver::SoakId)),
+/// so that a step reads and writes every body in one pass over the ECS.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct BodyKey {
+    /// The entity with the [`Floating`](crate::Floating) component.
+    pub entity: Entity,
+    /// Its index in the driver (its `SoakId`).
+    pub(crate) slot: u32,
+}
+
+/// What the plugin reads of a registered body each step.
+pub(crate) type ReadItem = (
+    &'static SoakLink,
     &'static Transform,
     &'static Velocity,
     Option<&'static GravityScale>,
-    &'static mut ExternalForce,
-    &'static mut AdditionalMassProperties,
-    &'static mut SoakLink,
     Option<&'static bevy_rapier3d::prelude::RapierRigidBodyHandle>,
 );
 
-/// bevy_rapier's bodies as the driver sees them, over one physics step.
-pub(crate) struct BevyBodies<'a, 'w, 's> {
-    pub(crate) query: &'a mut Query<'w, 's, BodyItem>,
-    /// Rapier's own bodies (for the settings bevy_rapier has no component
-    /// for), if there is a context.
-    pub(crate) set: Option<&'a RigidBodySet>,
+/// The bodies of one step, gathered from the ECS in one pass (by slot),
+/// what the driver hands them collected the same way, then written back
+/// in one pass ([`Gathered::scatter`]). Kept between steps: its arrays are
+/// reused.
+#[derive(Debug, Default)]
+pub(crate) struct Gathered {
+    pub(crate) bodies: Vec<Option<EngineBody>>,
+    pub(crate) wrenches: Vec<Option<Wrench>>,
+    pub(crate) masses: Vec<Option<(MassProperties, f64)>>,
+}
+
+impl Gathered {
+    /// Reads every registered body of `query` (`slots` of them at most),
+    /// the engine's settings from Rapier's own `set`.
+    pub(crate) fn gather(&mut self, query: &Query<ReadItem>, set: &RigidBodySet, slots: usize) {
+        self.bodies.clear();
+        self.bodies.resize(slots, None);
+        self.wrenches.clear();
+        self.wrenches.resize(slots, None);
+        self.masses.clear();
+        self.masses.resize(slots, None);
+        for (link, transform, velocity, gravity, handle) in query {
+            let rapier = handle.and_then(|h| set.get(h.0));
+            if let Some(slot) = self.bodies.get_mut(link.id.0) {
+                *slot = Some(engine_body(transform, velocity, gravity, link, rapier));
+            }
+        }
+    }
+}
+
+impl Bodies for Gathered {
+    type Handle = BodyKey;
+
+    fn body(&self, key: BodyKey) -> Option<EngineBody> {
+        self.bodies.get(key.slot as usize).copied().flatten()
+    }
+}
+
+impl BodiesMut for Gathered {
+    fn set_mass_properties(&mut self, key: BodyKey, mass: &EngineMass) -> bool {
+        let slot = key.slot as usize;
+        let Some(Some(body)) = self.bodies.get_mut(slot) else {
+            return false;
+        };
+        let (props, engine) = bevy_mass(mass);
+        // The next reads of this step see the mass the engine will have.
+        body.mass = engine;
+        self.masses[slot] = Some((props, engine));
+        true
+    }
+
+    fn set_wrench(&mut self, key: BodyKey, wrench: &Wrench) -> bool {
+        let slot = key.slot as usize;
+        if !matches!(self.bodies.get(slot), Some(Some(_))) {
+            return false;
+        }
+        self.wrenches[slot] = Some(*wrench);
+        true
+    }
 }
 
 /// A body as the driver reads it from its components.
@@ -77,44 +138,6 @@ fn engine_body(
     }
 }
 
-impl Bodies for BevyBodies<'_, '_, '_> {
-    type Handle = Entity;
-
-    fn body(&self, entity: Entity) -> Option<EngineBody> {
-        let (transform, velocity, gravity, _, _, link, handle) = self.query.get(entity).ok()?;
-        let rapier = match (self.set, handle) {
-            (Some(set), Some(h)) => set.get(h.0),
-            _ => None,
-        };
-        Some(engine_body(transform, velocity, gravity, link, rapier))
-    }
-}
-
-impl BodiesMut for BevyBodies<'_, '_, '_> {
-    fn set_mass_properties(&mut self, entity: Entity, mass: &EngineMass) -> bool {
-        let Ok((_, _, _, _, mut additional, mut link, _)) = self.query.get_mut(entity) else {
-            return false;
-        };
-        let (props, engine_mass) = bevy_mass(mass);
-        *additional = AdditionalMassProperties::MassProperties(props);
-        link.engine_mass = engine_mass;
-        true
-    }
-
-    fn set_wrench(&mut self, entity: Entity, wrench: &Wrench) -> bool {
-        let Ok((_, _, _, mut force, _, _, _)) = self.query.get_mut(entity) else {
-            return false;
-        };
-        // Written every step (bevy_rapier hands a changed component to
-        // Rapier, replacing the last step's force).
-        *force = ExternalForce {
-            force: to_vec3(&wrench.force),
-            torque: to_vec3(&wrench.torque),
-        };
-        true
-    }
-}
-
 /// Mass properties as bevy_rapier takes them, and the mass Rapier will
 /// integrate with (its own f32 arithmetic: `1/(1/m)`), kg.
 pub(crate) fn bevy_mass(mass: &EngineMass) -> (MassProperties, f64) {
@@ -132,15 +155,15 @@ pub(crate) fn bevy_mass(mass: &EngineMass) -> (MassProperties, f64) {
 /// driver reads its pose and velocity from what it was spawned with and
 /// hands it its mass, which the plugin then puts on it.
 pub(crate) struct Registering {
-    pub(crate) entity: Entity,
+    pub(crate) key: BodyKey,
     pub(crate) body: EngineBody,
     pub(crate) mass: Option<(MassProperties, f64)>,
 }
 
 impl Registering {
-    /// `entity` standing at `transform` with `velocity`.
+    /// The body `key` names, standing at `transform` with `velocity`.
     pub(crate) fn new(
-        entity: Entity,
+        key: BodyKey,
         transform: &Transform,
         velocity: Option<&Velocity>,
         gravity: Option<&GravityScale>,
@@ -151,7 +174,7 @@ impl Registering {
             engine_mass: 0.0,
         };
         Self {
-            entity,
+            key,
             body: engine_body(transform, velocity.unwrap_or(&zero), gravity, &link, None),
             mass: None,
         }
@@ -159,16 +182,16 @@ impl Registering {
 }
 
 impl Bodies for Registering {
-    type Handle = Entity;
+    type Handle = BodyKey;
 
-    fn body(&self, entity: Entity) -> Option<EngineBody> {
-        (entity == self.entity).then_some(self.body)
+    fn body(&self, key: BodyKey) -> Option<EngineBody> {
+        (key == self.key).then_some(self.body)
     }
 }
 
 impl BodiesMut for Registering {
-    fn set_mass_properties(&mut self, entity: Entity, mass: &EngineMass) -> bool {
-        if entity != self.entity {
+    fn set_mass_properties(&mut self, key: BodyKey, mass: &EngineMass) -> bool {
+        if key != self.key {
             return false;
         }
         let (props, engine) = bevy_mass(mass);
@@ -177,7 +200,7 @@ impl BodiesMut for Registering {
         true
     }
 
-    fn set_wrench(&mut self, entity: Entity, _: &Wrench) -> bool {
-        entity == self.entity
+    fn set_wrench(&mut self, key: BodyKey, _: &Wrench) -> bool {
+        key == self.key
     }
 }

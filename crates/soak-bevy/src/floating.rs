@@ -37,6 +37,11 @@ pub enum FloatingMesh {
 /// What goes wrong (no rigid body, a bad mesh, a collider with mass) is a
 /// [`FloatingError`](crate::FloatingError) message; the entity then stays
 /// as it is.
+///
+/// soak owns a floating body's `ExternalForce` (it writes it every step):
+/// push the body yourself with `ExternalImpulse`. Removing `Floating` (or
+/// despawning the entity) stops the water's forces and drops the body's
+/// state in [`SoakWater`](crate::SoakWater).
 #[derive(Component, Clone)]
 pub struct Floating {
     /// A name for reports and messages.

@@ -13,6 +13,7 @@ use bevy::ecs::schedule::{IntoScheduleConfigs, ScheduleLabel};
 use bevy_rapier3d::prelude::PhysicsSet;
 use soak_hydro::Water;
 
+pub use self::bodies::BodyKey;
 pub use self::error::{FloatingError, FloatingErrorKind};
 pub use self::floating::{FloatReport, Floating, FloatingMesh, SoakLink};
 pub use self::systems::FloatingFailed;

@@ -14,7 +14,7 @@ use bevy_rapier3d::prelude::{
 use soak_bake::Atlas;
 use soak_driver::{BodyDesc, StepParams};
 
-use crate::bodies::{BevyBodies, BodyItem, Registering, to_vec3};
+use crate::bodies::{BodyKey, ReadItem, Registering, to_vec3};
 use crate::error::{FloatingError, FloatingErrorKind};
 use crate::floating::{FloatReport, Floating, FloatingMesh, SoakLink};
 use crate::mesh;
@@ -229,14 +229,20 @@ pub(crate) fn register_bodies(
                 }
             },
         };
-        let mut engine = Registering::new(entity, transform, velocity, gravity);
+        // The driver names it by its entity and the slot it is about to
+        // take: its id.
+        let key = BodyKey {
+            entity,
+            slot: water.driver.bodies().len() as u32,
+        };
+        let mut engine = Registering::new(key, transform, velocity, gravity);
         let desc = BodyDesc {
             name,
             atlas: baked.0.clone(),
             mass_model: floating.mass_model.clone(),
             effects,
         };
-        let id = match water.driver.register(&mut engine, entity, desc) {
+        let id = match water.driver.register(&mut engine, key, desc) {
             Ok(id) => id,
             Err(e) => {
                 fail(&mut commands, &mut errors, entity, e.into());
@@ -262,10 +268,20 @@ pub(crate) fn register_bodies(
     }
 }
 
+/// What the plugin writes of a registered body each step.
+type WriteItem = (
+    &'static mut SoakLink,
+    &'static mut ExternalForce,
+    &'static mut AdditionalMassProperties,
+    &'static mut FloatReport,
+);
+
 /// One physics step's work: forgets bodies whose entity went, reads the
-/// step bevy_rapier is about to take, runs the driver (the liquid inside
-/// hulls, the water's forces written to `ExternalForce`, wet surfaces, the
-/// waves), advances its clock and fills in each body's [`FloatReport`].
+/// step bevy_rapier is about to take, reads every registered body in one
+/// pass, runs the driver (the liquid inside hulls, the water's forces,
+/// wet surfaces, the waves), advances its clock, and writes every body's
+/// `ExternalForce` (where it changed), mass and [`FloatReport`] in
+/// another pass.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn step_bodies(
     mut water: ResMut<SoakWater>,
@@ -279,16 +295,27 @@ pub(crate) fn step_bodies(
         ),
         With<DefaultRapierContext>,
     >,
-    mut bodies: Query<BodyItem>,
-    mut reports: Query<(Entity, &mut FloatReport)>,
+    mut bodies: ParamSet<(Query<ReadItem>, Query<WriteItem>)>,
     mut removed: RemovedComponents<SoakLink>,
+    mut unfloated: RemovedComponents<Floating>,
+    mut commands: Commands,
     mut errors: MessageWriter<FloatingError>,
 ) {
     let water = &mut *water;
+    // A body whose entity went, or that no longer floats: its id is not
+    // reused, its state is dropped; one that lives on is handed no force
+    // from then on.
+    for entity in unfloated.read() {
+        if water.entities.contains_key(&entity) {
+            commands
+                .entity(entity)
+                .try_insert(ExternalForce::default())
+                .try_remove::<(SoakLink, FloatReport)>();
+        }
+    }
     for entity in removed.read() {
         if let Some(id) = water.entities.remove(&entity) {
-            // Its id is not reused; its state is dropped.
-            let _ = water.driver.retire(id);
+            let _ = water.driver.retire(id, &mut water.gathered);
         }
     }
     let Ok((config, simulation, set)) = context.single() else {
@@ -328,16 +355,16 @@ pub(crate) fn step_bodies(
     if dt.is_nan() || dt <= 0.0 || water.entities.is_empty() {
         return;
     }
+    let start = std::time::Instant::now();
     let solver = simulation.integration_parameters.num_solver_iterations.max(1);
     let params = StepParams::new(dt as f64, solver * substeps.max(1));
     water
         .driver
         .set_gravity(super::bodies::vector(config.gravity).norm());
-    let mut engine = BevyBodies {
-        query: &mut bodies,
-        set: Some(&set.bodies),
-    };
-    if let Err(e) = water.driver.before_step(&mut engine, &params) {
+    let slots = water.driver.bodies().len();
+    water.gathered.gather(&bodies.p0(), &set.bodies, slots);
+    let result = water.driver.before_step(&mut water.gathered, &params);
+    if let Err(e) = result {
         let kind = FloatingErrorKind::Driver(e);
         log::error!("soak: {kind}");
         errors.write(FloatingError {
@@ -348,15 +375,32 @@ pub(crate) fn step_bodies(
     }
     water.driver.after_step(params.dt);
     let t = water.driver.time();
-    for (entity, mut report) in &mut reports {
-        let Some(b) = water.id(entity).and_then(|id| water.driver.body(id)) else {
+    let gathered = &water.gathered;
+    for (mut link, mut force, mut additional, mut report) in &mut bodies.p1() {
+        let slot = link.id.0;
+        let Some(b) = water.driver.body(link.id) else {
             continue;
         };
+        if let Some(w) = gathered.wrenches.get(slot).copied().flatten() {
+            // bevy_rapier hands a changed force to Rapier (replacing the
+            // last); an unchanged one goes on acting as it is.
+            force.set_if_neq(ExternalForce {
+                force: to_vec3(&w.force),
+                torque: to_vec3(&w.torque),
+            });
+        }
+        if let Some((props, engine_mass)) = gathered.masses.get(slot).copied().flatten() {
+            *additional = AdditionalMassProperties::MassProperties(props);
+            link.engine_mass = engine_mass;
+        }
         let forces = b.forces();
-        let surface_liquid = b.wetting().map_or(0.0, |w| w.total_liquid(b.atlas()));
-        let saturation = b
-            .wetting()
-            .map_or(0.0, |w| w.material().saturation * b.atlas().area());
+        let (surface_liquid, saturation) = match b.wetting() {
+            Some(w) => (
+                w.total_liquid(b.atlas()),
+                w.material().saturation * b.atlas().area(),
+            ),
+            None => (0.0, 0.0),
+        };
         *report = FloatReport {
             time: t,
             submerged_volume: b.submerged_volume(),
@@ -376,4 +420,5 @@ pub(crate) fn step_bodies(
             },
         };
     }
+    water.last_step = start.elapsed();
 }

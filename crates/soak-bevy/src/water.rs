@@ -10,7 +10,7 @@ use soak_bake::Atlas;
 use soak_driver::{Bodies, Driver, EngineBody, SoakBody, SoakError, SoakId, WaveCoupling};
 use soak_hydro::Water;
 
-use crate::bodies::engine_pose;
+use crate::bodies::{BodyKey, Gathered, engine_pose};
 
 /// The fluid the floating bodies are in and the driver that drives them:
 /// insert it as a resource before the first physics step (a plane, a
@@ -27,15 +27,19 @@ use crate::bodies::engine_pose;
 /// ```
 #[derive(Resource, Debug)]
 pub struct SoakWater {
-    pub(crate) driver: Driver<Entity>,
+    pub(crate) driver: Driver<BodyKey>,
     /// The registered entities and their ids.
     pub(crate) entities: HashMap<Entity, SoakId>,
     /// The atlases baked from mesh assets, by asset and resolution.
     pub(crate) atlases: HashMap<(AssetId<Mesh>, u32), Arc<Atlas>>,
+    /// The bodies of a step, gathered and written back in one pass each.
+    pub(crate) gathered: Gathered,
     /// The mesh assets whose atlas is being baked now.
     pub(crate) baking: Vec<(AssetId<Mesh>, u32)>,
     /// bevy_rapier's time step mode was found wanting (said once).
     pub(crate) schedule_refused: bool,
+    /// How long the last physics step's work took.
+    pub(crate) last_step: std::time::Duration,
 }
 
 impl SoakWater {
@@ -48,13 +52,15 @@ impl SoakWater {
     /// allow: another CPU backend, a sea read exactly, interactive waves).
     /// Bodies registered with it beforehand are not bevy entities the
     /// plugin knows of: give it none.
-    pub fn from_driver(driver: Driver<Entity>) -> Self {
+    pub fn from_driver(driver: Driver<BodyKey>) -> Self {
         Self {
             driver,
             entities: HashMap::new(),
             atlases: HashMap::new(),
             baking: Vec::new(),
+            gathered: Gathered::default(),
             schedule_refused: false,
+            last_step: std::time::Duration::ZERO,
         }
     }
 
@@ -86,15 +92,22 @@ impl SoakWater {
 
     /// The driver underneath: every body, its effects and their state,
     /// the firewall, the saved state.
-    pub fn driver(&self) -> &Driver<Entity> {
+    pub fn driver(&self) -> &Driver<BodyKey> {
         &self.driver
     }
 
     /// The driver, to change the water, the weather or a body's wetting
     /// and flooding between steps. Registering bodies through it directly
     /// bypasses the plugin: use [`Floating`](crate::Floating).
-    pub fn driver_mut(&mut self) -> &mut Driver<Entity> {
+    pub fn driver_mut(&mut self) -> &mut Driver<BodyKey> {
         &mut self.driver
+    }
+
+    /// The wall time the plugin's last physics step took: reading the
+    /// bodies, the driver's work and writing their forces and reports
+    /// (bevy_rapier's own step aside).
+    pub fn last_step_time(&self) -> std::time::Duration {
+        self.last_step
     }
 
     /// The driver's time, s.
@@ -108,7 +121,7 @@ impl SoakWater {
     }
 
     /// The body `entity` floats as, once registered.
-    pub fn body(&self, entity: Entity) -> Option<&SoakBody<Entity>> {
+    pub fn body(&self, entity: Entity) -> Option<&SoakBody<BodyKey>> {
         self.driver.body(self.id(entity)?)
     }
 
@@ -119,9 +132,9 @@ impl SoakWater {
     pub fn draft(&self, entity: Entity, transform: &Transform) -> Option<f64> {
         struct One(Entity, EngineBody);
         impl Bodies for One {
-            type Handle = Entity;
-            fn body(&self, h: Entity) -> Option<EngineBody> {
-                (h == self.0).then_some(self.1)
+            type Handle = BodyKey;
+            fn body(&self, h: BodyKey) -> Option<EngineBody> {
+                (h.entity == self.0).then_some(self.1)
             }
         }
         let body = EngineBody {

@@ -302,6 +302,20 @@ fn a_body_despawned_mid_run_is_forgotten() {
     let transform = *app.world().get::<Transform>(stays).unwrap();
     let draft = water.draft(stays, &transform).unwrap();
     assert!((draft - 0.3).abs() < 0.05, "draft {draft} m");
+    // `Floating` taken off a body that stays: it no longer floats (its
+    // force zeroed, its state dropped) and sinks, falling freely.
+    let id = app.world().resource::<SoakWater>().id(stays).unwrap();
+    app.world_mut().entity_mut(stays).remove::<Floating>();
+    for _ in 0..60 {
+        app.update();
+    }
+    let water = app.world().resource::<SoakWater>();
+    assert!(water.id(stays).is_none() && water.driver().body(id).unwrap().is_retired());
+    assert_eq!(
+        *app.world().get::<ExternalForce>(stays).unwrap(),
+        ExternalForce::default()
+    );
+    assert!(app.world().get::<Transform>(stays).unwrap().translation.y < -1.0);
     assert!(errors(&mut app).is_empty());
 }
 

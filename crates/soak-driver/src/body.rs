@@ -227,6 +227,15 @@ impl<H> SoakBody<H> {
         let density = self.liquid_density(water)?;
         self.effects.flooding.as_ref().map(|f| f.mass_properties(density))
     }
+    /// Drops its effects and what they hold, and marks it retired
+    /// ([`Driver::retire`](crate::Driver::retire)).
+    pub(crate) fn retire(&mut self) {
+        self.effects = Effects::default();
+        self.tiled = None;
+        self.slam = None;
+        self.retired = true;
+    }
+
     /// What the body carries besides its mass model when flooding is on:
     /// ballast combined with the liquid inside (if it has any), or `None`.
     pub(crate) fn flooding_extra(&self, water: &Water) -> Option<Option<MassProperties>> {

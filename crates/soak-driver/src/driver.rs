@@ -271,7 +271,7 @@ impl<H: Handle> Driver<H> {
         Ok(())
     }
 
-    /// Simulated time, s (advanced by [`Driver::step`] and [`Driver::advance`]).
+    /// Simulated time, s (advanced by [`Driver::after_step`] and [`Driver::advance`]).
     pub fn time(&self) -> f64 {
         self.time
     }

@@ -181,7 +181,7 @@ impl<H: Handle> Driver<H> {
     }
 
     /// Sets the density of the liquid inside a flooding body, kg/m³
-    /// (default: the surrounding fluid's, [`Water::density`]), and hands
+    /// (default: the surrounding fluid's, [`Water::density`](soak_hydro::Water::density)), and hands
     /// its mass to the engine at once.
     ///
     /// # Errors

@@ -230,23 +230,27 @@ impl<H: Handle> Driver<H> {
         b.mass = total;
         Ok(())
     }
-    /// Stops driving body `id` (its engine body was removed, say): its
-    /// effects and the state they hold (liquid texture, liquid graph, its
-    /// press on the waves) are dropped and nothing is evaluated, flooded
-    /// or wetted for it from then on. Its id stays taken (ids are never
-    /// reused) and its atlas is kept while other bodies share it.
+    /// Stops driving body `id` (its engine body removed, or the user done
+    /// with it): its effects and the state they hold (liquid texture,
+    /// liquid graph, its press on the waves) are dropped, nothing is
+    /// evaluated, flooded or wetted for it from then on, and, if `bodies`
+    /// still has it, the engine is handed a zero force and torque (an
+    /// engine's forces persist: Rapier's do). Its id stays taken (ids are
+    /// never reused) and its atlas is kept while other bodies share it.
     ///
     /// # Errors
     /// An unknown id.
-    pub fn retire(&mut self, id: SoakId) -> Result<(), SoakError> {
+    pub fn retire<B: BodiesMut<Handle = H> + ?Sized>(
+        &mut self,
+        id: SoakId,
+        bodies: &mut B,
+    ) -> Result<(), SoakError> {
         let b = self.bodies.get_mut(id.0).ok_or(SoakError::UnknownId(id.0))?;
-        b.effects = crate::Effects::default();
-        b.tiled = None;
-        b.slam = None;
+        b.retire();
+        bodies.set_wrench(b.handle, &Wrench::default());
         b.forces = HydroForces::default();
         b.applied = Wrench::default();
         b.added_force = Wrench::default();
-        b.retired = true;
         if let Some(w) = self.waves.as_deref_mut()
             && let Some(own) = w.own.get_mut(id.0)
         {

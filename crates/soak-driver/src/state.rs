@@ -239,10 +239,7 @@ impl<H: Handle> Driver<H> {
                 slam.last_added = s.slam_added_mass;
             }
             if s.retired {
-                b.effects = crate::Effects::default();
-                b.tiled = None;
-                b.slam = None;
-                b.retired = true;
+                b.retire();
             }
         }
         self.time = state.time;

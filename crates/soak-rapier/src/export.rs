@@ -143,7 +143,10 @@ impl Recording {
         Ok(())
     }
 
-    /// Records body `body`'s pose at time `t` (s, after its last sample).
+    /// Records body `body`'s pose at time `t` (s, after its last sample):
+    /// Rapier's [`Pose`] (glam, f32), as a rigid body hands it back
+    /// (`world.bodies[handle].position()`); [`crate::convert::to_pose`]
+    /// makes one from soak's f64 isometry.
     ///
     /// # Errors
     /// An unknown body, a time not after the last one, a pose that is not

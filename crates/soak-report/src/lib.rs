@@ -2,6 +2,7 @@
 
 pub mod accuracy;
 pub mod chart;
+pub mod demo;
 mod gpu;
 pub mod scaling;
 pub mod stress;

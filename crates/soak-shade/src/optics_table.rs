@@ -15,7 +15,7 @@ use crate::specular::{alpha_from_roughness, film_specular, wet_roughness};
 /// `evaluate_optics`. It has no entry point and no bindings; prepend it to a
 /// shader that uses it. Validated with naga (WebGPU baseline, no
 /// capabilities) by this crate's tests.
-pub const WET_OPTICS_WGSL: &str = include_str!("wet_optics.wgsl");
+pub const WET_OPTICS_WGSL: &str = include_str!("../shaders/wet_optics.wgsl");
 
 // The WGSL mirrors rely on these sizes.
 const _: () = assert!(std::mem::size_of::<OpticsInput>() == 80);

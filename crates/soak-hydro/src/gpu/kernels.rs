@@ -7,10 +7,10 @@ use super::error::GpuHydroError;
 use super::layout::Dispatch;
 use super::wgsl::{BINDINGS, WATER_SURFACE as WATER};
 
-const BUOYANCY: &str = include_str!("buoyancy.wgsl");
-const REDUCE: &str = include_str!("reduce.wgsl");
-const MASS: &str = include_str!("mass.wgsl");
-const DEFORM: &str = include_str!("deform.wgsl");
+const BUOYANCY: &str = include_str!("../../shaders/buoyancy.wgsl");
+const REDUCE: &str = include_str!("../../shaders/reduce.wgsl");
+const MASS: &str = include_str!("../../shaders/mass.wgsl");
+const DEFORM: &str = include_str!("../../shaders/deform.wgsl");
 
 /// The WGSL of each kernel, as compiled (for tools that validate shaders).
 pub fn kernel_sources() -> Vec<(&'static str, String)> {

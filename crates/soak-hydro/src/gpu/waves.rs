@@ -10,9 +10,9 @@ use super::error::GpuHydroError;
 use crate::error::WaterError;
 use crate::waves::{WaveRegion, check_waves};
 
-const FFT: &str = include_str!("waves.wgsl");
-const MODES: &str = include_str!("waves_modes.wgsl");
-const FINISH: &str = include_str!("waves_finish.wgsl");
+const FFT: &str = include_str!("../../shaders/waves.wgsl");
+const MODES: &str = include_str!("../../shaders/waves_modes.wgsl");
+const FINISH: &str = include_str!("../../shaders/waves_finish.wgsl");
 
 /// Bytes between the uniform structs of the FFT's stages (the WebGPU
 /// baseline's uniform offset alignment).

@@ -12,11 +12,11 @@
 
 /// Buffer layouts of the hydrostatics kernels (`Body`, `Wave`, `Item`,
 /// `Dispatch`, the `SURFACE_*` kinds), mirrored by [`Body`] and [`Wave`].
-pub const BINDINGS: &str = include_str!("bindings.wgsl");
+pub const BINDINGS: &str = include_str!("../../shaders/bindings.wgsl");
 /// Water surfaces: `surface_at(body, r)` and what it needs. Composed after
 /// [`BINDINGS`]; the including module declares the bindings `waves`,
 /// `heights` and `radii`.
-pub const WATER_SURFACE: &str = include_str!("water_surface.wgsl");
+pub const WATER_SURFACE: &str = include_str!("../../shaders/water_surface.wgsl");
 
 pub use super::layout::{Body, Wave, texel_vec4s};
 pub use super::surface::{HeightFields, encode_surface};

@@ -11,7 +11,7 @@ use crate::artist_curve::ArtistCurveGpu;
 use crate::optics_table::{OpticsInput, OpticsOutput, WET_OPTICS_WGSL};
 use soak_gpu::{GpuError, read_back, scoped};
 
-const KERNEL: &str = include_str!("optics_kernel.wgsl");
+const KERNEL: &str = include_str!("../../shaders/optics_kernel.wgsl");
 
 /// The parity kernel's full WGSL: [`WET_OPTICS_WGSL`] followed by an entry
 /// point `main` that writes `evaluate_optics(inputs[i])` and

@@ -6,14 +6,14 @@ use std::borrow::Cow;
 
 use crate::optics_table::WET_OPTICS_WGSL;
 
-const FRAME: &str = include_str!("frame.wgsl");
-const SURFACE: &str = include_str!("surface.wgsl");
-const SHADOW: &str = include_str!("shadow.wgsl");
-const WATER: &str = include_str!("water.wgsl");
-const SKY: &str = include_str!("sky.wgsl");
-const ARROW: &str = include_str!("arrow.wgsl");
-const SUBSURFACE: &str = include_str!("subsurface.wgsl");
-const TONEMAP: &str = include_str!("tonemap.wgsl");
+const FRAME: &str = include_str!("../../shaders/frame.wgsl");
+const SURFACE: &str = include_str!("../../shaders/surface.wgsl");
+const SHADOW: &str = include_str!("../../shaders/shadow.wgsl");
+const WATER: &str = include_str!("../../shaders/water.wgsl");
+const SKY: &str = include_str!("../../shaders/sky.wgsl");
+const ARROW: &str = include_str!("../../shaders/arrow.wgsl");
+const SUBSURFACE: &str = include_str!("../../shaders/subsurface.wgsl");
+const TONEMAP: &str = include_str!("../../shaders/tonemap.wgsl");
 
 /// Linear radiance while drawing.
 pub(crate) const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;

@@ -7,16 +7,16 @@ use soak_hydro::gpu::wgsl::{BINDINGS as HYDRO_BINDINGS, WATER_SURFACE as WATER};
 
 use super::layout::Params;
 
-const BINDINGS: &str = include_str!("bindings.wgsl");
-const EXCHANGE: &str = include_str!("exchange.wgsl");
-const GATHER: &str = include_str!("gather.wgsl");
-const SUBSTEP: &str = include_str!("substep.wgsl");
-const SCATTER: &str = include_str!("scatter.wgsl");
-const SMOOTH: &str = include_str!("smooth.wgsl");
-const FINISH: &str = include_str!("finish.wgsl");
-const ACTIVITY: &str = include_str!("activity.wgsl");
-const DELTA: &str = include_str!("delta.wgsl");
-const RESIDUAL: &str = include_str!("residual.wgsl");
+const BINDINGS: &str = include_str!("../../shaders/bindings.wgsl");
+const EXCHANGE: &str = include_str!("../../shaders/exchange.wgsl");
+const GATHER: &str = include_str!("../../shaders/gather.wgsl");
+const SUBSTEP: &str = include_str!("../../shaders/substep.wgsl");
+const SCATTER: &str = include_str!("../../shaders/scatter.wgsl");
+const SMOOTH: &str = include_str!("../../shaders/smooth.wgsl");
+const FINISH: &str = include_str!("../../shaders/finish.wgsl");
+const ACTIVITY: &str = include_str!("../../shaders/activity.wgsl");
+const DELTA: &str = include_str!("../../shaders/delta.wgsl");
+const RESIDUAL: &str = include_str!("../../shaders/residual.wgsl");
 
 /// The WGSL of each kernel, as compiled (for tools that validate shaders).
 pub fn kernel_sources() -> Vec<(&'static str, String)> {

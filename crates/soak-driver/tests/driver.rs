@@ -1,0 +1,134 @@
+//! The driver on its own engine ([`FreeBodies`]): bodies float at their
+//! analytic draft, a body the engine lost is handled, a retired body costs
+//! nothing and stays retired through a save.
+
+use std::sync::Arc;
+
+use nalgebra::Isometry3;
+use soak_bake::{Atlas, BakeOptions, builtin};
+use soak_driver::{BodyDesc, Driver, Effects, FreeBodies, FreeHandle, SoakError, StepParams};
+use soak_hydro::{Drag, MassModel, Water};
+
+const STEP: StepParams = StepParams {
+    dt: 1.0 / 60.0,
+    substeps: 4,
+};
+
+fn crate_atlas() -> Arc<Atlas> {
+    Arc::new(Atlas::bake(&builtin::cuboid(1.0, 0.6, 0.8), BakeOptions::square(64)).unwrap())
+}
+
+fn desc(name: &str, atlas: &Arc<Atlas>, density: f64) -> BodyDesc {
+    BodyDesc {
+        name: name.into(),
+        atlas: atlas.clone(),
+        mass_model: MassModel::Solid { density },
+        effects: Effects::buoyancy().with_drag(Drag {
+            coefficient: 1.0,
+            linear: 200.0,
+        }),
+    }
+}
+
+fn run(soak: &mut Driver<FreeHandle>, engine: &mut FreeBodies, steps: usize) {
+    for _ in 0..steps {
+        soak.before_step(engine, &STEP).unwrap();
+        engine.step(&STEP);
+        soak.after_step(STEP.dt);
+    }
+}
+
+/// Crates of 250, 500 and 750 kg/m³ float with a quarter, half and three
+/// quarters of their 0.6 m height under water.
+#[test]
+fn crates_float_at_their_analytic_drafts() {
+    let atlas = crate_atlas();
+    let mut engine = FreeBodies::new(9.81);
+    let mut soak = Driver::new(Water::calm(0.0));
+    let ids: Vec<_> = [250.0, 500.0, 750.0]
+        .iter()
+        .enumerate()
+        .map(|(k, &rho)| {
+            let h = engine.insert(Isometry3::translation(3.0 * k as f64, 0.4, 0.0));
+            soak.register(&mut engine, h, desc("crate", &atlas, rho)).unwrap()
+        })
+        .collect();
+    run(&mut soak, &mut engine, 1800);
+    for (id, rho) in ids.into_iter().zip([250.0, 500.0, 750.0]) {
+        let draft = soak.draft(id, &engine).unwrap();
+        let want = 0.6 * rho / 1000.0;
+        assert!(
+            (draft - want).abs() < 1e-3,
+            "{rho} kg/m³: draft {draft} m, want {want}"
+        );
+    }
+}
+
+/// A body the engine no longer has: the step passes over it (no force is
+/// handed to anything), its draft is unknown, a registration of a handle
+/// the engine never had is refused by name.
+#[test]
+fn a_body_the_engine_lost_is_passed_over() {
+    let atlas = crate_atlas();
+    let mut engine = FreeBodies::new(9.81);
+    let mut soak = Driver::new(Water::calm(0.0));
+    let (a, b) = (
+        engine.insert(Isometry3::translation(0.0, 0.3, 0.0)),
+        engine.insert(Isometry3::translation(3.0, 0.3, 0.0)),
+    );
+    let ia = soak.register(&mut engine, a, desc("a", &atlas, 500.0)).unwrap();
+    let ib = soak.register(&mut engine, b, desc("b", &atlas, 500.0)).unwrap();
+    run(&mut soak, &mut engine, 60);
+    engine.remove(a);
+    run(&mut soak, &mut engine, 600);
+    assert_eq!(soak.draft(ia, &engine), None);
+    let draft = soak.draft(ib, &engine).unwrap();
+    assert!((draft - 0.3).abs() < 2e-3, "draft {draft}");
+    let e = soak
+        .register(&mut engine, FreeHandle(99), desc("ghost", &atlas, 500.0))
+        .unwrap_err();
+    assert!(
+        matches!(&e, SoakError::MissingBody { name } if name == "ghost"),
+        "{e}"
+    );
+    assert!(soak.firewall().count() == 0);
+}
+
+/// A retired body: nothing is evaluated or handed to the engine for it,
+/// its id stays taken, and a saved state restores it retired.
+#[test]
+fn a_retired_body_costs_nothing_and_stays_retired() {
+    let atlas = crate_atlas();
+    let mut engine = FreeBodies::new(9.81);
+    let mut soak = Driver::new(Water::calm(0.0));
+    let h = engine.insert(Isometry3::translation(0.0, 0.3, 0.0));
+    let id = soak
+        .register(&mut engine, h, desc("crate", &atlas, 500.0))
+        .unwrap();
+    run(&mut soak, &mut engine, 30);
+    assert!(soak.body(id).unwrap().submerged_volume() > 0.0);
+    soak.retire(id, &mut engine).unwrap();
+    run(&mut soak, &mut engine, 30);
+    let b = soak.body(id).unwrap();
+    assert!(b.is_retired());
+    assert_eq!(b.submerged_volume(), 0.0);
+    assert!(!b.effects().needs_hydrostatics());
+    // The engine was handed no force since: the body falls freely.
+    assert_eq!(engine.wrench(h).unwrap().force, nalgebra::Vector3::zeros());
+    // Saved and restored into a fresh driver with the same body, it is
+    // retired there too.
+    let state = soak.state();
+    let mut again = Driver::new(Water::calm(0.0));
+    let mut engine2 = FreeBodies::new(9.81);
+    let h2 = engine2.insert(Isometry3::translation(0.0, 0.3, 0.0));
+    let id2 = again
+        .register(&mut engine2, h2, desc("crate", &atlas, 500.0))
+        .unwrap();
+    again.restore_state(&state).unwrap();
+    assert!(again.body(id2).unwrap().is_retired());
+    assert_eq!(again.state(), state);
+    assert!(matches!(
+        soak.retire(soak_driver::SoakId(7), &mut engine),
+        Err(SoakError::UnknownId(7))
+    ));
+}

@@ -1,0 +1,286 @@
+//! The drag's side of the tiled path: a coarser bake a body's drag is
+//! summed over ([`DragTexels`]), and the walk over tiles that adds the
+//! drag's closed forms and cut tiles' texels as the classification of
+//! `super` meets them ([`DragWalk`]).
+
+use super::*;
+
+/// The texels a body's drag is summed over when they are not its own
+/// atlas': another bake of the same mesh (same origin, same object
+/// frame), typically coarser, with its tiles. See
+/// [`TiledAtlas::evaluate_with_drag`].
+#[derive(Clone, Debug)]
+pub struct DragTexels {
+    pub(super) atlas: Atlas,
+    pub(super) tiled: TiledAtlas,
+}
+
+impl DragTexels {
+    /// The drag texels of `atlas` (a bake of the body's mesh), with its
+    /// tiles.
+    pub fn new(atlas: Atlas) -> Self {
+        let tiled = TiledAtlas::new(&atlas);
+        Self { atlas, tiled }
+    }
+
+    /// The tile side of [`DragTexels::bake`], texels: half the default,
+    /// as a coarse bake's tiles are wide on the surface (on a 1024² sphere
+    /// with a 64² drag bake, 10 % less time than with 8² tiles).
+    pub const TILE_SIZE: u32 = 4;
+
+    /// `mesh` baked at `resolution`² (tiles of [`DragTexels::TILE_SIZE`])
+    /// for its drag. A bake takes at least one texel per triangle: a mesh
+    /// of `n` triangles has `n` drag texels or more at any resolution.
+    ///
+    /// # Errors
+    /// Those of [`Atlas::bake`].
+    pub fn bake(mesh: &soak_bake::Mesh, resolution: u32) -> Result<Self, soak_bake::BakeError> {
+        let options = soak_bake::BakeOptions {
+            tile_size: Self::TILE_SIZE,
+            ..soak_bake::BakeOptions::square(resolution)
+        };
+        Atlas::bake(mesh, options).map(Self::new)
+    }
+
+    /// The atlas the drag is summed over.
+    pub fn atlas(&self) -> &Atlas {
+        &self.atlas
+    }
+
+    /// Follows a deforming mesh, as [`Atlas::refresh`] (new vertex
+    /// positions, object frame, m, same topology).
+    ///
+    /// # Errors
+    /// Those of [`Atlas::refresh`].
+    pub fn refresh(&mut self, positions: &[nalgebra::Point3<f64>]) -> Result<(), soak_bake::BakeError> {
+        self.atlas.refresh(positions)?;
+        self.tiled = TiledAtlas::new(&self.atlas);
+        Ok(())
+    }
+
+    /// Refuses drag texels of another mesh than `body`'s: their origins
+    /// (each bake's bounding-box centre) must be the same.
+    pub fn check(&self, body: &Atlas) -> Result<(), HydroError> {
+        let (a, b) = (body.origin(), self.atlas.origin());
+        let scale = body.bounding_radius().max(f64::MIN_POSITIVE);
+        if (a - b).norm() > 1e-9 * scale {
+            return Err(HydroError::DragTexels {
+                body: a.coords.into(),
+                drag: b.coords.into(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// [`evaluate`](crate::evaluate) (every texel) with the drag summed over
+/// `drag`'s texels, every one of them too: the per-texel reference of
+/// [`TiledAtlas::evaluate_with_drag`], which gives the same but for
+/// rounding. Without [`HydroOptions::drag`] this is
+/// [`evaluate`](crate::evaluate).
+///
+/// # Errors
+/// Those of [`evaluate`](crate::evaluate), and [`HydroError::DragTexels`]
+/// when `drag`'s atlas is not of this body's mesh.
+pub fn evaluate_with_drag(
+    atlas: &Atlas,
+    drag: &DragTexels,
+    water: &Water,
+    state: &BodyState,
+    mass: &MassProperties,
+    t: f64,
+    options: &HydroOptions,
+) -> Result<HydroForces, HydroError> {
+    if options.drag.is_none() {
+        return crate::evaluate(atlas, water, state, mass, t, options);
+    }
+    drag.check(atlas)?;
+    let sampled = crate::sampled_water(atlas, water, state, t, options)?;
+    let water = sampled.as_ref().unwrap_or(water);
+    let still = HydroOptions {
+        drag: None,
+        ..*options
+    };
+    let body = crate::evaluate(atlas, water, state, mass, t, &still)?;
+    // The drag of an evaluation is its drag sums' alone (with the state,
+    // the mass and the step): the coarse evaluation's, whatever its
+    // buoyancy.
+    let alone = HydroOptions {
+        buoyancy: BuoyancyMode::Off,
+        ..*options
+    };
+    let coarse = crate::evaluate(&drag.atlas, water, state, mass, t, &alone)?;
+    Ok(HydroForces {
+        drag: coarse.drag,
+        drag_explicit: coarse.drag_explicit,
+        ..body
+    })
+}
+
+/// The drag of one chunk of the tiled path's groups (object axes about the
+/// atlas origin): runs of tiles whose skin friction, or whose quadratic
+/// drag, takes the closed form of their moments, and the per-texel kernel
+/// for the rest: the tiles it takes are listed as they come, by what the
+/// kernel is to do with them, and each list goes through the kernel in
+/// one call at the end.
+pub(super) struct DragWalk<'a> {
+    pub(super) tiled: &'a TiledAtlas,
+    pub(super) atlas: &'a Atlas,
+    pub(super) p: LocalDrag,
+    /// Texel ranges for the kernel, by [`DragWalk::list`].
+    pub(super) texels: [Vec<std::ops::Range<usize>>; 8],
+    /// Tiles whose every texel adds its skin friction.
+    pub(super) linear: MomentRun,
+    /// Tiles whose every texel adds `k_q h·w`.
+    pub(super) quadratic: MomentRun,
+}
+
+impl<'a> DragWalk<'a> {
+    pub(super) fn new(tiled: &'a TiledAtlas, atlas: &'a Atlas, p: LocalDrag) -> Self {
+        Self {
+            tiled,
+            atlas,
+            p,
+            texels: Default::default(),
+            linear: MomentRun::default(),
+            quadratic: MomentRun::default(),
+        }
+    }
+
+    /// Tiles wholly under water, `facing` a box around their `h`.
+    pub(super) fn submerged(&mut self, tiles: std::ops::Range<usize>, facing: &FacingBounds) {
+        if self.p.lin > 0.0 {
+            self.linear.push(&self.tiled.drag_prefix, tiles.clone());
+        }
+        if self.p.quadratic() {
+            self.submerged_quadratic(tiles, facing);
+        }
+    }
+
+    /// The quadratic drag of tiles wholly under water.
+    pub(super) fn submerged_quadratic(&mut self, tiles: std::ops::Range<usize>, facing: &FacingBounds) {
+        let prefix = &self.tiled.drag_prefix;
+        match facing.facing(&self.p.w) {
+            Facing::All => self.quadratic.push(prefix, tiles),
+            Facing::None => {}
+            Facing::Mixed if tiles.len() > 1 => {
+                for ti in tiles {
+                    let facing = self.tiled.facing[ti];
+                    self.submerged_quadratic(ti..ti + 1, &facing);
+                }
+            }
+            Facing::Mixed => {
+                // The kernel takes the smaller side: the texels facing the
+                // flow, or where most of the tile does, the others out of
+                // its closed form.
+                // The tile's skin friction is in its closed form already.
+                let ti = tiles.start;
+                let quadratic = self.mostly_facing(ti);
+                if quadratic {
+                    self.quadratic.push(prefix, tiles);
+                }
+                let (start, end) = self.tiled.tiles[ti].range;
+                let added = Added {
+                    linear: true,
+                    quadratic,
+                };
+                self.texels[Self::list(false, added)].push(start as usize..end as usize);
+            }
+        }
+    }
+
+    /// A tile cut by the waterline, its centre under water or not.
+    pub(super) fn cut(&mut self, ti: usize, centre_wet: bool) {
+        let prefix = &self.tiled.drag_prefix;
+        if centre_wet && self.p.lin > 0.0 {
+            self.linear.push(prefix, ti..ti + 1);
+        }
+        let quadratic = centre_wet
+            && self.p.quadratic()
+            && match self.tiled.facing[ti].facing(&self.p.w) {
+                Facing::All => true,
+                Facing::None => false,
+                Facing::Mixed => self.mostly_facing(ti),
+            };
+        if quadratic {
+            self.quadratic.push(prefix, ti..ti + 1);
+        }
+        self.texels(
+            ti,
+            Added {
+                linear: centre_wet,
+                quadratic,
+            },
+        );
+    }
+
+    /// Whether the texels of tile `ti` face the flow more than not.
+    pub(super) fn mostly_facing(&self, ti: usize) -> bool {
+        let prefix = &self.tiled.drag_prefix;
+        let (to, from) = (&prefix[ti + 1].quadratic, &prefix[ti].quadratic);
+        (0..6).map(|j| (to[j][0] - from[j][0]) * self.p.w[j]).sum::<f64>() > 0.0
+    }
+
+    /// The per-texel kernel over tile `ti`.
+    pub(super) fn texels(&mut self, ti: usize, added: Added) {
+        let (start, end) = self.tiled.tiles[ti].range;
+        self.texels[Self::list(self.p.lin > 0.0, added)].push(start as usize..end as usize);
+    }
+
+    /// Which list of [`DragWalk::texels`] takes tiles whose kernel adds
+    /// skin friction (`linear`, where there is any) and completes `added`.
+    pub(super) fn list(linear: bool, added: Added) -> usize {
+        usize::from(linear) * 4 + usize::from(added.linear) * 2 + usize::from(added.quadratic)
+    }
+
+    /// The chunk's sums.
+    pub(super) fn finish(self) -> DragAcc {
+        let prefix = &self.tiled.drag_prefix;
+        let mut lanes = DragLanes::default();
+        for (i, ranges) in self.texels.iter().enumerate() {
+            let p = LocalDrag {
+                lin: if i >= 4 { self.p.lin } else { 0.0 },
+                ..self.p
+            };
+            let added = Added {
+                linear: i & 2 != 0,
+                quadratic: i & 1 != 0,
+            };
+            add_drag_ranges(&mut lanes, self.atlas, ranges, &p, added);
+        }
+        let mut acc = DragAcc::default();
+        lanes.add_to(&mut acc);
+        self.linear.close(prefix).add_linear(&mut acc, &self.p);
+        self.quadratic.close(prefix).add_quadratic(&mut acc, &self.p);
+        acc
+    }
+}
+
+/// Drag moments of runs of consecutive tiles, from the running sums.
+#[derive(Default)]
+pub(super) struct MomentRun {
+    open: Option<std::ops::Range<usize>>,
+    sum: DragMoments,
+}
+
+impl MomentRun {
+    /// Adds `tiles`, extending the open run where they follow it.
+    fn push(&mut self, prefix: &[DragMoments], tiles: std::ops::Range<usize>) {
+        match self.open.as_mut() {
+            Some(open) if open.end == tiles.start => open.end = tiles.end,
+            _ => {
+                if let Some(done) = self.open.replace(tiles) {
+                    self.sum.add_difference(&prefix[done.end], &prefix[done.start]);
+                }
+            }
+        }
+    }
+
+    /// The sums of every tile pushed.
+    fn close(mut self, prefix: &[DragMoments]) -> DragMoments {
+        if let Some(done) = self.open.take() {
+            self.sum.add_difference(&prefix[done.end], &prefix[done.start]);
+        }
+        self.sum
+    }
+}
