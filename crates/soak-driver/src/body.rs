@@ -283,3 +283,16 @@ pub(crate) fn with_extra(model: &MassProperties, extra: Option<&MassProperties>)
         None => *model,
     }
 }
+
+/// The tiles of `atlas`: those of a body in `bodies` that shares it (the
+/// same `Arc`), or new ones.
+pub(crate) fn shared_tiles<H>(bodies: &[SoakBody<H>], atlas: &Arc<soak_bake::Atlas>) -> Arc<TiledAtlas> {
+    // Bodies of one mesh are usually registered together: look back from
+    // the last.
+    bodies
+        .iter()
+        .rev()
+        .find(|b| Arc::ptr_eq(&b.atlas, atlas))
+        .and_then(|b| b.tiled.clone())
+        .unwrap_or_else(|| Arc::new(TiledAtlas::new(atlas)))
+}

@@ -9,12 +9,11 @@ use serde::Serialize;
 use soak_hydro::{SeaSampling, SeaVelocity, Water};
 use soak_wet::Environment;
 
-use crate::body::SoakBody;
+use crate::body::{SoakBody, shared_tiles};
 use crate::config::{Backend, SoakId};
 use crate::engine::{Bodies, Handle};
 use crate::error::SoakError;
 use crate::firewall::Firewall;
-use crate::registry::shared_tiles;
 use crate::waves::{CoupledWaves, WaveCoupling};
 
 /// Drives the effects of the rigid bodies of any physics engine

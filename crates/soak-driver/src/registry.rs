@@ -7,7 +7,7 @@ use nalgebra::Point3;
 use soak_hydro::{HydroForces, MassModel, MassProperties, TiledAtlas, Wrench};
 use soak_wet::Wetting;
 
-use crate::body::{FloodSettings, Shape, SoakBody, with_extra};
+use crate::body::{FloodSettings, Shape, SoakBody, shared_tiles, with_extra};
 use crate::config::{Backend, BodyDesc, SoakId};
 use crate::driver::Driver;
 use crate::engine::{BodiesMut, Handle, check_not_too_light, push_mass};
@@ -258,19 +258,6 @@ impl<H: Handle> Driver<H> {
         }
         Ok(())
     }
-}
-
-/// The tiles of `atlas`: those of a body in `bodies` that shares it (the
-/// same `Arc`), or new ones.
-pub(crate) fn shared_tiles<H>(bodies: &[SoakBody<H>], atlas: &Arc<soak_bake::Atlas>) -> Arc<TiledAtlas> {
-    // Bodies of one mesh are usually registered together: look back from
-    // the last.
-    bodies
-        .iter()
-        .rev()
-        .find(|b| Arc::ptr_eq(&b.atlas, atlas))
-        .and_then(|b| b.tiled.clone())
-        .unwrap_or_else(|| Arc::new(TiledAtlas::new(atlas)))
 }
 
 /// Refuses a wetting state made for an atlas of another size.
