@@ -16,7 +16,7 @@
 //! step with soak less the same engine's step without it (which also
 //! counts bevy_rapier handing the changed `ExternalForce`s to Rapier).
 //!
-//! `cargo bench -p soak-bevy --bench plugin` (`-- --bodies N --rounds R`).
+//! `cargo bench --features bevy --bench bevy_plugin` (`-- --bodies N --rounds R`).
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -25,9 +25,10 @@ use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_rapier3d::prelude::*;
 use rapier3d::prelude as rp;
-use soak_bake::{Atlas, BakeOptions, builtin};
-use soak_bevy::prelude::*;
-use soak_driver::{BodyDesc, Effects};
+use soak::bake::{Atlas, BakeOptions, builtin};
+use soak::driver::{BodyDesc, Effects};
+use soak::hydro::{Drag, MassModel, Water};
+use soak_bevy::prelude::{Floating, FloatingMesh, SoakPlugin, SoakWater};
 
 const DT: f32 = 1.0 / 60.0;
 const DENSITY: f64 = 500.0;
@@ -50,10 +51,10 @@ fn rapier_world(
     fleet: &Fleet,
     n: usize,
     effects: Option<&Effects>,
-) -> (rp::PhysicsWorld, Option<soak_rapier::ForceGenerator>) {
+) -> (rp::PhysicsWorld, Option<soak::rapier::ForceGenerator>) {
     let mut world = rp::PhysicsWorld::new();
     world.integration_parameters.dt = DT;
-    let mut soak = effects.map(|_| soak_rapier::ForceGenerator::new(Water::calm(0.0)));
+    let mut soak = effects.map(|_| soak::rapier::ForceGenerator::new(Water::calm(0.0)));
     for i in 0..n {
         let (x, z) = grid(i, n);
         let handle = world
@@ -205,10 +206,10 @@ fn main() {
             // ForceGenerator::step, its parts timed.
             let s = Instant::now();
             soak.sync_gravity(&world);
-            let params = soak_rapier::step_params(&world.integration_parameters);
+            let params = soak::rapier::step_params(&world.integration_parameters);
             let inner = Instant::now();
             soak.before_step(
-                &mut soak_rapier::RapierBodies::new(&mut world.bodies, &world.colliders),
+                &mut soak::rapier::RapierBodies::new(&mut world.bodies, &world.colliders),
                 &params,
             )
             .expect("steps");
