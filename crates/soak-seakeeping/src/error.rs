@@ -1,0 +1,32 @@
+//! What can go wrong.
+
+/// A radiation problem that cannot be set up or solved.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum SeakeepingError {
+    /// Nothing of the body is under water.
+    #[error("the body has no wetted surface (no panel below y = 0)")]
+    NoWettedSurface,
+    /// A panel reaches above the still water plane.
+    #[error("panel {panel} reaches {height} m above the still water plane y = 0")]
+    PanelAboveWater {
+        /// The panel's index.
+        panel: usize,
+        /// Its highest vertex's height, m.
+        height: f64,
+    },
+    /// A physical parameter out of range.
+    #[error("{name} must be positive and finite, got {value}")]
+    BadParameter {
+        /// The parameter.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// The panel system is singular at this frequency.
+    #[error("the panel system is singular at ω = {omega} rad/s")]
+    Singular {
+        /// The frequency, rad/s.
+        omega: f64,
+    },
+}
