@@ -25,4 +25,4 @@ mod special;
 pub use self::error::SeakeepingError;
 pub use self::green::Panel;
 pub use self::panels::wetted_panels;
-pub use self::radiation::{Coefficients, Radiation, Surface};
+pub use self::radiation::{Coefficients, Potentials, Radiation, Surface};

@@ -211,11 +211,12 @@ fn the_hemisphere_limits_match_spherical_harmonics() {
 }
 
 /// Hulme (1982), J. Fluid Mech. 121, Table 2: the surging hemisphere,
-/// `Ka`, `A11/(ρ⅔πa³)`, `B11/(ρω⅔πa³)`. (The added mass at Ka = 0.7,
-/// 0.6682, breaks the table's otherwise smooth curve, which its
-/// neighbours and the panel solution follow within 0.4 %: 0.656 would
-/// be on it. It is kept as published, and met within the 3 %.)
-const HULME_SURGE: [(f64, f64, f64); 12] = [
+/// `Ka`, `A11/(ρ⅔πa³)`, `B11/(ρω⅔πa³)` (the damping as far as the
+/// transcription at hand gives it; NaN beyond). The added mass at
+/// Ka = 0.7, 0.6682, breaks the table's otherwise smooth curve, which its
+/// neighbours and the panel solution follow within 0.4 % (0.656 would be
+/// on it); it is kept as published, and met within the 3 %.
+const HULME_SURGE: [(f64, f64, f64); 19] = [
     (0.1, 0.5223, 0.0010),
     (0.2, 0.5515, 0.0082),
     (0.3, 0.5848, 0.0255),
@@ -228,8 +229,18 @@ const HULME_SURGE: [(f64, f64, f64); 12] = [
     (1.0, 0.5740, 0.3535),
     (1.2, 0.4860, 0.3978),
     (1.4, 0.4038, 0.4060),
+    (1.6, 0.3371, f64::NAN),
+    (1.8, 0.2866, f64::NAN),
+    (2.0, 0.2493, f64::NAN),
+    (2.5, 0.1961, f64::NAN),
+    (3.0, 0.1720, f64::NAN),
+    (3.4, 0.1634, f64::NAN),
+    (4.0, 0.1620, f64::NAN),
 ];
 
+/// Over Ka 0.1–4, through the hemisphere's irregular frequencies (heave
+/// near Ka 2.6, surge near 3.9: without the lid's equations the surge
+/// added mass at Ka 4 is 18 % off).
 #[test]
 fn surge_matches_hulme() {
     // 576 panels.
@@ -244,10 +255,44 @@ fn surge_matches_hulme() {
         assert!((a - a_ref).abs() < 0.03 * a_ref, "Ka {ka}: A {a} vs {a_ref}");
         // The damping within 3 %, or 2e-4 where it is itself that small
         // (the table's 4 decimals).
-        assert!(
-            (b - b_ref).abs() < (0.03 * b_ref).max(2e-4),
-            "Ka {ka}: B {b} vs {b_ref}"
-        );
+        if b_ref.is_finite() {
+            assert!(
+                (b - b_ref).abs() < (0.03 * b_ref).max(2e-4),
+                "Ka {ka}: B {b} vs {b_ref}"
+            );
+        }
     }
     eprintln!("worst added-mass error {:.2} %", worst * 100.0);
+}
+
+/// The damping from the pressure on the hull against the energy the
+/// radiated waves carry to infinity (the Kochin function): two
+/// independent paths from the same potentials, for surge and heave.
+#[test]
+fn far_field_damping_matches_the_pressure() {
+    let problem = hemisphere(12, 48);
+    for ka in [0.3, 1.0, 2.0, 3.0] {
+        let potentials = problem.potentials(Surface::Wavenumber(ka)).unwrap();
+        let near = problem.coefficients(&potentials).damping;
+        let far = problem.far_field_damping(&potentials).unwrap();
+        for mode in [0, 1] {
+            let (p, f) = (near[(mode, mode)], far[mode]);
+            eprintln!("Ka {ka} mode {mode}: pressure {p:.3}, far field {f:.3}");
+            assert!((p - f).abs() < 0.03 * p, "Ka {ka} mode {mode}: {p} vs {f}");
+        }
+    }
+}
+
+/// Heave through its irregular frequency (Ka ≈ 2.6): smooth.
+#[test]
+fn heave_is_smooth_through_the_irregular_frequency() {
+    let problem = hemisphere(12, 48);
+    let a: Vec<f64> = [2.4, 2.5, 2.6, 2.7, 2.8]
+        .iter()
+        .map(|&ka| problem.solve(Surface::Wavenumber(ka)).unwrap().added_mass[(1, 1)] / displaced())
+        .collect();
+    for w in a.windows(3) {
+        let curvature = (w[0] - 2.0 * w[1] + w[2]).abs();
+        assert!(curvature < 2e-3, "heave added mass {a:?}");
+    }
 }
