@@ -14,15 +14,21 @@
 //! and the body alone in unbounded water ([`Surface::Unbounded`]) solve
 //! the same system with the matching images.
 //!
+//! In the time domain ([`Sweep`], [`Kernel`], [`Memory`]) the radiation
+//! force is Cummins' `−A∞ ẍ − ∫ K(t − τ) ẋ(τ) dτ`, its kernel fitted by a
+//! few exponential states.
+//!
 //! Conventions are soak's: y up, the still water plane at y = 0, SI units.
 
 mod error;
 pub mod green;
+mod memory;
 mod panels;
 mod radiation;
 mod special;
 
 pub use self::error::SeakeepingError;
 pub use self::green::Panel;
+pub use self::memory::{Kernel, Memory, Sweep};
 pub use self::panels::wetted_panels;
 pub use self::radiation::{Coefficients, Potentials, Radiation, Surface};

@@ -153,6 +153,11 @@ impl Radiation {
         })
     }
 
+    /// Gravity, m/s².
+    pub fn gravity(&self) -> f64 {
+        self.gravity
+    }
+
     /// The panels.
     pub fn panels(&self) -> &[Panel] {
         &self.panels
@@ -257,10 +262,13 @@ impl Radiation {
         let phi = if rows == count {
             system.lu().solve(&rhs)
         } else {
-            // Least squares: QR of the tall system.
+            // Least squares: QR of the tall system (Householder
+            // reflections applied to the right-hand sides, Q never formed).
             let qr = system.qr();
-            let projected = qr.q().adjoint() * rhs;
-            qr.r().solve_upper_triangular(&projected)
+            let mut projected = rhs;
+            qr.q_tr_mul(&mut projected);
+            qr.r()
+                .solve_upper_triangular(&projected.rows(0, count).into_owned())
         }
         .ok_or(SeakeepingError::Singular { omega })?;
         if phi.iter().any(|v| !v.re.is_finite() || !v.im.is_finite()) {
@@ -316,6 +324,21 @@ impl Radiation {
             sum += (potentials.phi[(i, mode)] * dn - e * self.modes[i][mode]) * panel.area;
         }
         Some(sum)
+    }
+
+    /// The wave excitation force and moment on the body held still in
+    /// regular waves of unit amplitude travelling along `heading` (rad,
+    /// from +x toward +z), by the Haskind relation: `X_j = ρ g H_j(β + π)`
+    /// (N per m of amplitude, N·m per m for the moments; the phase is
+    /// relative to the incident elevation at the origin, `Re{e^{−iωt}}`).
+    /// `None` without waves.
+    pub fn excitation(&self, potentials: &Potentials, heading: f64) -> Option<[Complex64; 6]> {
+        let mut out = [Complex64::new(0.0, 0.0); 6];
+        for (mode, value) in out.iter_mut().enumerate() {
+            *value = self.kochin(potentials, mode, heading + std::f64::consts::PI)?
+                * (self.density * self.gravity);
+        }
+        Some(out)
     }
 
     /// The wave damping of each mode from the energy its waves carry away

@@ -283,6 +283,49 @@ fn far_field_damping_matches_the_pressure() {
     }
 }
 
+/// The excitation (Haskind) in long waves tends to the hydrostatic force
+/// of the wave's elevation, ρ g A_wp per metre of amplitude in heave, and
+/// a floating sphere's heave RAO to 1; waves from opposite headings push
+/// it opposite ways in surge.
+#[test]
+fn long_waves_lift_the_hemisphere_hydrostatically() {
+    let problem = hemisphere(12, 48);
+    let hydrostatic = RHO * G * PI;
+    for ka in [0.01, 0.05] {
+        let potentials = problem.potentials(Surface::Wavenumber(ka)).unwrap();
+        let x = problem.excitation(&potentials, 0.0).unwrap();
+        let back = problem.excitation(&potentials, PI).unwrap();
+        let c = problem.coefficients(&potentials);
+        let mass = displaced();
+        let omega = c.omega;
+        let rao = x[1]
+            / num_complex::Complex64::new(
+                hydrostatic - omega * omega * (mass + c.added_mass[(1, 1)]),
+                -omega * c.damping[(1, 1)],
+            );
+        eprintln!(
+            "Ka {ka}: heave {:.1} ({:.4} of ρgA), RAO {:.4}, surge {:.1} / {:.1}",
+            x[1].norm(),
+            x[1].norm() / hydrostatic,
+            rao.norm(),
+            x[0],
+            back[0]
+        );
+        // Within 2·Ka of the limit (the first correction is of order Ka).
+        assert!(
+            (x[1].norm() / hydrostatic - 1.0).abs() < 2.0 * ka + 0.01,
+            "Ka {ka}: {}",
+            x[1].norm() / hydrostatic
+        );
+        assert!(
+            (rao.norm() - 1.0).abs() < 2.0 * ka + 0.01,
+            "Ka {ka}: RAO {}",
+            rao.norm()
+        );
+        assert!((x[0] + back[0]).norm() < 1e-6 * hydrostatic.max(x[0].norm()));
+    }
+}
+
 /// Heave through its irregular frequency (Ka ≈ 2.6): smooth.
 #[test]
 fn heave_is_smooth_through_the_irregular_frequency() {

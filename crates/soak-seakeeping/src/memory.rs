@@ -1,0 +1,287 @@
+//! From the frequency domain to the time domain: the radiation force's
+//! memory (Cummins 1962) as a few exponential states.
+//!
+//! The radiation force of a body moving arbitrarily is
+//! `−A∞ ẍ(t) − ∫₀ᵗ K(t − τ) ẋ(τ) dτ`, with the retardation kernel
+//! `K(t) = (2/π) ∫₀^∞ B(ω) cos ωt dω`. A [`Sweep`] holds A(ω), B(ω) over
+//! frequencies and gives K; [`Kernel::fit`] realises K as a sum of damped
+//! complex exponentials `K(t) ≈ Re Σ c_k e^{λ_k t}` (poles by the
+//! eigensystem realisation algorithm, a Hankel SVD of K's samples;
+//! residues by least squares), so that the convolution costs one
+//! complex multiply-add per pole per step: each pole's state
+//! `s_k = ∫ e^{λ_k (t − τ)} ẋ(τ) dτ` advances exactly over a step in which
+//! the velocity varies linearly.
+
+use nalgebra::{DMatrix, DVector, Matrix6};
+use num_complex::Complex64;
+
+use crate::error::SeakeepingError;
+use crate::radiation::{Coefficients, Radiation, Surface};
+
+/// Added mass and damping over frequencies, and their infinite-frequency
+/// limit.
+#[derive(Clone, Debug)]
+pub struct Sweep {
+    /// A∞: kg, kg·m, kg·m² by block.
+    pub infinite: Matrix6<f64>,
+    /// The coefficients at each frequency, in increasing ω.
+    pub frequencies: Vec<Coefficients>,
+}
+
+impl Radiation {
+    /// Solves the radiation problem at each of `omegas` (rad/s, positive)
+    /// and at infinite frequency.
+    pub fn sweep(&self, omegas: &[f64]) -> Result<Sweep, SeakeepingError> {
+        let infinite = self.solve(Surface::InfiniteFrequency)?.added_mass;
+        let mut omegas = omegas.to_vec();
+        omegas.sort_by(f64::total_cmp);
+        let mut frequencies = Vec::with_capacity(omegas.len());
+        for omega in omegas {
+            if !omega.is_finite() || omega <= 0.0 {
+                return Err(SeakeepingError::BadParameter {
+                    name: "omega",
+                    value: omega,
+                });
+            }
+            frequencies.push(self.solve(Surface::Wavenumber(omega * omega / self.gravity()))?);
+        }
+        Ok(Sweep {
+            infinite,
+            frequencies,
+        })
+    }
+}
+
+impl Sweep {
+    /// A(ω) and B(ω) of modes (i, j), interpolated (Catmull–Rom between
+    /// the computed frequencies; B = 0 and A = A(ω₁) below the first, A∞
+    /// and B = 0 beyond a last frequency where B has died out).
+    pub fn at(&self, i: usize, j: usize, omega: f64) -> (f64, f64) {
+        let f = &self.frequencies;
+        let n = f.len();
+        if n == 0 {
+            return (self.infinite[(i, j)], 0.0);
+        }
+        if omega <= f[0].omega {
+            // B grows from 0 at ω = 0 (as ω⁴ or faster for a surface body:
+            // a straight line to the first point is close enough there).
+            let t = (omega / f[0].omega).max(0.0);
+            return (f[0].added_mass[(i, j)], t * f[0].damping[(i, j)]);
+        }
+        if omega >= f[n - 1].omega {
+            return (self.infinite[(i, j)], 0.0);
+        }
+        let k = f.partition_point(|c| c.omega <= omega) - 1;
+        let value = |index: isize, which: usize| {
+            let index = index.clamp(0, n as isize - 1) as usize;
+            if which == 0 {
+                f[index].added_mass[(i, j)]
+            } else {
+                f[index].damping[(i, j)]
+            }
+        };
+        let t = (omega - f[k].omega) / (f[k + 1].omega - f[k].omega);
+        let w = catmull_rom(t);
+        let mut a = 0.0;
+        let mut b = 0.0;
+        for (o, weight) in w.iter().enumerate() {
+            let index = k as isize - 1 + o as isize;
+            a += weight * value(index, 0);
+            b += weight * value(index, 1);
+        }
+        (a, b)
+    }
+
+    /// The retardation kernel `K_ij(t) = (2/π) ∫₀^∞ B_ij(ω) cos ωt dω`
+    /// (kg/s², or per m and m² by block) at each of `times` (s), by the
+    /// trapezoidal rule on a grid fine enough for the largest time.
+    pub fn kernel(&self, i: usize, j: usize, times: &[f64]) -> Vec<f64> {
+        let Some(last) = self.frequencies.last() else {
+            return vec![0.0; times.len()];
+        };
+        let t_max = times.iter().copied().fold(0.0, f64::max);
+        let spacing = self
+            .frequencies
+            .windows(2)
+            .map(|w| w[1].omega - w[0].omega)
+            .fold(last.omega, f64::min);
+        let step = (spacing / 8.0).min(std::f64::consts::PI / (16.0 * t_max.max(1e-9)));
+        let count = (last.omega / step).ceil() as usize;
+        let step = last.omega / count as f64;
+        let samples: Vec<(f64, f64)> = (0..=count)
+            .map(|n| (n as f64 * step, self.at(i, j, n as f64 * step).1))
+            .collect();
+        times
+            .iter()
+            .map(|&t| {
+                let mut sum = 0.0;
+                for (n, &(omega, b)) in samples.iter().enumerate() {
+                    let weight = if n == 0 || n == count { 0.5 } else { 1.0 };
+                    sum += weight * b * (omega * t).cos();
+                }
+                2.0 / std::f64::consts::PI * sum * step
+            })
+            .collect()
+    }
+}
+
+/// Catmull–Rom weights of four nodes around `t ∈ [0, 1)` from the second.
+fn catmull_rom(t: f64) -> [f64; 4] {
+    let t2 = t * t;
+    let t3 = t2 * t;
+    [
+        0.5 * (-t3 + 2.0 * t2 - t),
+        0.5 * (3.0 * t3 - 5.0 * t2 + 2.0),
+        0.5 * (-3.0 * t3 + 4.0 * t2 + t),
+        0.5 * (t3 - t2),
+    ]
+}
+
+/// A retardation kernel as a sum of damped complex exponentials,
+/// `K(t) ≈ Re Σ c_k e^{λ_k t}`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Kernel {
+    /// The poles λ_k (1/s, negative real parts).
+    pub poles: Vec<Complex64>,
+    /// The residues c_k (the kernel's units).
+    pub residues: Vec<Complex64>,
+}
+
+impl Kernel {
+    /// Fits `samples` (K at t = 0, dt, 2 dt, …) with at most `order`
+    /// poles: the eigensystem realisation algorithm on the Hankel matrix
+    /// of the samples (poles: the eigenvalues of the realised state
+    /// matrix, the unstable ones dropped), then the residues by least
+    /// squares over every sample.
+    pub fn fit(samples: &[f64], dt: f64, order: usize) -> Kernel {
+        let half = (samples.len() - 1) / 2;
+        if half < 2 || order == 0 {
+            return Kernel {
+                poles: Vec::new(),
+                residues: Vec::new(),
+            };
+        }
+        let h0 = DMatrix::from_fn(half, half, |i, j| samples[i + j]);
+        let h1 = DMatrix::from_fn(half, half, |i, j| samples[i + j + 1]);
+        let svd = h0.svd(true, true);
+        let (Some(u), Some(v_t)) = (svd.u, svd.v_t) else {
+            return Kernel {
+                poles: Vec::new(),
+                residues: Vec::new(),
+            };
+        };
+        let largest = svd.singular_values[0];
+        let rank = svd
+            .singular_values
+            .iter()
+            .take(order)
+            .filter(|&&s| s > 1e-10 * largest)
+            .count();
+        if rank == 0 {
+            return Kernel {
+                poles: Vec::new(),
+                residues: Vec::new(),
+            };
+        }
+        let root: Vec<f64> = (0..rank).map(|k| 1.0 / svd.singular_values[k].sqrt()).collect();
+        let u_r = u.columns(0, rank);
+        let v_r = v_t.rows(0, rank).transpose();
+        let mut state = u_r.transpose() * h1 * v_r;
+        for i in 0..rank {
+            for j in 0..rank {
+                state[(i, j)] *= root[i] * root[j];
+            }
+        }
+        let poles: Vec<Complex64> = state
+            .complex_eigenvalues()
+            .iter()
+            .filter(|z| z.norm() < 1.0 && z.norm() > 0.0)
+            .map(|z| z.ln() / dt)
+            .collect();
+        let residues = residues(samples, dt, &poles);
+        Kernel { poles, residues }
+    }
+
+    /// K(t) of the fit.
+    pub fn value(&self, t: f64) -> f64 {
+        self.poles
+            .iter()
+            .zip(&self.residues)
+            .map(|(p, c)| (c * (p * t).exp()).re)
+            .sum()
+    }
+
+    /// The fit's transform `∫₀^∞ K(t) e^{iωt} dt`, whose real part is
+    /// B(ω) and whose imaginary part is `−ω (A(ω) − A∞)`.
+    pub fn transform(&self, omega: f64) -> Complex64 {
+        self.poles
+            .iter()
+            .zip(&self.residues)
+            .map(|(p, c)| {
+                // Re Σ c e^{λt}: both c e^{λt} and its conjugate halves.
+                let s = Complex64::new(0.0, omega);
+                0.5 * (-c / (p + s) - c.conj() / (p.conj() + s))
+            })
+            .sum()
+    }
+}
+
+/// Least-squares residues of `poles` over the samples.
+fn residues(samples: &[f64], dt: f64, poles: &[Complex64]) -> Vec<Complex64> {
+    if poles.is_empty() {
+        return Vec::new();
+    }
+    let n = samples.len();
+    let design = DMatrix::from_fn(n, poles.len(), |i, k| (poles[k] * (i as f64 * dt)).exp());
+    let target = DVector::from_fn(n, |i, _| Complex64::new(samples[i], 0.0));
+    let qr = design.qr();
+    let projected = qr.q().adjoint() * target;
+    qr.r()
+        .solve_upper_triangular(&projected)
+        .map(|c| c.iter().copied().collect())
+        .unwrap_or_else(|| vec![Complex64::new(0.0, 0.0); poles.len()])
+}
+
+/// The states of a [`Kernel`]'s convolution with a velocity history.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Memory {
+    states: Vec<Complex64>,
+}
+
+impl Memory {
+    /// At rest (no history).
+    pub fn new(kernel: &Kernel) -> Memory {
+        Memory {
+            states: vec![Complex64::new(0.0, 0.0); kernel.poles.len()],
+        }
+    }
+
+    /// `∫₀ᵗ K(t − τ) ẋ(τ) dτ` now (the force's units).
+    pub fn force(&self, kernel: &Kernel) -> f64 {
+        self.states
+            .iter()
+            .zip(&kernel.residues)
+            .map(|(s, c)| (c * s).re)
+            .sum()
+    }
+
+    /// Advances by `dt` over which the velocity goes linearly from `v0` to
+    /// `v1` (exact for that history).
+    pub fn advance(&mut self, kernel: &Kernel, v0: f64, v1: f64, dt: f64) {
+        for (s, &p) in self.states.iter_mut().zip(&kernel.poles) {
+            let e = (p * dt).exp();
+            // ∫₀^dt e^{p(dt−τ)} (v0 + (v1 − v0) τ/dt) dτ.
+            let pd = p * dt;
+            let (phi1, phi2) = if pd.norm() < 1e-4 {
+                (
+                    Complex64::new(dt, 0.0) * (1.0 + pd / 2.0),
+                    Complex64::new(dt / 2.0, 0.0) * (1.0 + pd / 3.0),
+                )
+            } else {
+                ((e - 1.0) / p, ((e - 1.0) / pd - 1.0) / p)
+            };
+            // φ1 = ∫ e^{p(dt−τ)} dτ, φ2 = ∫ e^{p(dt−τ)} τ/dt dτ.
+            *s = e * *s + phi1 * v0 + phi2 * (v1 - v0);
+        }
+    }
+}
