@@ -15,6 +15,14 @@ pub enum SeakeepingError {
         /// Its highest vertex's height, m.
         height: f64,
     },
+    /// A mesh vertex that is not a finite point.
+    #[error("mesh `{mesh}`: vertex {vertex} is not finite")]
+    BadMesh {
+        /// The mesh's name.
+        mesh: String,
+        /// The vertex.
+        vertex: usize,
+    },
     /// A physical parameter out of range.
     #[error("{name} must be positive and finite, got {value}")]
     BadParameter {

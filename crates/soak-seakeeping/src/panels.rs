@@ -3,15 +3,34 @@
 use nalgebra::{Isometry3, Point3};
 use soak_bake::Mesh;
 
+use crate::error::SeakeepingError;
 use crate::green::Panel;
 
 /// The part of `mesh` (placed by `pose` in the water's frame: y up, still
-/// water at y = 0) below the still water plane, as flat panels: each
-/// triangle clipped by the plane (a triangle or a quadrilateral kept).
-/// The mesh's triangles are counter-clockwise seen from outside, so the
-/// panels' normals point into the water.
-pub fn wetted_panels(mesh: &Mesh, pose: &Isometry3<f64>) -> Vec<Panel> {
+/// water at y = 0) below the still water plane, as flat panels no larger
+/// than `max_size` (m, the longest edge): each triangle clipped by the
+/// plane, the part below kept, and split in four at its edges' midpoints
+/// until small enough (a quadrilateral left by the clip is cut in two
+/// first). The mesh's triangles are counter-clockwise seen from outside,
+/// so the panels' normals point into the water.
+pub fn wetted_panels(
+    mesh: &Mesh,
+    pose: &Isometry3<f64>,
+    max_size: f64,
+) -> Result<Vec<Panel>, SeakeepingError> {
+    if !max_size.is_finite() || max_size <= 0.0 {
+        return Err(SeakeepingError::BadParameter {
+            name: "max_size",
+            value: max_size,
+        });
+    }
     let world: Vec<Point3<f64>> = mesh.positions.iter().map(|p| pose * p).collect();
+    if let Some(vertex) = world.iter().position(|p| !p.coords.iter().all(|c| c.is_finite())) {
+        return Err(SeakeepingError::BadMesh {
+            mesh: mesh.name.clone(),
+            vertex,
+        });
+    }
     let mut panels = Vec::new();
     for triangle in &mesh.triangles {
         let corners = triangle.map(|i| world[i as usize]);
@@ -29,9 +48,38 @@ pub fn wetted_panels(mesh: &Mesh, pose: &Isometry3<f64>) -> Vec<Panel> {
                 kept.push(crossing);
             }
         }
-        if let Some(panel) = Panel::new(&kept) {
-            panels.push(panel);
+        match kept.len() {
+            3 => split(&[kept[0], kept[1], kept[2]], max_size, &mut panels),
+            4 => {
+                split(&[kept[0], kept[1], kept[2]], max_size, &mut panels);
+                split(&[kept[0], kept[2], kept[3]], max_size, &mut panels);
+            }
+            _ => {}
         }
     }
-    panels
+    Ok(panels)
+}
+
+/// Splits a triangle in four until its longest edge is at most `max_size`.
+fn split(t: &[Point3<f64>; 3], max_size: f64, out: &mut Vec<Panel>) {
+    let longest = (0..3).map(|i| (t[(i + 1) % 3] - t[i]).norm()).fold(0.0, f64::max);
+    if longest <= max_size {
+        if let Some(panel) = Panel::new(t) {
+            out.push(panel);
+        }
+        return;
+    }
+    let m = |i: usize| {
+        let mut p = Point3::from((t[i].coords + t[(i + 1) % 3].coords) / 2.0);
+        // Keep the waterline exactly on the plane.
+        if t[i].y == 0.0 && t[(i + 1) % 3].y == 0.0 {
+            p.y = 0.0;
+        }
+        p
+    };
+    let (m0, m1, m2) = (m(0), m(1), m(2));
+    split(&[t[0], m0, m2], max_size, out);
+    split(&[m0, t[1], m1], max_size, out);
+    split(&[m2, m1, t[2]], max_size, out);
+    split(&[m0, m1, m2], max_size, out);
 }
