@@ -56,6 +56,11 @@ pub use soak_rapier as rapier;
 #[cfg(feature = "report")]
 #[doc(inline)]
 pub use soak_report as report;
+/// Seakeeping coefficients of any mesh: added mass, wave damping and
+/// excitation against frequency by a panel method, and the radiation
+/// force's memory in the time domain.
+#[doc(inline)]
+pub use soak_seakeeping as seakeeping;
 #[doc(inline)]
 pub use soak_shade as shade;
 /// The live window of `soak view`, and the frames of `soak render`
