@@ -16,6 +16,7 @@ use nalgebra::{DMatrix, DVector, Matrix6};
 use num_complex::Complex64;
 
 use crate::error::SeakeepingError;
+use crate::green::catmull_rom;
 use crate::radiation::{Coefficients, Radiation, Surface};
 
 /// Added mass and damping over frequencies, and their infinite-frequency
@@ -123,18 +124,6 @@ impl Sweep {
             })
             .collect()
     }
-}
-
-/// Catmull–Rom weights of four nodes around `t ∈ [0, 1)` from the second.
-fn catmull_rom(t: f64) -> [f64; 4] {
-    let t2 = t * t;
-    let t3 = t2 * t;
-    [
-        0.5 * (-t3 + 2.0 * t2 - t),
-        0.5 * (3.0 * t3 - 5.0 * t2 + 2.0),
-        0.5 * (-3.0 * t3 + 4.0 * t2 + t),
-        0.5 * (t3 - t2),
-    ]
 }
 
 /// A retardation kernel as a sum of damped complex exponentials,

@@ -4,35 +4,15 @@
 //! free heave decay against the decay the frequency-domain coefficients
 //! predict.
 
-use nalgebra::Point3;
 use num_complex::Complex64;
-use soak_seakeeping::{Kernel, Memory, Panel, Radiation, Sweep};
+use soak_seakeeping::{Kernel, Memory, Sweep};
+
+mod common;
+use common::hemisphere;
 use std::f64::consts::PI;
 
 const RHO: f64 = 1000.0;
 const G: f64 = 9.81;
-
-fn hemisphere(rings: usize, segments: usize) -> Radiation {
-    let point = |i: usize, j: usize| {
-        let alpha = PI / 2.0 * i as f64 / rings as f64;
-        let phi = 2.0 * PI * j as f64 / segments as f64;
-        Point3::new(alpha.sin() * phi.cos(), -alpha.cos(), alpha.sin() * phi.sin())
-    };
-    let mut panels = Vec::new();
-    for i in 0..rings {
-        for j in 0..segments {
-            let mut quad = vec![point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)];
-            quad.dedup_by(|p, q| (*p - *q).norm() < 1e-12);
-            let mut panel = Panel::new(&quad).unwrap();
-            if panel.normal.dot(&panel.centroid.coords) < 0.0 {
-                quad.reverse();
-                panel = Panel::new(&quad).unwrap();
-            }
-            panels.push(panel);
-        }
-    }
-    Radiation::new(panels, Point3::origin(), RHO, G).unwrap()
-}
 
 /// The hemisphere's heave and surge over ω 0.25–10 rad/s (Ka 0.006–10),
 /// solved once for both tests.

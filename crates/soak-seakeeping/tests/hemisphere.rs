@@ -4,47 +4,14 @@
 //! added mass and damping of the surging hemisphere.
 
 use nalgebra::Point3;
-use soak_seakeeping::{Panel, Radiation, Surface};
+use soak_seakeeping::{Radiation, Surface};
+
+mod common;
+use common::{hemisphere, sphere_panels};
 use std::f64::consts::PI;
 
 const RHO: f64 = 1000.0;
 const G: f64 = 9.81;
-
-/// Quadrilateral panels on a sphere of radius `a` centred at `centre`,
-/// between polar angles (from −y) 0 and `top` (π/2: the hemisphere below
-/// y = centre.y; π: the whole sphere), `rings` × `segments`. Rings are
-/// spaced evenly in angle.
-fn sphere_panels(a: f64, centre: Point3<f64>, top: f64, rings: usize, segments: usize) -> Vec<Panel> {
-    let point = |i: usize, j: usize| {
-        let alpha = top * i as f64 / rings as f64;
-        let phi = 2.0 * PI * j as f64 / segments as f64;
-        centre
-            + nalgebra::Vector3::new(
-                a * alpha.sin() * phi.cos(),
-                -a * alpha.cos(),
-                a * alpha.sin() * phi.sin(),
-            )
-    };
-    let mut panels = Vec::new();
-    for i in 0..rings {
-        for j in 0..segments {
-            let mut quad = vec![point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)];
-            quad.dedup_by(|p, q| (*p - *q).norm() < 1e-12);
-            let mut panel = Panel::new(&quad).expect("a panel");
-            if panel.normal.dot(&(panel.centroid - centre)) < 0.0 {
-                quad.reverse();
-                panel = Panel::new(&quad).expect("a panel");
-            }
-            panels.push(panel);
-        }
-    }
-    panels
-}
-
-fn hemisphere(rings: usize, segments: usize) -> Radiation {
-    let panels = sphere_panels(1.0, Point3::origin(), PI / 2.0, rings, segments);
-    Radiation::new(panels, Point3::origin(), RHO, G).expect("a radiation problem")
-}
 
 /// ρ (2/3) π a³ for a = 1: the hemisphere's displaced mass.
 fn displaced() -> f64 {
