@@ -23,6 +23,16 @@ pub enum SeakeepingError {
         /// The vertex.
         vertex: usize,
     },
+    /// A triangle naming a vertex the mesh does not have.
+    #[error("mesh `{mesh}`: triangle {triangle} names vertex {vertex}, which it does not have")]
+    BadTriangle {
+        /// The mesh's name.
+        mesh: String,
+        /// The triangle.
+        triangle: usize,
+        /// The vertex index it names.
+        vertex: usize,
+    },
     /// A physical parameter out of range.
     #[error("{name} must be positive and finite, got {value}")]
     BadParameter {

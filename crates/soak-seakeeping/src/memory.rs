@@ -143,7 +143,7 @@ impl Kernel {
     /// matrix, the unstable ones dropped), then the residues by least
     /// squares over every sample.
     pub fn fit(samples: &[f64], dt: f64, order: usize) -> Kernel {
-        let half = (samples.len() - 1) / 2;
+        let half = samples.len().saturating_sub(1) / 2;
         if half < 2 || order == 0 {
             return Kernel {
                 poles: Vec::new(),

@@ -32,7 +32,14 @@ pub fn wetted_panels(
         });
     }
     let mut panels = Vec::new();
-    for triangle in &mesh.triangles {
+    for (index, triangle) in mesh.triangles.iter().enumerate() {
+        if let Some(&vertex) = triangle.iter().find(|&&i| i as usize >= world.len()) {
+            return Err(SeakeepingError::BadTriangle {
+                mesh: mesh.name.clone(),
+                triangle: index,
+                vertex: vertex as usize,
+            });
+        }
         let corners = triangle.map(|i| world[i as usize]);
         let mut kept: Vec<Point3<f64>> = Vec::with_capacity(4);
         for i in 0..3 {

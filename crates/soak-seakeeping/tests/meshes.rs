@@ -58,6 +58,19 @@ fn bad_input_is_refused() {
         wetted_panels(&broken, &Isometry3::identity(), 0.5),
         Err(SeakeepingError::BadMesh { vertex: 3, .. })
     ));
+    let mut dangling = mesh.clone();
+    dangling.triangles[5][1] = 99;
+    assert!(matches!(
+        wetted_panels(&dangling, &Isometry3::identity(), 0.5),
+        Err(SeakeepingError::BadTriangle {
+            triangle: 5,
+            vertex: 99,
+            ..
+        })
+    ));
+    // Too few samples to fit: no poles, no panic.
+    assert!(soak_seakeeping::Kernel::fit(&[], 0.1, 4).poles.is_empty());
+    assert!(soak_seakeeping::Kernel::fit(&[1.0, 0.5], 0.1, 4).poles.is_empty());
     // Wholly out of the water: nothing wetted.
     let lifted = wetted_panels(&mesh, &Isometry3::translation(0.0, 2.0, 0.0), 0.5).unwrap();
     assert!(matches!(
