@@ -54,9 +54,10 @@ impl Radiation {
 }
 
 impl Sweep {
-    /// A(ω) and B(ω) of modes (i, j), interpolated (Catmull–Rom between
-    /// the computed frequencies; B = 0 and A = A(ω₁) below the first, A∞
-    /// and B = 0 beyond a last frequency where B has died out).
+    /// A(ω) and B(ω) of modes (i, j), interpolated: Catmull–Rom between
+    /// the computed frequencies; below the first, A held and B falling
+    /// linearly to 0 at ω = 0; beyond the last, A∞ and B = 0 (so the last
+    /// frequency should be one where B has died out).
     pub fn at(&self, i: usize, j: usize, omega: f64) -> (f64, f64) {
         let f = &self.frequencies;
         let n = f.len();
