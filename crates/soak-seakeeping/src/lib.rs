@@ -19,6 +19,24 @@
 //! few exponential states.
 //!
 //! Conventions are soak's: y up, the still water plane at y = 0, SI units.
+//!
+//! ```
+//! use nalgebra::{Isometry3, Point3};
+//! use soak_seakeeping::{Radiation, Surface, wetted_panels};
+//!
+//! # fn main() -> Result<(), soak_seakeeping::SeakeepingError> {
+//! // A box barge 4 × 1 × 2 m floating 0.5 m deep (its centre on the surface).
+//! let barge = soak_bake::builtin::cuboid(4.0, 1.0, 2.0);
+//! let panels = wetted_panels(&barge, &Isometry3::identity(), 0.7)?;
+//! let problem = Radiation::new(panels, Point3::origin(), 1025.0, 9.81)?;
+//! // Heave at ω = 2 rad/s: K = ω²/g.
+//! let c = problem.solve(Surface::Wavenumber(4.0 / 9.81))?;
+//! let (a, b) = (c.added_mass[(1, 1)], c.damping[(1, 1)]);
+//! assert!(a > 0.0 && b > 0.0);
+//! println!("heave: A = {a:.0} kg, B = {b:.0} kg/s");
+//! # Ok(())
+//! # }
+//! ```
 
 mod error;
 pub mod green;
