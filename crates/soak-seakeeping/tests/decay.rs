@@ -100,35 +100,29 @@ fn period_and_decay(x: &[f64], dt: f64) -> (f64, f64) {
     (period, ratios.iter().sum::<f64>() / ratios.len() as f64)
 }
 
-#[test]
-fn free_heave_decay_matches_the_frequency_domain() {
-    let sweep = sweep();
-    let (_, fit) = kernel(sweep);
-    // A sphere of radius 1 m and density 500 kg/m³ floats with its centre
-    // at the surface: mass ρ ⅔ π, waterplane stiffness ρ g π.
-    let mass = RHO * 2.0 / 3.0 * PI;
-    let stiffness = RHO * G * PI;
-    let a_inf = sweep.infinite[(1, 1)];
-    let x0 = 0.05;
+/// Free decay of one mode released from `x0`: Cummins' equation with the
+/// fitted kernel in the time domain against the release response of the
+/// frequency-domain coefficients; (period, peak ratio) of each.
+fn free_decay(sweep: &Sweep, mode: usize, inertia: f64, stiffness: f64, x0: f64) -> ((f64, f64), (f64, f64)) {
+    let times: Vec<f64> = (0..=250).map(|n| n as f64 * DT).collect();
+    let fit = Kernel::fit(&sweep.kernel(mode, mode, &times), DT, 10);
+    let a_inf = sweep.infinite[(mode, mode)];
     let (dt, steps) = (0.002, 6000);
 
-    // Time domain: Cummins' equation, the kernel's states advanced exactly
-    // for a velocity linear over each step, the motion by a
-    // velocity-Verlet-like predictor (the memory force lags by half a step
-    // at most: dt is small).
+    // Time domain: the kernel's states advanced exactly for a velocity
+    // linear over each step, the motion by a predictor–corrector
+    // (trapezoidal in the velocity).
     let mut memory = Memory::new(&fit);
     let (mut x, mut v) = (x0, 0.0);
     let mut time_domain = vec![x];
     for _ in 0..steps {
         let force = |x: f64, memory: &Memory| -stiffness * x - memory.force(&fit);
-        let a0 = force(x, &memory) / (mass + a_inf);
-        // Predict the step's end velocity, advance the memory with it, then
-        // correct (trapezoidal in the velocity).
+        let a0 = force(x, &memory) / (inertia + a_inf);
         let v_pred = v + dt * a0;
         let x_new = x + dt * 0.5 * (v + v_pred);
         let mut m_new = memory.clone();
         m_new.advance(&fit, v, v_pred, dt);
-        let a1 = force(x_new, &m_new) / (mass + a_inf);
+        let a1 = force(x_new, &m_new) / (inertia + a_inf);
         let v_new = v + dt * 0.5 * (a0 + a1);
         memory.advance(&fit, v, v_new, dt);
         x += dt * 0.5 * (v + v_new);
@@ -142,8 +136,8 @@ fn free_heave_decay_matches_the_frequency_domain() {
     let response: Vec<(f64, f64)> = (1..=30_000)
         .map(|n| {
             let omega = n as f64 * d_omega;
-            let (a, b) = sweep.at(1, 1, omega);
-            let h = 1.0 / Complex64::new(stiffness - omega * omega * (mass + a), -omega * b);
+            let (a, b) = sweep.at(mode, mode, omega);
+            let h = 1.0 / Complex64::new(stiffness - omega * omega * (inertia + a), -omega * b);
             (omega, h.re)
         })
         .collect();
@@ -162,8 +156,18 @@ fn free_heave_decay_matches_the_frequency_domain() {
         })
         .collect();
     let sampled: Vec<f64> = time_domain.iter().step_by(5).copied().collect();
-    let (period_t, decay_t) = period_and_decay(&sampled, 5.0 * dt);
-    let (period_f, decay_f) = period_and_decay(&frequency_domain, 5.0 * dt);
+    (
+        period_and_decay(&sampled, 5.0 * dt),
+        period_and_decay(&frequency_domain, 5.0 * dt),
+    )
+}
+
+#[test]
+fn free_heave_decay_matches_the_frequency_domain() {
+    // A sphere of radius 1 m and density 500 kg/m³ floats with its centre
+    // at the surface: mass ρ ⅔ π, waterplane stiffness ρ g π.
+    let ((period_t, decay_t), (period_f, decay_f)) =
+        free_decay(sweep(), 1, RHO * 2.0 / 3.0 * PI, RHO * G * PI, 0.05);
     eprintln!(
         "time domain: period {period_t:.3} s, peak ratio {decay_t:.3}; frequency domain: {period_f:.3} s, {decay_f:.3}"
     );
@@ -175,4 +179,36 @@ fn free_heave_decay_matches_the_frequency_domain() {
         (decay_t / decay_f - 1.0).abs() < 0.05,
         "decay {decay_t} vs {decay_f}"
     );
+}
+
+/// A box barge 4 m long (x), 2 m wide (z), 1 m high, floating half
+/// immersed (density 500 kg/m³, centre of gravity at the waterline):
+/// heave and roll (about its length) released from rest.
+#[test]
+fn a_box_barges_heave_and_roll_decay_match_the_frequency_domain() {
+    let barge = soak_bake::builtin::cuboid(4.0, 1.0, 2.0);
+    let panels = soak_seakeeping::wetted_panels(&barge, &nalgebra::Isometry3::identity(), 0.7).unwrap();
+    let problem = soak_seakeeping::Radiation::new(panels, nalgebra::Point3::origin(), RHO, G).unwrap();
+    let omegas: Vec<f64> = (1..=40).map(|n| 0.25 * n as f64).collect();
+    let sweep = problem.sweep(&omegas).unwrap();
+    let mass = RHO * 4.0;
+    // Heave: ρ g A_wp. Roll: ρ g V GM with GM = I_wp/V + z_B − z_G =
+    // (4·2³/12)/4 − 0.25; the box's own roll inertia m (1² + 2²)/12.
+    let heave = (mass, RHO * G * 8.0, 0.05);
+    let gm = (4.0 * 8.0 / 12.0) / 4.0 - 0.25;
+    let roll = (mass * 5.0 / 12.0, RHO * G * 4.0 * gm, 0.05);
+    for (name, mode, (inertia, stiffness, x0)) in [("heave", 1, heave), ("roll", 3, roll)] {
+        let ((period_t, decay_t), (period_f, decay_f)) = free_decay(&sweep, mode, inertia, stiffness, x0);
+        eprintln!(
+            "{name}: time domain {period_t:.3} s, peak ratio {decay_t:.3}; frequency domain {period_f:.3} s, {decay_f:.3}"
+        );
+        assert!(
+            (period_t / period_f - 1.0).abs() < 0.02,
+            "{name}: period {period_t} vs {period_f}"
+        );
+        assert!(
+            (decay_t / decay_f - 1.0).abs() < 0.05,
+            "{name}: decay {decay_t} vs {decay_f}"
+        );
+    }
 }
