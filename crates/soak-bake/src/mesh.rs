@@ -158,6 +158,40 @@ impl Mesh {
         meshopt::generate_position_remap_decoder(&ps)
     }
 
+    /// The same shape in about `target` triangles (at least 4), for work
+    /// whose cost grows with the triangle count faster than its accuracy
+    /// does (a panel method): seams welded by position, then simplified by
+    /// edge collapse (meshoptimizer's quadric simplifier) with a deviation of
+    /// at most a twentieth of the mesh's extent. No UVs; the caps of an
+    /// open mesh become ordinary triangles. A mesh already that small is
+    /// returned as it is (welded).
+    pub fn simplified(&self, target: usize) -> Mesh {
+        let indices: Vec<u32> = self.welded_triangles().into_iter().flatten().collect();
+        let ps: Vec<[f32; 3]> = self
+            .positions
+            .iter()
+            .map(|p| [p.x as f32, p.y as f32, p.z as f32])
+            .collect();
+        let kept = match meshopt::VertexDataAdapter::new(meshopt::typed_to_bytes(&ps), 12, 0) {
+            Ok(adapter) if self.triangles.len() > target => meshopt::simplify(
+                &indices,
+                &adapter,
+                3 * target.max(4),
+                0.05,
+                meshopt::SimplifyOptions::None,
+                None,
+            ),
+            _ => indices,
+        };
+        Mesh {
+            name: self.name.clone(),
+            positions: self.positions.clone(),
+            uvs: None,
+            triangles: kept.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+            openings: Vec::new(),
+        }
+    }
+
     /// Triangles with vertex indices welded by position (see [`Mesh::position_remap`]).
     pub fn welded_triangles(&self) -> Vec<[u32; 3]> {
         let remap = self.position_remap();

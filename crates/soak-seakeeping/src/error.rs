@@ -41,6 +41,15 @@ pub enum SeakeepingError {
         /// Its value.
         value: f64,
     },
+    /// The body is too heavy to float: it would displace more than its
+    /// whole volume.
+    #[error("the body sinks: floating would take {displaced} m³ of water, it encloses {volume} m³")]
+    Sinks {
+        /// The volume its mass would displace, m³.
+        displaced: f64,
+        /// Its whole volume, m³.
+        volume: f64,
+    },
     /// The panel system is singular at this frequency.
     #[error("the panel system is singular at ω = {omega} rad/s")]
     Singular {

@@ -41,6 +41,7 @@
 mod error;
 pub mod green;
 mod memory;
+mod model;
 mod panels;
 mod radiation;
 mod special;
@@ -48,5 +49,6 @@ mod special;
 pub use self::error::SeakeepingError;
 pub use self::green::Panel;
 pub use self::memory::{Kernel, Memory, Sweep};
+pub use self::model::{FloatingBody, Hydrostatics, RadiationModel, RadiationSettings, RadiationState};
 pub use self::panels::wetted_panels;
 pub use self::radiation::{Coefficients, Potentials, Radiation, Surface};

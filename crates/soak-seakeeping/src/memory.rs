@@ -232,8 +232,9 @@ fn residues(samples: &[f64], dt: f64, poles: &[Complex64]) -> Vec<Complex64> {
         .unwrap_or_else(|| vec![Complex64::new(0.0, 0.0); poles.len()])
 }
 
-/// The states of a [`Kernel`]'s convolution with a velocity history.
-#[derive(Clone, Debug, PartialEq)]
+/// The states of a [`Kernel`]'s convolution with a velocity history
+/// (saved and restored bit for bit with serde).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Memory {
     states: Vec<Complex64>,
 }
@@ -244,6 +245,16 @@ impl Memory {
         Memory {
             states: vec![Complex64::new(0.0, 0.0); kernel.poles.len()],
         }
+    }
+
+    /// How many states it holds (its kernel's poles).
+    pub fn len(&self) -> usize {
+        self.states.len()
+    }
+
+    /// Whether it holds none (a kernel without poles).
+    pub fn is_empty(&self) -> bool {
+        self.states.is_empty()
     }
 
     /// `∫₀ᵗ K(t − τ) ẋ(τ) dτ` now (the force's units).

@@ -55,6 +55,16 @@ pub fn wetted_panels(
                 kept.push(crossing);
             }
         }
+        // A sliver the plane shaves off a triangle lying along it (a ring
+        // of vertices a rounding error below the water) has no area to
+        // carry and no plane to project on: dropped.
+        let whole = (corners[1] - corners[0]).cross(&(corners[2] - corners[0])).norm();
+        let left: f64 = (1..kept.len().saturating_sub(1))
+            .map(|k| (kept[k] - kept[0]).cross(&(kept[k + 1] - kept[0])).norm())
+            .sum();
+        if left <= 1e-6 * whole {
+            continue;
+        }
         match kept.len() {
             3 => split(&[kept[0], kept[1], kept[2]], max_size, &mut panels),
             4 => {

@@ -96,7 +96,7 @@ impl Radiation {
                 .iter()
                 .map(|v| v.y)
                 .fold(f64::NEG_INFINITY, f64::max);
-            if highest.is_nan() || highest > 1e-9 * panel.size().max(1.0) {
+            if highest.is_nan() || highest > 1e-6 * panel.size().max(1.0) {
                 return Err(SeakeepingError::PanelAboveWater {
                     panel: index,
                     height: highest,

@@ -1,0 +1,557 @@
+//! A floating body's radiation baked for the time domain
+//! ([`RadiationModel`]): where it floats at rest, its hydrostatic
+//! stiffness, its added mass and damping over frequencies, A∞ and the
+//! fitted retardation kernels; and a body's running memory of its motion
+//! ([`RadiationState`]).
+
+use nalgebra::{Isometry3, Matrix3, Matrix6, Point3, Translation3, UnitQuaternion, Vector3, Vector6};
+use num_complex::Complex64;
+use serde::{Deserialize, Serialize};
+use soak_bake::Mesh;
+
+use crate::error::SeakeepingError;
+use crate::green::Panel;
+use crate::memory::{Kernel, Memory, Sweep};
+use crate::panels::wetted_panels;
+use crate::radiation::Radiation;
+
+/// A body as it floats: its mesh (object frame), mass, centre of mass and
+/// inertia, and how it is turned at rest.
+#[derive(Clone, Copy, Debug)]
+pub struct FloatingBody<'a> {
+    /// The closed mesh, object frame, m.
+    pub mesh: &'a Mesh,
+    /// Mass, kg (with whatever it carries).
+    pub mass: f64,
+    /// Centre of mass, object frame, m.
+    pub center_of_mass: Point3<f64>,
+    /// Inertia about the centre of mass, object axes, kg·m².
+    pub inertia: Matrix3<f64>,
+    /// The body's orientation at rest (object axes → the water's; y up).
+    /// The radiation force is taken in the body's axes turned by it, so it
+    /// turns with the body.
+    pub rotation: UnitQuaternion<f64>,
+}
+
+/// How finely a [`RadiationModel`] is baked.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RadiationSettings {
+    /// Fluid density, kg/m³ (> 0). Default 1000.
+    pub density: f64,
+    /// Gravity, m/s² (> 0). Default 9.80665 (standard gravity, as
+    /// soak's `Water::calm`).
+    pub gravity: f64,
+    /// About how many panels the wetted surface is cut into (≥ 8): the
+    /// solve's cost grows as its square per frequency. A mesh with more
+    /// wetted triangles than that is simplified first
+    /// ([`Mesh::simplified`](soak_bake::Mesh::simplified)). Default 300, which puts a
+    /// hemisphere's heave and surge within 2 % of the published
+    /// coefficients.
+    pub panels: usize,
+    /// How many frequencies the sweep solves (≥ 8), every `0.08 √(g/L)`
+    /// from `0.24 √(g/L)`, `L` the radius of a disc of the water-plane's
+    /// area (at the default 40, to `3.36 √(g/L)`: KL ≈ 11, where a
+    /// surface body's damping has died out). Default 40.
+    pub frequencies: usize,
+    /// At most how many poles each retardation kernel is fitted with
+    /// (≥ 1). Default 10.
+    pub poles: usize,
+}
+
+impl Default for RadiationSettings {
+    fn default() -> Self {
+        Self {
+            density: 1000.0,
+            gravity: 9.80665,
+            panels: 300,
+            frequencies: 40,
+            poles: 10,
+        }
+    }
+}
+
+/// The water-plane and the volume under it of a body floating at rest,
+/// and the stiffness they give (the body's frame at rest: y up, the centre
+/// of mass at x = z = 0).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Hydrostatics {
+    /// Displaced volume, m³.
+    pub volume: f64,
+    /// Centre of buoyancy, m.
+    pub center_of_buoyancy: Point3<f64>,
+    /// Height of the centre of mass above the still water plane, m.
+    pub center_of_mass_height: f64,
+    /// Water-plane area, m².
+    pub waterplane_area: f64,
+    /// Water-plane second moments about x = 0 and z = 0, `∫ x² dA` and
+    /// `∫ z² dA`, m⁴.
+    pub waterplane_moments: [f64; 2],
+    /// The restoring stiffness of heave (N/m) and of the rotations about
+    /// x and z (N·m/rad), about the centre of mass.
+    pub stiffness: Matrix6<f64>,
+}
+
+/// A floating body's radiation for the time domain: its rest pose and
+/// hydrostatics, A(ω) and B(ω) over frequencies, A∞ and one fitted
+/// retardation kernel per mode. Modes are surge x, heave y, sway z and
+/// the rotations about x, y (yaw) and z, about the centre of mass, in the
+/// body's axes at rest ([`FloatingBody::rotation`]). The cross-couplings
+/// between modes (surge–pitch, sway–roll) are computed and reported but
+/// left out of the time domain: each mode radiates on its own.
+#[derive(Clone, Debug)]
+pub struct RadiationModel {
+    rotation: UnitQuaternion<f64>,
+    center_of_mass: Point3<f64>,
+    mass: f64,
+    inertia: Matrix3<f64>,
+    hydrostatics: Hydrostatics,
+    sweep: Sweep,
+    kernels: Vec<Kernel>,
+    kernel_step: f64,
+    length: f64,
+    panels: usize,
+    density: f64,
+    gravity: f64,
+}
+
+impl RadiationModel {
+    /// Floats `body` at rest in still water (the draft where it displaces
+    /// its mass, by bisection on the exact volume of the clipped mesh),
+    /// cuts its wetted surface into about `settings.panels` panels, and
+    /// solves the radiation problem at `settings.frequencies` frequencies
+    /// and at infinite frequency; fits each mode's retardation kernel.
+    ///
+    /// # Errors
+    /// Settings or a body out of range ([`SeakeepingError::BadParameter`]),
+    /// a mesh that is not finite or names missing vertices, a body too
+    /// heavy to float ([`SeakeepingError::Sinks`]), a singular solve.
+    pub fn bake(body: &FloatingBody<'_>, settings: &RadiationSettings) -> Result<Self, SeakeepingError> {
+        let positive = [
+            ("density", settings.density),
+            ("gravity", settings.gravity),
+            ("mass", body.mass),
+        ];
+        for (name, value) in positive {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(SeakeepingError::BadParameter { name, value });
+            }
+        }
+        for (name, value, least) in [
+            ("panels", settings.panels, 8),
+            ("frequencies", settings.frequencies, 8),
+            ("poles", settings.poles, 1),
+        ] {
+            if value < least {
+                return Err(SeakeepingError::BadParameter {
+                    name,
+                    value: value as f64,
+                });
+            }
+        }
+        if !body.center_of_mass.coords.iter().all(|c| c.is_finite())
+            || !body.inertia.iter().all(|c| c.is_finite())
+            || !body.rotation.coords.iter().all(|c| c.is_finite())
+        {
+            return Err(SeakeepingError::BadParameter {
+                name: "center_of_mass, inertia or rotation",
+                value: f64::NAN,
+            });
+        }
+        let (g, rho) = (settings.gravity, settings.density);
+        let target = body.mass / rho;
+        let height = float_height(body, target)?;
+        let pose = rest_pose(body, height);
+        let mut coarse = wetted_panels(body.mesh, &pose, 1e9)?;
+        // A mesh finer than the panels asked for is simplified first (a
+        // deviation of at most 5 % of its extent): its wetted triangles
+        // about the target.
+        let simplified;
+        let mut mesh = body.mesh;
+        if coarse.len() > settings.panels * 3 / 2 {
+            let share = settings.panels as f64 / coarse.len() as f64;
+            simplified = body
+                .mesh
+                .simplified(((body.mesh.triangles.len() as f64 * share) as usize).max(8));
+            mesh = &simplified;
+            coarse = wetted_panels(mesh, &pose, 1e9)?;
+        }
+        let wetted: f64 = coarse.iter().map(|p| p.area).sum();
+        // Subdivision quarters a panel: start from the size that would give
+        // the target count of right triangles, grow it until at most 1.5×.
+        let largest = coarse
+            .iter()
+            .flat_map(|p| {
+                let v = &p.vertices;
+                (0..v.len()).map(move |k| (v[(k + 1) % v.len()] - v[k]).norm())
+            })
+            .fold(0.0, f64::max);
+        let mut size = (2.0 * wetted / settings.panels as f64).sqrt().min(largest);
+        let mut panels = wetted_panels(mesh, &pose, size)?;
+        while panels.len() > settings.panels * 3 / 2 && size < largest {
+            size *= 1.25;
+            panels = wetted_panels(mesh, &pose, size)?;
+        }
+        let hydrostatics = hydrostatics(&panels, height, rho, g);
+        let length = (hydrostatics.waterplane_area / std::f64::consts::PI)
+            .sqrt()
+            .max((hydrostatics.volume).cbrt() * 0.5);
+        let scale = (g / length).sqrt();
+        // From KL ≈ 0.06 (below, B falls to 0 and A is held: see
+        // `Sweep::at`), every 0.08 √(g/L).
+        let omegas: Vec<f64> = (3..settings.frequencies + 3)
+            .map(|n| 0.08 * n as f64 * scale)
+            .collect();
+        let count = panels.len();
+        let problem = Radiation::new(panels, Point3::new(0.0, height, 0.0), rho, g)?;
+        let sweep = problem.sweep(&omegas)?;
+        // The kernels: 250 samples over about 30 √(L/g).
+        let kernel_step = 0.125 / scale;
+        let times: Vec<f64> = (0..=250).map(|n| n as f64 * kernel_step).collect();
+        let kernels = (0..6)
+            .map(|mode| {
+                let samples = sweep.kernel(mode, mode, &times);
+                let peak = samples.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                // A mode that radiates nothing (a sphere's yaw) gets no
+                // states: below 1e-4 of a unit scale for its block.
+                let unit =
+                    rho * hydrostatics.volume * scale * scale * length.powi(if mode < 3 { 0 } else { 2 });
+                if peak < 1e-4 * unit {
+                    Kernel {
+                        poles: Vec::new(),
+                        residues: Vec::new(),
+                    }
+                } else {
+                    Kernel::fit(&samples, kernel_step, settings.poles)
+                }
+            })
+            .collect();
+        let turn = body.rotation.to_rotation_matrix().into_inner();
+        Ok(Self {
+            rotation: body.rotation,
+            center_of_mass: body.center_of_mass,
+            mass: body.mass,
+            inertia: turn * body.inertia * turn.transpose(),
+            hydrostatics,
+            sweep,
+            kernels,
+            kernel_step,
+            length,
+            panels: count,
+            density: rho,
+            gravity: g,
+        })
+    }
+
+    /// The body's orientation at rest (object axes → the water's).
+    pub fn rotation(&self) -> &UnitQuaternion<f64> {
+        &self.rotation
+    }
+    /// The centre of mass it was baked with, object frame, m.
+    pub fn center_of_mass(&self) -> &Point3<f64> {
+        &self.center_of_mass
+    }
+    /// The mass it was baked with, kg.
+    pub fn mass(&self) -> f64 {
+        self.mass
+    }
+    /// The inertia about the centre of mass, axes at rest, kg·m².
+    pub fn inertia(&self) -> &Matrix3<f64> {
+        &self.inertia
+    }
+    /// The body at rest: volume, water-plane, stiffness.
+    pub fn hydrostatics(&self) -> &Hydrostatics {
+        &self.hydrostatics
+    }
+    /// A(ω), B(ω) at each frequency solved, and A∞.
+    pub fn sweep(&self) -> &Sweep {
+        &self.sweep
+    }
+    /// The infinite-frequency added mass, 6×6 (kg, kg·m, kg·m² by block).
+    pub fn infinite(&self) -> &Matrix6<f64> {
+        &self.sweep.infinite
+    }
+    /// Mode `mode`'s fitted retardation kernel (no poles: it radiates nothing).
+    pub fn kernel(&self, mode: usize) -> &Kernel {
+        &self.kernels[mode]
+    }
+    /// The kernels' sampling step, s.
+    pub fn kernel_step(&self) -> f64 {
+        self.kernel_step
+    }
+    /// The length the frequencies are scaled by, m: the radius of a disc
+    /// of the water-plane's area.
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+    /// How many panels the wetted surface was cut into.
+    pub fn panel_count(&self) -> usize {
+        self.panels
+    }
+    /// Fluid density, kg/m³.
+    pub fn density(&self) -> f64 {
+        self.density
+    }
+    /// Gravity, m/s².
+    pub fn gravity(&self) -> f64 {
+        self.gravity
+    }
+    /// The states the time domain carries per body: the kernels' poles.
+    pub fn state_count(&self) -> usize {
+        self.kernels.iter().map(|k| k.poles.len()).sum()
+    }
+
+    /// The mass (or inertia) of `mode` in its own direction, kg or kg·m²:
+    /// the body's, axes at rest.
+    pub fn mode_inertia(&self, mode: usize) -> f64 {
+        if mode < 3 {
+            self.mass
+        } else {
+            self.inertia[(mode - 3, mode - 3)]
+        }
+    }
+
+    /// The uncoupled motion of `mode` released from `x0` (m or rad) at
+    /// rest, at each of `times` (s), from the frequency-domain
+    /// coefficients: `x(t) = x0 (1 − C s(t))`, `s` the response to a unit
+    /// step force, `s(t) = (2/π) ∫₀^∞ Re H(ω) sin ωt / ω dω` with
+    /// `H = 1/(C − ω² (M + A(ω)) − i ω B(ω))`. `None` for a mode without
+    /// stiffness (surge, sway, yaw).
+    pub fn release(&self, mode: usize, x0: f64, times: &[f64]) -> Option<Vec<f64>> {
+        let stiffness = self.hydrostatics.stiffness[(mode, mode)];
+        if stiffness <= 0.0 {
+            return None;
+        }
+        let inertia = self.mode_inertia(mode);
+        let natural = (stiffness / (inertia + self.sweep.infinite[(mode, mode)])).sqrt();
+        let (top, steps) = (12.0 * natural, 30_000);
+        let d_omega = top / steps as f64;
+        let response: Vec<(f64, f64)> = (1..=steps)
+            .map(|n| {
+                let omega = n as f64 * d_omega;
+                let (a, b) = self.sweep.at(mode, mode, omega);
+                let h = 1.0 / Complex64::new(stiffness - omega * omega * (inertia + a), -omega * b);
+                (omega, h.re)
+            })
+            .collect();
+        Some(
+            times
+                .iter()
+                .map(|&t| {
+                    let s: f64 = response
+                        .iter()
+                        .map(|&(w, re)| re * (w * t).sin() / w)
+                        .sum::<f64>()
+                        * d_omega
+                        * 2.0
+                        / std::f64::consts::PI;
+                    x0 * (1.0 - stiffness * s)
+                })
+                .collect(),
+        )
+    }
+
+    /// A∞'s translational block in the water's axes for a body turned by
+    /// `rotation` (object → water), kg, and its rotational block in object
+    /// axes, kg·m² (the cross blocks are left out, see [`RadiationModel`]).
+    pub fn infinite_blocks(&self, rotation: &UnitQuaternion<f64>) -> (Matrix3<f64>, Matrix3<f64>) {
+        let a = &self.sweep.infinite;
+        let linear: Matrix3<f64> = a.fixed_view::<3, 3>(0, 0).into();
+        let angular: Matrix3<f64> = a.fixed_view::<3, 3>(3, 3).into();
+        let frame = (rotation * self.rotation.inverse())
+            .to_rotation_matrix()
+            .into_inner();
+        let rest = self.rotation.to_rotation_matrix().into_inner();
+        (
+            frame * linear * frame.transpose(),
+            rest.transpose() * angular * rest,
+        )
+    }
+}
+
+/// The pose of `body` at rest with its centre of mass at (0, `height`, 0).
+fn rest_pose(body: &FloatingBody<'_>, height: f64) -> Isometry3<f64> {
+    let com = body.rotation * body.center_of_mass.coords;
+    Isometry3::from_parts(
+        Translation3::from(Vector3::new(-com.x, height - com.y, -com.z)),
+        body.rotation,
+    )
+}
+
+/// `∫ y n_y dS` over `panels`: the volume under y = 0 they close with
+/// the still water plane (exact: y is linear on a flat panel).
+fn displaced(panels: &[Panel]) -> f64 {
+    panels.iter().map(|p| p.area * p.normal.y * p.centroid.y).sum()
+}
+
+/// The height of the centre of mass at which `body` displaces `target`
+/// m³, by bisection.
+fn float_height(body: &FloatingBody<'_>, target: f64) -> Result<f64, SeakeepingError> {
+    let com = body.rotation * body.center_of_mass.coords;
+    let reach = body
+        .mesh
+        .positions
+        .iter()
+        .map(|p| (body.rotation * p.coords - com).norm())
+        .fold(0.0f64, f64::max);
+    if !reach.is_finite() || reach <= 0.0 {
+        return Err(SeakeepingError::BadParameter {
+            name: "mesh extent",
+            value: reach,
+        });
+    }
+    let volume = |height: f64| -> Result<f64, SeakeepingError> {
+        match wetted_panels(body.mesh, &rest_pose(body, height), 1e9) {
+            Ok(panels) => Ok(displaced(&panels)),
+            Err(SeakeepingError::NoWettedSurface) => Ok(0.0),
+            Err(e) => Err(e),
+        }
+    };
+    let (mut low, mut high) = (-1.01 * reach, 1.01 * reach);
+    let whole = volume(low)?;
+    if target >= whole {
+        return Err(SeakeepingError::Sinks {
+            displaced: target,
+            volume: whole,
+        });
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (low + high);
+        if volume(mid)? > target {
+            low = mid;
+        } else {
+            high = mid;
+        }
+    }
+    Ok(0.5 * (low + high))
+}
+
+/// Exact integral over a flat polygon of a quadratic `f`: fan triangles,
+/// each by its edge midpoints.
+fn quadratic(panel: &Panel, f: impl Fn(&Point3<f64>) -> f64) -> f64 {
+    let v = &panel.vertices;
+    let mut sum = 0.0;
+    for k in 1..v.len().saturating_sub(1) {
+        let (a, b, c) = (v[0], v[k], v[k + 1]);
+        let area = 0.5 * (b - a).cross(&(c - a)).norm();
+        let mid = |p: Point3<f64>, q: Point3<f64>| Point3::from((p.coords + q.coords) * 0.5);
+        sum += area / 3.0 * (f(&mid(a, b)) + f(&mid(b, c)) + f(&mid(c, a)));
+    }
+    sum
+}
+
+fn hydrostatics(panels: &[Panel], height: f64, rho: f64, g: f64) -> Hydrostatics {
+    let volume = displaced(panels);
+    // ∫_V x dV = ∮ x y n_y dS, ∫_V y dV = ∮ ½ y² n_y dS; the lid at y = 0
+    // adds nothing to either.
+    let moment = |f: &dyn Fn(&Point3<f64>) -> f64| -> f64 {
+        panels.iter().map(|p| p.normal.y * quadratic(p, f)).sum()
+    };
+    let bx = moment(&|p| p.x * p.y) / volume;
+    let by = moment(&|p| 0.5 * p.y * p.y) / volume;
+    let bz = moment(&|p| p.z * p.y) / volume;
+    // The lid's integrals: ∮ f n_y dS = 0 for f independent of y.
+    let area = -panels.iter().map(|p| p.area * p.normal.y).sum::<f64>();
+    let xx = -moment(&|p| p.x * p.x);
+    let zz = -moment(&|p| p.z * p.z);
+    let mut stiffness = Matrix6::zeros();
+    stiffness[(1, 1)] = rho * g * area;
+    // Rotation about x tilts z into y, about z tilts x: the water-plane's
+    // moment, plus the displaced volume's lever between buoyancy and
+    // weight (the two equal at rest: m g = ρ g V).
+    let lever = volume * (by - height);
+    stiffness[(3, 3)] = rho * g * (zz + lever);
+    stiffness[(5, 5)] = rho * g * (xx + lever);
+    Hydrostatics {
+        volume,
+        center_of_buoyancy: Point3::new(bx, by, bz),
+        center_of_mass_height: height,
+        waterplane_area: area,
+        waterplane_moments: [xx, zz],
+        stiffness,
+    }
+}
+
+/// A body's memory of its motion for its [`RadiationModel`]: one state
+/// per kernel pole, and the last velocity recorded and when. Saved and
+/// restored bit for bit with serde.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RadiationState {
+    memory: Vec<Memory>,
+    /// The last velocity, axes at rest (m/s and rad/s), and when, s.
+    last: Option<([f64; 6], f64)>,
+}
+
+impl RadiationState {
+    /// At rest, no history.
+    pub fn new(model: &RadiationModel) -> Self {
+        Self {
+            memory: model.kernels.iter().map(Memory::new).collect(),
+            last: None,
+        }
+    }
+
+    /// Whether it fits `model` (as many states per mode).
+    pub fn fits(&self, model: &RadiationModel) -> bool {
+        self.memory.len() == model.kernels.len()
+            && self
+                .memory
+                .iter()
+                .zip(&model.kernels)
+                .all(|(m, k)| m.len() == k.poles.len())
+    }
+
+    /// The body's velocity in the axes at rest turned with the body:
+    /// `v` (m/s, of the centre of mass) and `w` (rad/s), world, for a body
+    /// turned by `rotation` (object → world).
+    pub fn local_velocity(
+        model: &RadiationModel,
+        rotation: &UnitQuaternion<f64>,
+        v: &Vector3<f64>,
+        w: &Vector3<f64>,
+    ) -> [f64; 6] {
+        let frame = rotation * model.rotation.inverse();
+        let (v, w) = (frame.inverse() * v, frame.inverse() * w);
+        [v.x, v.y, v.z, w.x, w.y, w.z]
+    }
+
+    /// Takes the body's velocity now (axes at rest, [`Self::local_velocity`])
+    /// at `time` (s): the memory advances from the last time exactly for a
+    /// velocity linear in between. The first call only records it; a time
+    /// not after the last replaces the last velocity without advancing. A
+    /// velocity or time that is not finite is refused (nothing changes).
+    pub fn record(&mut self, model: &RadiationModel, velocity: [f64; 6], time: f64) {
+        if !(velocity.iter().all(|v| v.is_finite()) && time.is_finite()) {
+            return;
+        }
+        if let Some((last, then)) = self.last
+            && time > then
+        {
+            for (mode, memory) in self.memory.iter_mut().enumerate() {
+                memory.advance(&model.kernels[mode], last[mode], velocity[mode], time - then);
+            }
+        }
+        self.last = Some((velocity, time));
+    }
+
+    /// The memory force now, `−∫ K(t − τ) ẋ(τ) dτ` per mode (N, N·m),
+    /// axes at rest.
+    pub fn force(&self, model: &RadiationModel) -> Vector6<f64> {
+        Vector6::from_fn(|mode, _| -self.memory[mode].force(&model.kernels[mode]))
+    }
+
+    /// The memory force as a force and torque in the world (N, N·m about
+    /// the centre of mass) for a body turned by `rotation`.
+    pub fn world_force(
+        &self,
+        model: &RadiationModel,
+        rotation: &UnitQuaternion<f64>,
+    ) -> (Vector3<f64>, Vector3<f64>) {
+        let f = self.force(model);
+        let frame = rotation * model.rotation.inverse();
+        (
+            frame * Vector3::new(f[0], f[1], f[2]),
+            frame * Vector3::new(f[3], f[4], f[5]),
+        )
+    }
+}

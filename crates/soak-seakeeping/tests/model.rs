@@ -1,0 +1,157 @@
+//! A body baked for the time domain: where it floats, its hydrostatics
+//! against the geometry's, its release response against linear theory.
+
+use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
+use soak_bake::builtin;
+use soak_seakeeping::{FloatingBody, RadiationModel, RadiationSettings, RadiationState, SeakeepingError};
+use std::f64::consts::PI;
+
+/// Period (s) and mean ratio of the first successive positive peaks.
+fn period_and_decay(x: &[f64], dt: f64) -> (f64, f64) {
+    let crossings: Vec<f64> = x
+        .windows(2)
+        .enumerate()
+        .filter(|(_, w)| w[0] > 0.0 && w[1] <= 0.0)
+        .map(|(n, w)| (n as f64 + w[0] / (w[0] - w[1])) * dt)
+        .collect();
+    let period = (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f64;
+    let peaks: Vec<f64> = x
+        .windows(3)
+        .filter(|w| w[1] > w[0] && w[1] >= w[2] && w[1] > 0.0)
+        .map(|w| w[1])
+        .collect();
+    let ratios: Vec<f64> = peaks.windows(2).take(2).map(|p| p[1] / p[0]).collect();
+    (period, ratios.iter().sum::<f64>() / ratios.len() as f64)
+}
+
+/// The enclosed volume of a closed mesh, m³ (divergence theorem).
+fn volume(mesh: &soak_bake::Mesh) -> f64 {
+    mesh.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize].coords);
+            a.dot(&b.cross(&c)) / 6.0
+        })
+        .sum()
+}
+
+/// A sphere of radius 1 m faceted 24 × 12 (its equator a ring of
+/// vertices), half as dense as the water.
+fn sphere_model() -> RadiationModel {
+    let mesh = builtin::sphere(1.0, 24, 12);
+    let mass = 500.0 * volume(&mesh);
+    let body = FloatingBody {
+        mesh: &mesh,
+        mass,
+        center_of_mass: Point3::origin(),
+        inertia: Matrix3::identity() * (0.4 * mass),
+        rotation: UnitQuaternion::identity(),
+    };
+    RadiationModel::bake(&body, &RadiationSettings::default()).unwrap()
+}
+
+#[test]
+fn a_half_dense_sphere_floats_at_its_centre_and_heaves_as_the_hemisphere() {
+    let start = std::time::Instant::now();
+    let model = sphere_model();
+    let h = model.hydrostatics();
+    eprintln!(
+        "{} panels, {} states, baked in {:.2} s; V {:.4}, A_wp {:.4}, height {:.2e}",
+        model.panel_count(),
+        model.state_count(),
+        start.elapsed().as_secs_f64(),
+        h.volume,
+        h.waterplane_area,
+        h.center_of_mass_height
+    );
+    // Half as dense: it floats with its equator on the water, and its
+    // water-plane is the regular 24-gon of circumradius 1.
+    let polygon = 12.0 * (2.0 * PI / 24.0).sin();
+    assert!(
+        h.center_of_mass_height.abs() < 1e-9,
+        "{}",
+        h.center_of_mass_height
+    );
+    assert!(
+        (h.waterplane_area / polygon - 1.0).abs() < 1e-9,
+        "{}",
+        h.waterplane_area
+    );
+    assert!((h.volume / (0.5 * volume(&builtin::sphere(1.0, 24, 12))) - 1.0).abs() < 1e-9);
+    // The centre of buoyancy of a hemisphere, 3R/8 below the plane (the
+    // facets move it by a little).
+    assert!(
+        (h.center_of_buoyancy.y + 0.375).abs() < 0.005,
+        "{}",
+        h.center_of_buoyancy
+    );
+    assert!(h.center_of_buoyancy.x.abs() < 1e-9 && h.center_of_buoyancy.z.abs() < 1e-9);
+    assert!((h.stiffness[(1, 1)] / (1000.0 * 9.81 * polygon) - 1.0).abs() < 1e-9);
+    // A sphere about its centre: buoyancy through it whatever its tilt, no
+    // rotational stiffness, ρ g (I_wp + V (y_b − y_g)) = ρ g (π/4 − π/4) = 0
+    // (to within the facets').
+    assert!(
+        h.stiffness[(3, 3)].abs() < 0.03 * 1000.0 * 9.81,
+        "{}",
+        h.stiffness[(3, 3)]
+    );
+    // The release of heave: linear theory's hemisphere, about 1.95 s and
+    // a peak ratio of about 0.55 (the frequency-domain decay of the
+    // published coefficients, see tests/decay.rs).
+    let dt = 0.01;
+    let times: Vec<f64> = (0..1200).map(|n| n as f64 * dt).collect();
+    let x = model.release(1, 0.05, &times).unwrap();
+    let (period, ratio) = period_and_decay(&x, dt);
+    eprintln!("heave release: period {period:.3} s, peak ratio {ratio:.3}");
+    assert!((period - 1.955).abs() < 0.03, "{period}");
+    assert!((ratio - 0.554).abs() < 0.03, "{ratio}");
+    // Yaw radiates nothing: no states.
+    assert!(model.kernel(4).poles.is_empty());
+    assert!(model.release(0, 0.1, &times).is_none());
+}
+
+#[test]
+fn the_memory_turns_with_the_body_and_refuses_what_is_not_finite() {
+    let model = sphere_model();
+    let mut state = RadiationState::new(&model);
+    assert!(state.fits(&model));
+    // Heave up at 0.1 m/s for a while: the memory pushes back down.
+    for n in 0..50 {
+        state.record(&model, [0.0, 0.1, 0.0, 0.0, 0.0, 0.0], n as f64 * 0.01);
+    }
+    let f = state.force(&model);
+    assert!(f[1] < 0.0, "{f}");
+    assert!(f[0].abs() < 1e-9 * f[1].abs());
+    let before = state.clone();
+    state.record(&model, [f64::NAN, 0.0, 0.0, 0.0, 0.0, 0.0], 0.5);
+    state.record(&model, [0.0; 6], f64::INFINITY);
+    assert_eq!(state, before);
+    // Turned upside down, the body's heave force points the other way in the world.
+    let flipped = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), PI);
+    let (up, _) = state.world_force(&model, &UnitQuaternion::identity());
+    let (down, _) = state.world_force(&model, &flipped);
+    assert!((up + down).norm() < 1e-9 * up.norm());
+    // Saved and restored bit for bit.
+    let text = serde_json::to_string(&state).unwrap();
+    let back: RadiationState = serde_json::from_str(&text).unwrap();
+    assert_eq!(back, state);
+}
+
+#[test]
+fn a_body_too_heavy_to_float_is_refused() {
+    let mesh = builtin::cuboid(1.0, 1.0, 1.0);
+    let body = FloatingBody {
+        mesh: &mesh,
+        mass: 1100.0,
+        center_of_mass: Point3::origin(),
+        inertia: Matrix3::identity() * 180.0,
+        rotation: UnitQuaternion::identity(),
+    };
+    let result = RadiationModel::bake(&body, &RadiationSettings::default());
+    assert!(matches!(result, Err(SeakeepingError::Sinks { .. })), "{result:?}");
+    let light = FloatingBody { mass: -1.0, ..body };
+    assert!(matches!(
+        RadiationModel::bake(&light, &RadiationSettings::default()),
+        Err(SeakeepingError::BadParameter { name: "mass", .. })
+    ));
+}
