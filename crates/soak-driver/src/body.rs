@@ -50,8 +50,20 @@ pub struct SoakBody<H> {
     pub(crate) flood: FloodSettings,
     /// Slamming's state, with slamming only.
     pub(crate) slam: Option<Box<SlamState>>,
+    /// Radiation's memory and last force, with radiation only.
+    pub(crate) radiation: Option<Box<RadiationRun>>,
     /// No longer driven ([`Driver::retire`](crate::Driver::retire)).
     pub(crate) retired: bool,
+}
+
+/// What radiation keeps between steps: the memory of the body's motion
+/// and the last step's memory force.
+#[derive(Clone, Debug)]
+pub(crate) struct RadiationRun {
+    pub(crate) state: soak_seakeeping::RadiationState,
+    /// The memory force of the last step, world (N, N·m about the centre
+    /// of mass), scaled by the share under water.
+    pub(crate) force: Wrench,
 }
 
 /// What slamming keeps between steps: plain values, no allocation.
@@ -161,6 +173,15 @@ impl<H> SoakBody<H> {
     pub fn slamming(&self) -> Option<&SlamReport> {
         self.slam.as_ref().map(|s| &s.report)
     }
+    /// The radiation memory's force of the last step, world frame (N and
+    /// N·m about the centre of mass): `−∫ K(t − τ) ẋ(τ) dτ`, scaled by the
+    /// share of the rest displacement under water; the A∞ part is in
+    /// [`SoakBody::added_mass_force`]. Both are already part of
+    /// [`SoakBody::applied`]. `None` without radiation
+    /// ([`Effects::radiation`](crate::Effects::radiation)).
+    pub fn radiation_force(&self) -> Option<&Wrench> {
+        self.radiation.as_ref().map(|r| &r.force)
+    }
     /// Its volume under water at the last step, m³ (0 when dry or skipped
     /// above the crests).
     pub fn submerged_volume(&self) -> f64 {
@@ -233,6 +254,7 @@ impl<H> SoakBody<H> {
         self.effects = Effects::default();
         self.tiled = None;
         self.slam = None;
+        self.radiation = None;
         self.retired = true;
     }
 

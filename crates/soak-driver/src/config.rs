@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
 use soak_graph::Flooding;
 use soak_hydro::{AddedMass, BuoyancyMode, Drag, DragTexels, MassModel};
+use soak_seakeeping::RadiationModel;
 use soak_wet::Wetting;
 
 /// The effects a body takes part in, each `None` when off: buoyancy and
@@ -68,6 +69,26 @@ pub struct Effects {
     /// mass of its water-plane growing as it goes under (see [`Slamming`]).
     /// `None`: none, and nothing is summed for it.
     pub slamming: Option<Slamming>,
+    /// Radiation: the waves a floating body makes as it moves carry its
+    /// energy away, and the water it sets moving depends on how fast it
+    /// moves ([`RadiationModel`], baked once per mesh and mass and shared
+    /// by the bodies of that mesh: `Arc`). Each step the body is given
+    /// Cummins' radiation force, `−A∞ ẍ − ∫ K(t − τ) ẋ(τ) dτ` in its
+    /// axes at rest turned with it: A∞ counted implicitly like
+    /// [`Effects::added_mass`] (which it supersedes: with both, A∞ alone is
+    /// counted), the memory from the model's fitted kernel states. Both
+    /// scale with the share of the body's rest displacement under water
+    /// (none in the air, all of it at or below its rest draft).
+    ///
+    /// This is linear potential flow on top of the nonlinear texel
+    /// hydrostatics and Froude–Krylov forces (the usual "weakly nonlinear"
+    /// time-domain model): exact for small motions about the rest draft,
+    /// an approximation for large ones (a body leaving the water, heeling
+    /// far, capsizing), where the coefficients of the rest draft no longer
+    /// hold. A body with radiation does not press the interactive waves
+    /// ([`Driver::with_waves`](crate::Driver::with_waves)): the waves it
+    /// makes are its memory's; it still floats on the waves the others make.
+    pub radiation: Option<Arc<RadiationModel>>,
 }
 
 /// Slamming, von Kármán's momentum theory in three dimensions: as a body
@@ -265,6 +286,56 @@ impl Effects {
     /// ```
     pub fn with_added_mass(mut self, added: AddedMass) -> Self {
         self.added_mass = Some(Box::new(added));
+        self
+    }
+
+    /// The same effects with radiation ([`Effects::radiation`]): `model`
+    /// baked from the body's mesh with its mass and rest orientation.
+    ///
+    /// # Example
+    /// ```
+    /// use std::sync::Arc;
+    /// use nalgebra::{Isometry3, UnitQuaternion};
+    /// use soak_bake::{Atlas, BakeOptions, builtin};
+    /// use soak_driver::{BodyDesc, Driver, Effects, FreeBodies, StepParams};
+    /// use soak_hydro::{MassModel, Water};
+    /// use soak_seakeeping::{FloatingBody, RadiationModel, RadiationSettings};
+    ///
+    /// // A buoy of half the water's density, dropped 5 cm below where it floats.
+    /// let mesh = builtin::sphere(0.5, 24, 12);
+    /// let atlas: Arc<Atlas> = Atlas::bake(&mesh, BakeOptions::square(64))?.into();
+    /// let mass_model = MassModel::Solid { density: 500.0 };
+    /// let mass = mass_model.mass_properties(&atlas)?;
+    /// let settings = RadiationSettings { panels: 120, frequencies: 24, ..RadiationSettings::default() };
+    /// let model = RadiationModel::bake(&FloatingBody {
+    ///     mesh: &mesh,
+    ///     mass: mass.mass,
+    ///     center_of_mass: mass.center_of_mass,
+    ///     inertia: mass.inertia,
+    ///     rotation: UnitQuaternion::identity(),
+    /// }, &settings)?;
+    /// let mut engine = FreeBodies::new(9.81);
+    /// let handle = engine.insert(Isometry3::translation(0.0, -0.05, 0.0));
+    /// let mut soak = Driver::new(Water::calm(0.0));
+    /// soak.register(&mut engine, handle, BodyDesc {
+    ///     name: "buoy".into(),
+    ///     atlas,
+    ///     mass_model,
+    ///     effects: Effects::buoyancy().with_radiation(model.into()),
+    /// })?;
+    /// let step = StepParams::new(1.0 / 60.0, 4);
+    /// for _ in 0..600 {
+    ///     soak.before_step(&mut engine, &step)?;
+    ///     engine.step(&step);
+    ///     soak.after_step(step.dt);
+    /// }
+    /// // Ten seconds on, the waves it made have taken its bobbing away.
+    /// let y = engine.get(handle).unwrap().pose.translation.y;
+    /// assert!(y.abs() < 0.005, "{y}");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_radiation(mut self, model: Arc<RadiationModel>) -> Self {
+        self.radiation = Some(model);
         self
     }
 

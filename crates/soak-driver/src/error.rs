@@ -155,6 +155,16 @@ pub enum SoakError {
         /// What is wrong.
         reason: String,
     },
+    /// Radiation that does not fit the body or the water (a model baked
+    /// for another density or gravity, or another mass), or a saved
+    /// radiation memory of another model.
+    #[error("body `{name}`: radiation: {reason}")]
+    Radiation {
+        /// The soak body's name.
+        name: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// The interactive waves were refused (their region or sponge) or
     /// failed to advance (a time step that is not finite and > 0).
     #[error("waves: {0}")]

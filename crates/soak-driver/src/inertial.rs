@@ -52,13 +52,29 @@ impl Inertial {
             return Self::plain(mass, inertia);
         }
         let (linear, angular) = added.scaled(rotation, density, submerged_volume);
+        Self::with_blocks(mass, inertia, &linear, &angular)
+    }
+
+    /// The body's mass and inertia with a translational added mass
+    /// `linear` (world axes, kg) and a rotational one `angular` (object
+    /// axes, kg·m²). Where the sum cannot be inverted, the body's own.
+    pub(crate) fn with_blocks(
+        mass: f64,
+        inertia: &Matrix3<f64>,
+        linear: &Matrix3<f64>,
+        angular: &Matrix3<f64>,
+    ) -> Self {
         let total = Matrix3::identity() * mass + linear;
         match total.try_inverse() {
-            Some(inverse) if inverse.iter().all(|x| x.is_finite()) => Self {
-                mass,
-                inertia: inertia + angular,
-                linear: Some((total, inverse)),
-            },
+            Some(inverse)
+                if inverse.iter().all(|x| x.is_finite()) && angular.iter().all(|x| x.is_finite()) =>
+            {
+                Self {
+                    mass,
+                    inertia: inertia + angular,
+                    linear: Some((total, inverse)),
+                }
+            }
             _ => Self::plain(mass, inertia),
         }
     }

@@ -7,7 +7,7 @@ use nalgebra::Point3;
 use soak_hydro::{HydroForces, MassModel, MassProperties, TiledAtlas, Wrench};
 use soak_wet::Wetting;
 
-use crate::body::{FloodSettings, Shape, SoakBody, shared_tiles, with_extra};
+use crate::body::{FloodSettings, RadiationRun, Shape, SoakBody, shared_tiles, with_extra};
 use crate::config::{Backend, BodyDesc, SoakId};
 use crate::driver::Driver;
 use crate::engine::{BodiesMut, Handle, check_not_too_light, push_mass};
@@ -83,6 +83,14 @@ impl<H: Handle> Driver<H> {
                 },
             });
         }
+        if let Some(model) = &desc.effects.radiation
+            && let Some(reason) = radiation_mismatch(model, &self.water, mass.mass)
+        {
+            return Err(SoakError::Radiation {
+                name: desc.name.clone(),
+                reason,
+            });
+        }
         push_mass(&desc.name, bodies, handle, &mass)?;
         let tiled = (self.backend != Backend::PerTexel && desc.effects.needs_hydrostatics())
             .then(|| shared_tiles(&self.bodies, &desc.atlas));
@@ -108,9 +116,17 @@ impl<H: Handle> Driver<H> {
             wet_report: soak_wet::StepReport::default(),
             flood: FloodSettings::default(),
             slam: None,
+            radiation: None,
             retired: false,
         });
         let id = SoakId(self.bodies.len() - 1);
+        if let Some(model) = &self.bodies[id.0].effects.radiation {
+            let state = soak_seakeeping::RadiationState::new(model);
+            self.bodies[id.0].radiation = Some(Box::new(RadiationRun {
+                state,
+                force: Wrench::default(),
+            }));
+        }
         if self.bodies[id.0].effects.slamming.is_some() {
             self.bodies[id.0].slam = Some(Box::default());
         }
@@ -272,4 +288,39 @@ pub(crate) fn check_wetting(name: &str, atlas: &soak_bake::Atlas, w: &Wetting) -
             atlas: atlas.len(),
         },
     })
+}
+
+/// Why `model` does not fit a body of `mass` (kg) in `water`, if it does
+/// not: a density other than the water's (relative 1e-6) or a gravity
+/// (relative 1e-3: 9.81 against the standard 9.80665 passes), a
+/// mass more than 1 % off the one it was baked for (it would float at
+/// another draft).
+pub(crate) fn radiation_mismatch(
+    model: &soak_seakeeping::RadiationModel,
+    water: &soak_hydro::Water,
+    mass: f64,
+) -> Option<String> {
+    let off = |a: f64, b: f64, tolerance: f64| (a - b).abs() > tolerance * b.abs() || a.is_nan();
+    if off(model.density(), water.density, 1e-6) {
+        return Some(format!(
+            "baked for a density of {} kg/m³, the water's is {} kg/m³",
+            model.density(),
+            water.density
+        ));
+    }
+    if off(model.gravity(), water.gravity, 1e-3) {
+        return Some(format!(
+            "baked for a gravity of {} m/s², the water's is {} m/s²",
+            model.gravity(),
+            water.gravity
+        ));
+    }
+    if off(model.mass(), mass, 0.01) {
+        return Some(format!(
+            "baked for a mass of {} kg, the body's mass model gives {} kg",
+            model.mass(),
+            mass
+        ));
+    }
+    None
 }

@@ -52,6 +52,11 @@ pub struct BodyRunState {
     /// after their first step): the next step's impact is its growth.
     #[serde(default)]
     pub slam_added_mass: Option<f64>,
+    /// The radiation memory (radiation bodies): one state per kernel pole
+    /// and the last velocity recorded, and the last memory force (world,
+    /// N and N·m).
+    #[serde(default)]
+    pub radiation: Option<(soak_seakeeping::RadiationState, Wrench)>,
     /// The body is no longer driven ([`Driver::retire`]): restored, it
     /// stays retired.
     #[serde(default)]
@@ -75,6 +80,7 @@ impl PartialEq for BodyRunState {
             && self.ballast == other.ballast
             && self.liquid_density == other.liquid_density
             && self.slam_added_mass == other.slam_added_mass
+            && self.radiation == other.radiation
             && self.retired == other.retired
             && same_wetting
     }
@@ -132,6 +138,7 @@ impl<H: Handle> Driver<H> {
                     ballast: b.ballast().copied(),
                     liquid_density: b.effects.flooding.as_ref().and(b.flood.density),
                     slam_added_mass: b.slam.as_ref().and_then(|s| s.last_added),
+                    radiation: b.radiation.as_ref().map(|r| (r.state.clone(), r.force)),
                     retired: b.retired,
                 })
                 .collect(),
@@ -167,6 +174,24 @@ impl<H: Handle> Driver<H> {
                     name: b.name.clone(),
                     saved: w.texels(),
                     atlas: b.atlas.len(),
+                });
+            }
+            if let (Some(model), Some((saved, _))) = (&b.effects.radiation, &s.radiation)
+                && !saved.fits(model)
+            {
+                return Err(SoakError::Radiation {
+                    name: b.name.clone(),
+                    reason: "the saved memory has other kernels than the body's model".into(),
+                });
+            }
+            if s.radiation.is_some() != b.effects.radiation.is_some() && !s.retired && !b.retired {
+                return Err(SoakError::Radiation {
+                    name: b.name.clone(),
+                    reason: if s.radiation.is_some() {
+                        "the saved state has radiation, the body has none".into()
+                    } else {
+                        "the saved state has no radiation, the body has".into()
+                    },
                 });
             }
             if s.flooding.is_some() != b.effects.flooding.is_some() && !s.retired && !b.retired {
@@ -237,6 +262,10 @@ impl<H: Handle> Driver<H> {
             b.wet_report = s.wet_report.unwrap_or_default();
             if let Some(slam) = &mut b.slam {
                 slam.last_added = s.slam_added_mass;
+            }
+            if let (Some(run), Some((state, force))) = (&mut b.radiation, &s.radiation) {
+                run.state = state.clone();
+                run.force = *force;
             }
             if s.retired {
                 b.retire();

@@ -20,6 +20,7 @@ use crate::error::SoakError;
 use crate::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
 use crate::inertial::Inertial;
 use crate::waves::{CoupledWaves, Pressed};
+use soak_seakeeping::RadiationState;
 
 impl<H: Handle> Driver<H> {
     /// Advances the liquid inside every flooding body by `dt` (s) at the
@@ -153,6 +154,11 @@ impl<H: Handle> Driver<H> {
                 bodies.set_wrench(b.handle, &Wrench::default());
                 b.applied = Wrench::default();
                 b.added_force = Wrench::default();
+                if let (Some(run), Some(model)) = (&mut b.radiation, &b.effects.radiation) {
+                    let velocity = RadiationState::local_velocity(model, &now.rotation, &v, &w);
+                    run.state.record(model, velocity, t);
+                    run.force = Wrench::default();
+                }
                 if let Some(slam) = &mut b.slam {
                     slam.last_added = Some(0.0);
                     slam.report = SlamReport {
@@ -191,7 +197,9 @@ impl<H: Handle> Driver<H> {
                         return (sea, None);
                     };
                     let base = sea.as_ref().unwrap_or(water);
-                    let buoyant = !matches!(b.effects.buoyancy, None | Some(BuoyancyMode::Off));
+                    // A body with radiation makes its waves in its memory.
+                    let buoyant = !matches!(b.effects.buoyancy, None | Some(BuoyancyMode::Off))
+                        && b.effects.radiation.is_none();
                     let own = if buoyant {
                         w.solver.pressed(&b.atlas, base, state, t).unwrap_or_default()
                     } else {
@@ -290,9 +298,40 @@ impl<H: Handle> Driver<H> {
             };
             // What the step moves: the body, and with an added mass the
             // water it sets moving (as much of it as is under water now).
-            let inertial = match &b.effects.added_mass {
-                None => Inertial::plain(rb.mass, &b.mass.inertia),
-                Some(added) => Inertial::with_added(
+            // Radiation's A∞ supersedes the added mass; its memory acts
+            // with the drag.
+            let mut radiation = Wrench::default();
+            let inertial = match (&b.effects.radiation, &mut b.radiation, &b.effects.added_mass) {
+                (Some(model), Some(run), _) => {
+                    let share = (forces.submerged_volume / model.hydrostatics().volume).clamp(0.0, 1.0);
+                    let rotation = &rb.pose.rotation;
+                    let velocity = RadiationState::local_velocity(
+                        model,
+                        rotation,
+                        &rb.linear_velocity,
+                        &rb.angular_velocity,
+                    );
+                    run.state.record(model, velocity, t);
+                    let (force, torque) = run.state.world_force(model, rotation);
+                    radiation = Wrench {
+                        force: force * share,
+                        torque: torque * share,
+                    };
+                    if !radiation.is_finite() {
+                        self.firewall
+                            .reject(step, &b.name, "radiation", format!("non-finite {radiation:?}"));
+                        radiation = Wrench::default();
+                    }
+                    run.force = radiation;
+                    if share > 0.0 {
+                        let (linear, angular) = model.infinite_blocks(&state.pose.rotation);
+                        Inertial::with_blocks(rb.mass, &b.mass.inertia, &(linear * share), &(angular * share))
+                    } else {
+                        Inertial::plain(rb.mass, &b.mass.inertia)
+                    }
+                }
+                (_, _, None) => Inertial::plain(rb.mass, &b.mass.inertia),
+                (_, _, Some(added)) => Inertial::with_added(
                     rb.mass,
                     &b.mass.inertia,
                     added,
@@ -340,14 +379,14 @@ impl<H: Handle> Driver<H> {
             } else {
                 // The drag (and slamming) is applied with the buoyancy: the
                 // implicit solve counts it.
-                let drag = last_part(&forces.drag) + slam;
+                let drag = last_part(&forces.drag) + slam + radiation;
                 let water = sea.as_ref().unwrap_or(&self.water);
                 wrench = wrench
                     + implicit_heave(
                         b, rb, water, state, options, t, substeps, limit, bw, drag, &inertial,
                     );
             }
-            wrench = wrench + slam;
+            wrench = wrench + slam + radiation;
             if forces.drag.is_finite() {
                 wrench = wrench + forces.drag;
             } else {
