@@ -122,6 +122,15 @@ pub struct BodySpec {
     /// fraction (see [`crate::Effects::added_mass`]). Off by default.
     #[serde(default)]
     pub added_mass: bool,
+    /// Radiation: the waves the body makes as it moves take its energy
+    /// away (Cummins' equation with coefficients from a panel method on
+    /// its mesh floating at rest in its initial orientation, see
+    /// [`crate::Effects::radiation`]); supersedes `added_mass`. Baked when
+    /// the scene is built (about a second per mesh and mass at the default
+    /// 300 panels), shared by bodies of one mesh, mass and orientation.
+    /// Off by default.
+    #[serde(default)]
+    pub radiation: bool,
     /// Slamming: the impact of entering the water (see [`crate::Slamming`]):
     /// `slamming = {}` for the defaults, `slamming = { cap = 0.5 }` to
     /// let one step's impact take at most half the body's downward

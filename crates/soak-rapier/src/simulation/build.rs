@@ -147,6 +147,8 @@ impl Simulation {
         let mut holes = Vec::new();
         let mut atlases: HashMap<AtlasKey, (Arc<Atlas>, u32)> = HashMap::new();
         let mut drag_bakes: HashMap<(String, bool, u32), Arc<DragTexels>> = HashMap::new();
+        type RadiationKey = (String, bool, u64, [u64; 3]);
+        let mut radiation_bakes: HashMap<RadiationKey, Arc<soak_seakeeping::RadiationModel>> = HashMap::new();
         for (i, b) in scene.bodies.iter().enumerate() {
             let body_err = |message: String| SceneError::Body {
                 path: loaded.path.clone(),
@@ -314,7 +316,46 @@ impl Simulation {
                     .then(|| AddedMass::of_atlas(&atlas).map(Box::new))
                     .transpose()
                     .map_err(|e| body_err(e.to_string()))?;
+                // Radiation is baked from the mesh floating at rest in its
+                // initial orientation, shared like atlases.
+                let radiation = if b.radiation {
+                    let mass = mass_model
+                        .mass_properties(&atlas)
+                        .map_err(|e| body_err(format!("radiation: {e}")))?;
+                    let key = (
+                        b.mesh.clone(),
+                        b.unwrap,
+                        mass.mass.to_bits(),
+                        b.rotation_deg.map(f64::to_bits),
+                    );
+                    match radiation_bakes.get(&key) {
+                        Some(known) => Some(Arc::clone(known)),
+                        None => {
+                            let settings = soak_seakeeping::RadiationSettings {
+                                density: soak.water().density,
+                                gravity: soak.water().gravity,
+                                ..soak_seakeeping::RadiationSettings::default()
+                            };
+                            let body = soak_seakeeping::FloatingBody {
+                                mesh: &mesh,
+                                mass: mass.mass,
+                                center_of_mass: mass.center_of_mass,
+                                inertia: mass.inertia,
+                                rotation: pose.rotation,
+                            };
+                            let made = Arc::new(
+                                soak_seakeeping::RadiationModel::bake(&body, &settings)
+                                    .map_err(|e| body_err(format!("radiation: {e}")))?,
+                            );
+                            radiation_bakes.insert(key, Arc::clone(&made));
+                            Some(made)
+                        }
+                    }
+                } else {
+                    None
+                };
                 let effects = Effects {
+                    radiation,
                     added_mass,
                     slamming: b.slamming,
                     buoyancy: Some(b.buoyancy),
