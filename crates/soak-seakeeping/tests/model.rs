@@ -86,7 +86,7 @@ fn a_half_dense_sphere_floats_at_its_centre_and_heaves_as_the_hemisphere() {
         h.center_of_buoyancy
     );
     assert!(h.center_of_buoyancy.x.abs() < 1e-9 && h.center_of_buoyancy.z.abs() < 1e-9);
-    assert!((h.stiffness[(1, 1)] / (1000.0 * 9.81 * polygon) - 1.0).abs() < 1e-9);
+    assert!((h.stiffness[(1, 1)] / (1000.0 * model.gravity() * polygon) - 1.0).abs() < 1e-9);
     // A sphere about its centre: buoyancy through it whatever its tilt, no
     // rotational stiffness, ρ g (I_wp + V (y_b − y_g)) = ρ g (π/4 − π/4) = 0
     // (to within the facets').
