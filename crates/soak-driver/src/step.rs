@@ -305,16 +305,29 @@ impl<H: Handle> Driver<H> {
                 (Some(model), Some(run), _) => {
                     let share = (forces.submerged_volume / model.hydrostatics().volume).clamp(0.0, 1.0);
                     let rotation = &rb.pose.rotation;
+                    // The water's own vertical motion at the centre of
+                    // buoyancy: the body radiates as it heaves through it
+                    // (relative velocity and acceleration: the long-wave
+                    // limit of the diffraction force), on calm water as it
+                    // moves. The horizontal motion is left to the texels'
+                    // Froude–Krylov forces: a body does not ride the
+                    // orbital velocity it samples at its own place, whose
+                    // mean is no drift of the real sea's.
+                    let (flow, flow_acceleration) =
+                        water_motion(&self.water, &forces.center_of_buoyancy, t, dt);
+                    let (flow, flow_acceleration) =
+                        (Vector3::y() * flow.y, Vector3::y() * flow_acceleration.y);
                     let velocity = RadiationState::local_velocity(
                         model,
                         rotation,
-                        &rb.linear_velocity,
+                        &(rb.linear_velocity - flow),
                         &rb.angular_velocity,
                     );
                     run.state.record(model, velocity, t);
                     let (force, torque) = run.state.world_force(model, rotation);
+                    let (linear, angular) = model.infinite_blocks(&state.pose.rotation);
                     radiation = Wrench {
-                        force: force * share,
+                        force: (force + linear * flow_acceleration) * share,
                         torque: torque * share,
                     };
                     if !radiation.is_finite() {
@@ -324,7 +337,6 @@ impl<H: Handle> Driver<H> {
                     }
                     run.force = radiation;
                     if share > 0.0 {
-                        let (linear, angular) = model.infinite_blocks(&state.pose.rotation);
                         Inertial::with_blocks(rb.mass, &b.mass.inertia, &(linear * share), &(angular * share))
                     } else {
                         Inertial::plain(rb.mass, &b.mass.inertia)
@@ -690,6 +702,23 @@ impl SharedOptions {
             added_mass: b.effects.added_mass.as_deref().copied(),
         }
     }
+}
+
+/// The water's velocity (m/s) and its rate of change (m/s², central
+/// difference over `dt`) at `point` at time `t`; zero where either is not
+/// finite.
+fn water_motion(water: &Water, point: &Point3<f64>, t: f64, dt: f64) -> (Vector3<f64>, Vector3<f64>) {
+    let u = water.surface.velocity(point, t);
+    let h = 0.5 * dt.max(1e-6);
+    let a = (water.surface.velocity(point, t + h) - water.surface.velocity(point, t - h)) / (2.0 * h);
+    let finite = |v: Vector3<f64>| {
+        if v.iter().all(|c| c.is_finite()) {
+            v
+        } else {
+            Vector3::zeros()
+        }
+    };
+    (finite(u), finite(a))
 }
 
 fn last_part(w: &Wrench) -> Wrench {

@@ -53,11 +53,13 @@ fn floating(mesh: &Mesh, resolution: u32, density: f64, panels: usize) -> Floati
 fn release(f: &Floating, mode: usize, x0: f64, step: &StepParams, seconds: f64) -> Vec<f64> {
     let com = f.mass_model.mass_properties(&f.atlas).unwrap().center_of_mass;
     let height = f.model.hydrostatics().center_of_mass_height;
+    // The rest orientation is the model's (the stable one the bake found).
+    let rest = *f.model.rotation();
     let turn = match mode {
         3 => UnitQuaternion::from_axis_angle(&Vector3::x_axis(), x0),
         5 => UnitQuaternion::from_axis_angle(&Vector3::z_axis(), x0),
         _ => UnitQuaternion::identity(),
-    };
+    } * rest;
     let lift = if mode == 1 { x0 } else { 0.0 };
     let centre = Vector3::new(0.0, height + lift, 0.0);
     let pose = Isometry3::from_parts(Translation3::from(centre - turn * com.coords), turn);
@@ -79,8 +81,8 @@ fn release(f: &Floating, mode: usize, x0: f64, step: &StepParams, seconds: f64) 
         let body = engine.get(handle).unwrap();
         match mode {
             1 => (body.pose * com).y - height,
-            3 => body.pose.rotation.scaled_axis().x,
-            _ => body.pose.rotation.scaled_axis().z,
+            3 => (body.pose.rotation * rest.inverse()).scaled_axis().x,
+            _ => (body.pose.rotation * rest.inverse()).scaled_axis().z,
         }
     };
     let mut x = vec![coordinate(&engine)];

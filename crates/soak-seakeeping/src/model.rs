@@ -27,9 +27,11 @@ pub struct FloatingBody<'a> {
     pub center_of_mass: Point3<f64>,
     /// Inertia about the centre of mass, object axes, kg·m².
     pub inertia: Matrix3<f64>,
-    /// The body's orientation at rest (object axes → the water's; y up).
-    /// The radiation force is taken in the body's axes turned by it, so it
-    /// turns with the body.
+    /// The orientation to float it from (object axes → the water's; y
+    /// up): the bake tilts it to the stable orientation nearest this one
+    /// ([`RadiationModel::rotation`]; a square log of half the water's
+    /// density placed flat rolls 45° onto an edge), keeping its heading. The radiation
+    /// force is taken in the body's axes at rest, turned with the body.
     pub rotation: UnitQuaternion<f64>,
 }
 
@@ -160,8 +162,19 @@ impl RadiationModel {
         }
         let (g, rho) = (settings.gravity, settings.density);
         let target = body.mass / rho;
-        let height = float_height(body, target)?;
-        let pose = rest_pose(body, height);
+        // The stable orientation nearest the one given, found on a coarser
+        // copy of a fine mesh (its energy is a smooth function of the tilt).
+        let coarse_mesh;
+        let search = if body.mesh.triangles.len() > 2000 {
+            coarse_mesh = body.mesh.simplified(2000);
+            &coarse_mesh
+        } else {
+            body.mesh
+        };
+        let rotation = settle(body, search, target)?;
+        let body = &FloatingBody { rotation, ..*body };
+        let height = float_height(body, &rotation, target)?;
+        let pose = rest_pose(body, &rotation, height);
         let mut coarse = wetted_panels(body.mesh, &pose, 1e9)?;
         // A mesh finer than the panels asked for is simplified first (a
         // deviation of at most 5 % of its extent): its wetted triangles
@@ -243,7 +256,8 @@ impl RadiationModel {
         })
     }
 
-    /// The body's orientation at rest (object axes → the water's).
+    /// The body's orientation at rest (object axes → the water's): the
+    /// stable one nearest [`FloatingBody::rotation`].
     pub fn rotation(&self) -> &UnitQuaternion<f64> {
         &self.rotation
     }
@@ -369,13 +383,71 @@ impl RadiationModel {
     }
 }
 
-/// The pose of `body` at rest with its centre of mass at (0, `height`, 0).
-fn rest_pose(body: &FloatingBody<'_>, height: f64) -> Isometry3<f64> {
-    let com = body.rotation * body.center_of_mass.coords;
+/// The pose of `body` turned by `rotation` with its centre of mass at
+/// (0, `height`, 0).
+fn rest_pose(body: &FloatingBody<'_>, rotation: &UnitQuaternion<f64>, height: f64) -> Isometry3<f64> {
+    let com = rotation * body.center_of_mass.coords;
     Isometry3::from_parts(
         Translation3::from(Vector3::new(-com.x, height - com.y, -com.z)),
-        body.rotation,
+        *rotation,
     )
+}
+
+/// The orientation `body` floats stably in nearest `body.rotation`: the
+/// least potential energy of body and water, `m g (y_G − y_B)` with the
+/// draft that displaces its mass at each orientation, by a compass search
+/// over tilts about the world's x and z axes from `body.rotation` (steps
+/// from 15° down to 0.01°; only a lower energy moves it, so a body already
+/// stable, or indifferent like a sphere, stays as it is). A body placed in
+/// an unstable balance (a square log upright) rolls off it.
+fn settle(body: &FloatingBody<'_>, mesh: &Mesh, target: f64) -> Result<UnitQuaternion<f64>, SeakeepingError> {
+    let probe = FloatingBody { mesh, ..*body };
+    let energy = |tilt: [f64; 2]| -> Result<f64, SeakeepingError> {
+        let rotation = turned(&body.rotation, tilt);
+        let height = float_height(&probe, &rotation, target)?;
+        let panels = wetted_panels(mesh, &rest_pose(&probe, &rotation, height), 1e9)?;
+        let volume = displaced(&panels);
+        let moment: f64 = panels
+            .iter()
+            .map(|p| p.normal.y * quadratic(p, |q| 0.5 * q.y * q.y))
+            .sum();
+        Ok(height - moment / volume)
+    };
+    let mut at = [0.0, 0.0];
+    let mut best = energy(at)?;
+    let mut step = 15f64.to_radians();
+    // Only a clear improvement moves it: rounding in an indifferent
+    // body's energy must not.
+    let scale = body
+        .mesh
+        .positions
+        .iter()
+        .map(|p| (p - body.center_of_mass).norm())
+        .fold(0.0f64, f64::max);
+    while step > 0.01f64.to_radians() {
+        let mut moved = false;
+        for (axis, sign) in [(0, 1.0), (0, -1.0), (1, 1.0), (1, -1.0)] {
+            let mut next = at;
+            next[axis] += sign * step;
+            let e = energy(next)?;
+            if e < best - 1e-9 * scale {
+                (at, best, moved) = (next, e, true);
+                break;
+            }
+        }
+        if !moved {
+            step *= 0.5;
+        }
+    }
+    Ok(turned(&body.rotation, at))
+}
+
+/// `rotation` tilted by `tilt[0]` about the world's x axis, then
+/// `tilt[1]` about its z axis, rad.
+fn turned(rotation: &UnitQuaternion<f64>, tilt: [f64; 2]) -> UnitQuaternion<f64> {
+    UnitQuaternion::from_axis_angle(&Vector3::z_axis(), tilt[1])
+        * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), tilt[0])
+        * rotation
 }
 
 /// `∫ y n_y dS` over `panels`: the volume under y = 0 they close with
@@ -384,15 +456,19 @@ fn displaced(panels: &[Panel]) -> f64 {
     panels.iter().map(|p| p.area * p.normal.y * p.centroid.y).sum()
 }
 
-/// The height of the centre of mass at which `body` displaces `target`
-/// m³, by bisection.
-fn float_height(body: &FloatingBody<'_>, target: f64) -> Result<f64, SeakeepingError> {
-    let com = body.rotation * body.center_of_mass.coords;
+/// The height of the centre of mass at which `body` turned by `rotation`
+/// displaces `target` m³, by bisection.
+fn float_height(
+    body: &FloatingBody<'_>,
+    rotation: &UnitQuaternion<f64>,
+    target: f64,
+) -> Result<f64, SeakeepingError> {
+    let com = rotation * body.center_of_mass.coords;
     let reach = body
         .mesh
         .positions
         .iter()
-        .map(|p| (body.rotation * p.coords - com).norm())
+        .map(|p| (rotation * p.coords - com).norm())
         .fold(0.0f64, f64::max);
     if !reach.is_finite() || reach <= 0.0 {
         return Err(SeakeepingError::BadParameter {
@@ -401,7 +477,7 @@ fn float_height(body: &FloatingBody<'_>, target: f64) -> Result<f64, SeakeepingE
         });
     }
     let volume = |height: f64| -> Result<f64, SeakeepingError> {
-        match wetted_panels(body.mesh, &rest_pose(body, height), 1e9) {
+        match wetted_panels(body.mesh, &rest_pose(body, rotation, height), 1e9) {
             Ok(panels) => Ok(displaced(&panels)),
             Err(SeakeepingError::NoWettedSurface) => Ok(0.0),
             Err(e) => Err(e),

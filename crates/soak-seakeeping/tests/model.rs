@@ -155,3 +155,33 @@ fn a_body_too_heavy_to_float_is_refused() {
         Err(SeakeepingError::BadParameter { name: "mass", .. })
     ));
 }
+
+#[test]
+fn a_square_log_rolls_onto_an_edge_and_a_barge_stays_flat() {
+    // 1 × 0.5 × 0.5 m at half the water's density: flat, its metacentre
+    // lies below its centre of mass (BM = B²/12T = 0.083 m, KB = 0.125 m,
+    // KG = 0.25 m); it floats on an edge, turned 45° about its length.
+    let settled = |mesh: &soak_bake::Mesh| {
+        let mass = 500.0 * volume(mesh);
+        let body = FloatingBody {
+            mesh,
+            mass,
+            center_of_mass: Point3::origin(),
+            inertia: Matrix3::identity(),
+            rotation: UnitQuaternion::identity(),
+        };
+        let settings = RadiationSettings {
+            panels: 60,
+            frequencies: 8,
+            ..RadiationSettings::default()
+        };
+        *RadiationModel::bake(&body, &settings).unwrap().rotation()
+    };
+    let log = settled(&builtin::cuboid(1.0, 0.5, 0.5));
+    let (axis, angle) = log.axis_angle().unwrap();
+    eprintln!("log: {:.3}° about {axis:?}", angle.to_degrees());
+    assert!((angle.to_degrees() - 45.0).abs() < 0.05, "{}", angle.to_degrees());
+    assert!((axis.x.abs() - 1.0).abs() < 1e-6);
+    let barge = settled(&builtin::cuboid(4.0, 1.0, 2.0));
+    assert_eq!(barge, UnitQuaternion::identity());
+}
