@@ -109,6 +109,9 @@ pub struct RadiationModel {
     inertia: Matrix3<f64>,
     hydrostatics: Hydrostatics,
     sweep: Sweep,
+    /// Per frequency of the sweep, per heading (every 45° from +x toward
+    /// +z), the excitation of each mode per metre of wave amplitude.
+    excitation: Vec<[[Complex64; 6]; HEADINGS]>,
     kernels: Vec<Kernel>,
     kernel_step: f64,
     length: f64,
@@ -217,7 +220,29 @@ impl RadiationModel {
             .collect();
         let count = panels.len();
         let problem = Radiation::new(panels, Point3::new(0.0, height, 0.0), rho, g)?;
-        let sweep = problem.sweep(&omegas)?;
+        // Each frequency's potentials give its coefficients and the wave
+        // excitation at every 45° of heading.
+        let infinite = problem
+            .solve(crate::radiation::Surface::InfiniteFrequency)?
+            .added_mass;
+        let mut frequencies = Vec::with_capacity(omegas.len());
+        let mut excitation = Vec::with_capacity(omegas.len());
+        for &omega in &omegas {
+            let potentials = problem.potentials(crate::radiation::Surface::Wavenumber(omega * omega / g))?;
+            frequencies.push(problem.coefficients(&potentials));
+            let mut per_heading = [[Complex64::new(0.0, 0.0); 6]; HEADINGS];
+            for (n, forces) in per_heading.iter_mut().enumerate() {
+                let heading = n as f64 * std::f64::consts::TAU / HEADINGS as f64;
+                *forces = problem
+                    .excitation(&potentials, heading)
+                    .ok_or(SeakeepingError::Singular { omega })?;
+            }
+            excitation.push(per_heading);
+        }
+        let sweep = Sweep {
+            infinite,
+            frequencies,
+        };
         // The kernels: 250 samples over about 30 √(L/g).
         let kernel_step = 0.125 / scale;
         let times: Vec<f64> = (0..=250).map(|n| n as f64 * kernel_step).collect();
@@ -247,6 +272,7 @@ impl RadiationModel {
             inertia: turn * body.inertia * turn.transpose(),
             hydrostatics,
             sweep,
+            excitation,
             kernels,
             kernel_step,
             length,
@@ -365,6 +391,42 @@ impl RadiationModel {
         )
     }
 
+    /// The wave excitation of `mode` (N or N·m per metre of wave
+    /// amplitude; phase relative to the incident crest at the centre of
+    /// mass) in regular waves of frequency `omega` (rad/s) travelling along
+    /// `heading` (rad, from +x toward +z, axes at rest): diffraction and
+    /// Froude–Krylov together, by the Haskind relation. Linear in ω between
+    /// the frequencies solved and in heading between every 45°; `None`
+    /// outside the frequencies solved.
+    pub fn excitation(&self, mode: usize, omega: f64, heading: f64) -> Option<Complex64> {
+        let f = &self.sweep.frequencies;
+        let (first, last) = (f.first()?.omega, f.last()?.omega);
+        if !(omega >= first && omega <= last) || mode >= 6 {
+            return None;
+        }
+        let k = f.partition_point(|c| c.omega <= omega).clamp(1, f.len() - 1) - 1;
+        let t = (omega - f[k].omega) / (f[k + 1].omega - f[k].omega);
+        let turn = heading.rem_euclid(std::f64::consts::TAU) / (std::f64::consts::TAU / HEADINGS as f64);
+        let h = (turn.floor() as usize).min(HEADINGS - 1);
+        let u = turn - h as f64;
+        let at = |k: usize| {
+            self.excitation[k][h][mode] * (1.0 - u) + self.excitation[k][(h + 1) % HEADINGS][mode] * u
+        };
+        Some(at(k) * (1.0 - t) + at(k + 1) * t)
+    }
+
+    /// The response amplitude operator of `mode` alone (its couplings
+    /// left out, as in the time domain): `|X / (C − ω² (M + A) − i ω B)|`,
+    /// m or rad per metre of wave amplitude, in regular waves of frequency
+    /// `omega` along `heading` (see [`RadiationModel::excitation`]).
+    pub fn rao(&self, mode: usize, omega: f64, heading: f64) -> Option<f64> {
+        let x = self.excitation(mode, omega, heading)?;
+        let (a, b) = self.sweep.at(mode, mode, omega);
+        let c = self.hydrostatics.stiffness[(mode, mode)];
+        let h = Complex64::new(c - omega * omega * (self.mode_inertia(mode) + a), -omega * b);
+        Some((x / h).norm())
+    }
+
     /// A∞'s translational block in the water's axes for a body turned by
     /// `rotation` (object → water), kg, and its rotational block in object
     /// axes, kg·m² (the cross blocks are left out, see [`RadiationModel`]).
@@ -382,6 +444,9 @@ impl RadiationModel {
         )
     }
 }
+
+/// How many headings the excitation is computed at (every 45°).
+const HEADINGS: usize = 8;
 
 /// The pose of `body` turned by `rotation` with its centre of mass at
 /// (0, `height`, 0).

@@ -105,6 +105,19 @@ fn a_half_dense_sphere_floats_at_its_centre_and_heaves_as_the_hemisphere() {
     eprintln!("heave release: period {period:.3} s, peak ratio {ratio:.3}");
     assert!((period - 1.955).abs() < 0.03, "{period}");
     assert!((ratio - 0.554).abs() < 0.03, "{ratio}");
+    // In long waves the sphere rides the surface: heave RAO 1, its
+    // excitation (Haskind's, here at KR 0.06) the long-wave limit
+    // `C − ω² (ρV + A)`: the water-plane's stiffness less the inertia of
+    // the water the body displaces and sets moving.
+    let long = model.sweep().frequencies[0].omega;
+    let rao = model.rao(1, long, 0.0).unwrap();
+    let x = model.excitation(1, long, 0.0).unwrap().norm();
+    let (a, _) = model.sweep().at(1, 1, long);
+    let limit = h.stiffness[(1, 1)] - long * long * (1000.0 * h.volume + a);
+    eprintln!("ω {long:.3} rad/s: heave RAO {rao:.4}, |X| {x:.0} N/m against {limit:.0}");
+    assert!((rao - 1.0).abs() < 0.01, "{rao}");
+    assert!((x / limit - 1.0).abs() < 0.01, "{x} vs {limit}");
+    assert!(model.rao(1, 0.5 * long, 0.0).is_none());
     // Yaw radiates nothing: no states.
     assert!(model.kernel(4).poles.is_empty());
     assert!(model.release(0, 0.1, &times).is_none());
