@@ -27,6 +27,7 @@ mod hydro;
 mod interrupt;
 mod progress;
 mod render;
+mod seakeeping;
 mod segment;
 mod simulate;
 mod stills;
@@ -60,6 +61,8 @@ enum Command {
     Segment(segment::Args),
     /// Step time of a Rapier world against the number of floating bodies: a table and a log–log plot.
     Bench(bench::Args),
+    /// A mesh floating at rest: radiation coefficients, RAOs and free decay against frequency (a table and plots).
+    Seakeeping(seakeeping::Args),
     /// Stability matrix: meshes × densities × time steps × scales × waters × effects; non-zero exit on a failing cell.
     Stress(stress::Args),
     /// Render frames of a scene file (PNG): wet surfaces, water, debug views, force arrows.
@@ -94,6 +97,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Simulate(args) => simulate::run(&args),
         Command::Accuracy(args) => accuracy::run(&args),
         Command::Segment(args) => segment::run(&args),
+        Command::Seakeeping(args) => seakeeping::run(&args),
         Command::Stress(args) => stress::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Render(args) => render::run(&args),

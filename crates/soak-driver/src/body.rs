@@ -174,8 +174,8 @@ impl<H> SoakBody<H> {
         self.slam.as_ref().map(|s| &s.report)
     }
     /// The radiation memory's force of the last step, world frame (N and
-    /// N·m about the centre of mass): `−∫ K(t − τ) ẋ(τ) dτ`, scaled by the
-    /// share of the rest displacement under water; the A∞ part is in
+    /// N·m about the centre of mass): `−∫ K(t − τ) ẋ(τ) dτ`, faded out as
+    /// the body leaves the water; the A∞ part is in
     /// [`SoakBody::added_mass_force`]. Both are already part of
     /// [`SoakBody::applied`]. `None` without radiation
     /// ([`Effects::radiation`](crate::Effects::radiation)).

@@ -77,8 +77,8 @@ pub struct Effects {
     /// axes at rest turned with it: A∞ counted implicitly like
     /// [`Effects::added_mass`] (which it supersedes: with both, A∞ alone is
     /// counted), the memory from the model's fitted kernel states. Both
-    /// scale with the share of the body's rest displacement under water
-    /// (none in the air, all of it at or below its rest draft).
+    /// are whole while the body displaces at least half its rest volume
+    /// and fade linearly to none as it leaves the water.
     ///
     /// This is linear potential flow on top of the nonlinear texel
     /// hydrostatics and Froude–Krylov forces (the usual "weakly nonlinear"

@@ -303,7 +303,10 @@ impl<H: Handle> Driver<H> {
             let mut radiation = Wrench::default();
             let inertial = match (&b.effects.radiation, &mut b.radiation, &b.effects.added_mass) {
                 (Some(model), Some(run), _) => {
-                    let share = (forces.submerged_volume / model.hydrostatics().volume).clamp(0.0, 1.0);
+                    // Whole from half the rest displacement up (small
+                    // motions see the linear model unchanged), fading to
+                    // none as the body leaves the water.
+                    let share = (2.0 * forces.submerged_volume / model.hydrostatics().volume).clamp(0.0, 1.0);
                     let rotation = &rb.pose.rotation;
                     // The water's own vertical motion at the centre of
                     // buoyancy: the body radiates as it heaves through it

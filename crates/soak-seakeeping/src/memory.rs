@@ -56,8 +56,8 @@ impl Radiation {
 impl Sweep {
     /// A(ω) and B(ω) of modes (i, j), interpolated: Catmull–Rom between
     /// the computed frequencies; below the first, A held and B falling
-    /// linearly to 0 at ω = 0; beyond the last, A∞ and B = 0 (so the last
-    /// frequency should be one where B has died out).
+    /// linearly to 0 at ω = 0; beyond the last, A going to A∞ as ω⁻² and B
+    /// to 0 as ω⁻⁶ from their last values (best where B has died out).
     pub fn at(&self, i: usize, j: usize, omega: f64) -> (f64, f64) {
         let f = &self.frequencies;
         let n = f.len();
@@ -71,7 +71,15 @@ impl Sweep {
             return (f[0].added_mass[(i, j)], t * f[0].damping[(i, j)]);
         }
         if omega >= f[n - 1].omega {
-            return (self.infinite[(i, j)], 0.0);
+            // A tail that joins the last frequency: A to A∞ as ω⁻², B to
+            // zero as ω⁻⁶ (a truncated B would ring in the kernel).
+            let last = &f[n - 1];
+            let r = last.omega / omega;
+            let a_inf = self.infinite[(i, j)];
+            return (
+                a_inf + (last.added_mass[(i, j)] - a_inf) * r * r,
+                last.damping[(i, j)] * r.powi(6),
+            );
         }
         let k = f.partition_point(|c| c.omega <= omega) - 1;
         let value = |index: isize, which: usize| {
@@ -108,8 +116,11 @@ impl Sweep {
             .map(|w| w[1].omega - w[0].omega)
             .fold(last.omega, f64::min);
         let step = (spacing / 8.0).min(std::f64::consts::PI / (16.0 * t_max.max(1e-9)));
-        let count = (last.omega / step).ceil() as usize;
-        let step = last.omega / count as f64;
+        // The tail beyond the last frequency to 3×, where it is 0.14 % of
+        // the last B.
+        let top = 3.0 * last.omega;
+        let count = (top / step).ceil() as usize;
+        let step = top / count as f64;
         let samples: Vec<(f64, f64)> = (0..=count)
             .map(|n| (n as f64 * step, self.at(i, j, n as f64 * step).1))
             .collect();

@@ -51,10 +51,11 @@ pub struct RadiationSettings {
     /// hemisphere's heave and surge within 2 % of the published
     /// coefficients.
     pub panels: usize,
-    /// How many frequencies the sweep solves (≥ 8), every `0.08 √(g/L)`
-    /// from `0.24 √(g/L)`, `L` the radius of a disc of the water-plane's
-    /// area (at the default 40, to `3.36 √(g/L)`: KL ≈ 11, where a
-    /// surface body's damping has died out). Default 40.
+    /// How many frequencies the sweep solves (≥ 8), evenly from
+    /// `0.24 √(g/L)` (`L` the radius of a disc of the water-plane's area;
+    /// KL ≈ 0.06) to `3.36 √(g/L)` (KL ≈ 11, where a surface body's
+    /// damping has died out) or to the shortest wave six panels resolve,
+    /// whichever is lower. Default 40.
     pub frequencies: usize,
     /// At most how many poles each retardation kernel is fitted with
     /// (≥ 1). Default 10.
@@ -193,8 +194,8 @@ impl RadiationModel {
             coarse = wetted_panels(mesh, &pose, 1e9)?;
         }
         let wetted: f64 = coarse.iter().map(|p| p.area).sum();
-        // Subdivision quarters a panel: start from the size that would give
-        // the target count of right triangles, grow it until at most 1.5×.
+        // The panel size that cuts the wetted surface into about the count
+        // asked for: a few corrections of the size by the count's square root.
         let largest = coarse
             .iter()
             .flat_map(|p| {
@@ -202,10 +203,15 @@ impl RadiationModel {
                 (0..v.len()).map(move |k| (v[(k + 1) % v.len()] - v[k]).norm())
             })
             .fold(0.0, f64::max);
-        let mut size = (2.0 * wetted / settings.panels as f64).sqrt().min(largest);
+        let wanted = settings.panels as f64;
+        let mut size = (2.0 * wetted / wanted).sqrt().min(largest);
         let mut panels = wetted_panels(mesh, &pose, size)?;
-        while panels.len() > settings.panels * 3 / 2 && size < largest {
-            size *= 1.25;
+        for _ in 0..6 {
+            let ratio = panels.len() as f64 / wanted;
+            if (0.8..=1.25).contains(&ratio) || (ratio < 1.0 && size >= largest) {
+                break;
+            }
+            size = (size * ratio.sqrt()).min(largest);
             panels = wetted_panels(mesh, &pose, size)?;
         }
         let hydrostatics = hydrostatics(&panels, height, rho, g);
@@ -214,9 +220,13 @@ impl RadiationModel {
             .max((hydrostatics.volume).cbrt() * 0.5);
         let scale = (g / length).sqrt();
         // From KL ≈ 0.06 (below, B falls to 0 and A is held: see
-        // `Sweep::at`), every 0.08 √(g/L).
-        let omegas: Vec<f64> = (3..settings.frequencies + 3)
-            .map(|n| 0.08 * n as f64 * scale)
+        // `Sweep::at`) to KL ≈ 11 or to the shortest wave six panels
+        // resolve, evenly.
+        let finest = (g * std::f64::consts::TAU / (6.0 * size)).sqrt();
+        let (low, high) = (0.24 * scale, (3.36 * scale).min(finest).max(0.48 * scale));
+        let count = settings.frequencies;
+        let omegas: Vec<f64> = (0..count)
+            .map(|n| low + (high - low) * n as f64 / (count - 1) as f64)
             .collect();
         let count = panels.len();
         let problem = Radiation::new(panels, Point3::new(0.0, height, 0.0), rho, g)?;

@@ -9,9 +9,9 @@ use crate::green::Panel;
 /// The part of `mesh` (placed by `pose` in the water's frame: y up, still
 /// water at y = 0) below the still water plane, as flat panels no larger
 /// than `max_size` (m, the longest edge): each triangle clipped by the
-/// plane, the part below kept, and split in four at its edges' midpoints
-/// until small enough (a quadrilateral left by the clip is cut in two
-/// first). The mesh's triangles are counter-clockwise seen from outside,
+/// plane, the part below kept, and split into `n²` congruent triangles
+/// with the fewest `n` that make them small enough (a quadrilateral left
+/// by the clip is cut in two first). The mesh's triangles are counter-clockwise seen from outside,
 /// so the panels' normals point into the water.
 pub fn wetted_panels(
     mesh: &Mesh,
@@ -77,26 +77,35 @@ pub fn wetted_panels(
     Ok(panels)
 }
 
-/// Splits a triangle in four until its longest edge is at most `max_size`.
+/// Splits a triangle into `n²` congruent ones, `n` the fewest that bring
+/// its longest edge to at most `max_size` (points on an edge lying in the
+/// water plane stay exactly on it).
 fn split(t: &[Point3<f64>; 3], max_size: f64, out: &mut Vec<Panel>) {
     let longest = (0..3).map(|i| (t[(i + 1) % 3] - t[i]).norm()).fold(0.0, f64::max);
-    if longest <= max_size {
-        if let Some(panel) = Panel::new(t) {
-            out.push(panel);
-        }
-        return;
-    }
-    let m = |i: usize| {
-        let mut p = Point3::from((t[i].coords + t[(i + 1) % 3].coords) / 2.0);
-        // Keep the waterline exactly on the plane.
-        if t[i].y == 0.0 && t[(i + 1) % 3].y == 0.0 {
+    let n = (longest / max_size).ceil().clamp(1.0, 4096.0) as usize;
+    let on_plane = [
+        t[0].y == 0.0 && t[1].y == 0.0,
+        t[0].y == 0.0 && t[2].y == 0.0,
+        t[1].y == 0.0 && t[2].y == 0.0,
+    ];
+    let point = |i: usize, j: usize| {
+        let (a, b) = (i as f64 / n as f64, j as f64 / n as f64);
+        let mut p = Point3::from(t[0].coords + (t[1] - t[0]) * a + (t[2] - t[0]) * b);
+        if (j == 0 && on_plane[0]) || (i == 0 && on_plane[1]) || (i + j == n && on_plane[2]) {
             p.y = 0.0;
         }
         p
     };
-    let (m0, m1, m2) = (m(0), m(1), m(2));
-    split(&[t[0], m0, m2], max_size, out);
-    split(&[m0, t[1], m1], max_size, out);
-    split(&[m2, m1, t[2]], max_size, out);
-    split(&[m0, m1, m2], max_size, out);
+    for i in 0..n {
+        for j in 0..n - i {
+            if let Some(panel) = Panel::new(&[point(i, j), point(i + 1, j), point(i, j + 1)]) {
+                out.push(panel);
+            }
+            if i + j + 1 < n
+                && let Some(panel) = Panel::new(&[point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)])
+            {
+                out.push(panel);
+            }
+        }
+    }
 }
