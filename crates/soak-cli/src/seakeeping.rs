@@ -164,7 +164,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         let length = (8.0 * std::f64::consts::TAU / natural / dt) as usize;
         let times: Vec<f64> = (0..length).map(|n| n as f64 * dt).collect();
         if let Some(x) = radiation.release(mode, 1.0, &times)
-            && let Some((period, peak_ratio)) = period_and_decay(&x, dt)
+            && let Some((period, peak_ratio)) = soak_seakeeping::decay_measure(&x, dt)
         {
             decay.push(Decay {
                 mode: MODES[mode],
@@ -330,29 +330,4 @@ fn plot(r: &Report, curves: &[(&str, Vec<(f64, f64)>)], path: &std::path::Path) 
         .write_png(path)
         .with_context(|| format!("writing {}", path.display()))?;
     Ok(())
-}
-
-/// Period (s) and mean ratio of the first two pairs of successive positive
-/// peaks of a release from a positive `x[0]`; `None` with fewer than two
-/// periods.
-fn period_and_decay(x: &[f64], dt: f64) -> Option<(f64, f64)> {
-    let crossings: Vec<f64> = x
-        .windows(2)
-        .enumerate()
-        .filter(|(_, w)| w[0] > 0.0 && w[1] <= 0.0)
-        .map(|(n, w)| (n as f64 + w[0] / (w[0] - w[1])) * dt)
-        .take(4)
-        .collect();
-    if crossings.len() < 2 {
-        return None;
-    }
-    let period = (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f64;
-    let mut peaks = vec![x[0]];
-    peaks.extend(
-        x.windows(3)
-            .filter(|w| w[1] > w[0] && w[1] >= w[2] && w[1] > 0.0)
-            .map(|w| w[1]),
-    );
-    let ratios: Vec<f64> = peaks.windows(2).take(2).map(|p| p[1] / p[0]).collect();
-    (!ratios.is_empty()).then(|| (period, ratios.iter().sum::<f64>() / ratios.len() as f64))
 }

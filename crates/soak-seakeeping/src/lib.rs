@@ -49,6 +49,8 @@ mod special;
 pub use self::error::SeakeepingError;
 pub use self::green::Panel;
 pub use self::memory::{Kernel, Memory, Sweep};
-pub use self::model::{FloatingBody, Hydrostatics, RadiationModel, RadiationSettings, RadiationState};
+pub use self::model::{
+    FloatingBody, Hydrostatics, RadiationModel, RadiationSettings, RadiationState, decay_measure,
+};
 pub use self::panels::wetted_panels;
 pub use self::radiation::{Coefficients, Potentials, Radiation, Surface};

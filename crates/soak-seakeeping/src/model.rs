@@ -455,6 +455,33 @@ impl RadiationModel {
     }
 }
 
+/// The period (s: the mean spacing of the first four downward zero
+/// crossings) and the decay per cycle (the mean ratio of the first two
+/// pairs of successive positive peaks, the release `x[0]` counted as the
+/// first) of a free decay `x` sampled every `dt` (s) from a positive
+/// release. `None` with fewer than two crossings.
+pub fn decay_measure(x: &[f64], dt: f64) -> Option<(f64, f64)> {
+    let crossings: Vec<f64> = x
+        .windows(2)
+        .enumerate()
+        .filter(|(_, w)| w[0] > 0.0 && w[1] <= 0.0)
+        .map(|(n, w)| (n as f64 + w[0] / (w[0] - w[1])) * dt)
+        .take(4)
+        .collect();
+    if crossings.len() < 2 {
+        return None;
+    }
+    let period = (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f64;
+    let mut peaks = vec![*x.first()?];
+    peaks.extend(
+        x.windows(3)
+            .filter(|w| w[1] > w[0] && w[1] >= w[2] && w[1] > 0.0)
+            .map(|w| w[1]),
+    );
+    let ratios: Vec<f64> = peaks.windows(2).take(2).map(|p| p[1] / p[0]).collect();
+    (!ratios.is_empty()).then(|| (period, ratios.iter().sum::<f64>() / ratios.len() as f64))
+}
+
 /// How many headings the excitation is computed at (every 45°).
 const HEADINGS: usize = 8;
 

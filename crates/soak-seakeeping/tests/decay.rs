@@ -5,7 +5,7 @@
 //! predict.
 
 use num_complex::Complex64;
-use soak_seakeeping::{Kernel, Memory, Sweep};
+use soak_seakeeping::{Kernel, Memory, Sweep, decay_measure};
 
 mod common;
 use common::hemisphere;
@@ -82,24 +82,6 @@ fn the_fitted_kernel_reproduces_damping_and_added_mass() {
     assert!(worst_a < 0.03, "A (Kramers–Kronig) misfit {worst_a}");
 }
 
-/// Period (s) and mean ratio of successive positive peaks of `x`.
-fn period_and_decay(x: &[f64], dt: f64) -> (f64, f64) {
-    let crossings: Vec<f64> = x
-        .windows(2)
-        .enumerate()
-        .filter(|(_, w)| w[0] > 0.0 && w[1] <= 0.0)
-        .map(|(n, w)| (n as f64 + w[0] / (w[0] - w[1])) * dt)
-        .collect();
-    let period = (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f64;
-    let peaks: Vec<f64> = x
-        .windows(3)
-        .filter(|w| w[1] > w[0] && w[1] >= w[2] && w[1] > 0.0)
-        .map(|w| w[1])
-        .collect();
-    let ratios: Vec<f64> = peaks.windows(2).take(3).map(|p| p[1] / p[0]).collect();
-    (period, ratios.iter().sum::<f64>() / ratios.len() as f64)
-}
-
 /// Free decay of one mode released from `x0`: Cummins' equation with the
 /// fitted kernel in the time domain against the release response of the
 /// frequency-domain coefficients; (period, peak ratio) of each.
@@ -157,8 +139,8 @@ fn free_decay(sweep: &Sweep, mode: usize, inertia: f64, stiffness: f64, x0: f64)
         .collect();
     let sampled: Vec<f64> = time_domain.iter().step_by(5).copied().collect();
     (
-        period_and_decay(&sampled, 5.0 * dt),
-        period_and_decay(&frequency_domain, 5.0 * dt),
+        decay_measure(&sampled, 5.0 * dt).unwrap(),
+        decay_measure(&frequency_domain, 5.0 * dt).unwrap(),
     )
 }
 
