@@ -47,6 +47,25 @@ fn floating(mesh: &Mesh, resolution: u32, density: f64, panels: usize) -> Floati
     }
 }
 
+/// `f` as a body with radiation, named `name`.
+fn desc(f: &Floating, name: &str) -> BodyDesc {
+    BodyDesc {
+        name: name.into(),
+        atlas: f.atlas.clone(),
+        mass_model: f.mass_model.clone(),
+        effects: Effects::buoyancy().with_radiation(f.model.clone()),
+    }
+}
+
+/// `f` at `pose` in `water`, in soak's own engine (under the water's gravity).
+fn driven(f: &Floating, pose: Isometry3<f64>, water: Water) -> (FreeBodies, FreeHandle, Driver<FreeHandle>) {
+    let mut engine = FreeBodies::new(water.gravity);
+    let handle = engine.insert(pose);
+    let mut soak = Driver::new(water);
+    soak.register(&mut engine, handle, desc(f, "body")).unwrap();
+    (engine, handle, soak)
+}
+
 /// Released at rest from its rest pose moved by `mode` (1 heave, 3 roll
 /// about x, 5 pitch about z) by `x0` (m or rad); that coordinate every
 /// step for `seconds`.
@@ -63,20 +82,7 @@ fn release(f: &Floating, mode: usize, x0: f64, step: &StepParams, seconds: f64) 
     let lift = if mode == 1 { x0 } else { 0.0 };
     let centre = Vector3::new(0.0, height + lift, 0.0);
     let pose = Isometry3::from_parts(Translation3::from(centre - turn * com.coords), turn);
-    let mut engine = FreeBodies::new(9.81);
-    let handle = engine.insert(pose);
-    let mut soak = Driver::new(Water::calm(0.0));
-    soak.register(
-        &mut engine,
-        handle,
-        BodyDesc {
-            name: "body".into(),
-            atlas: f.atlas.clone(),
-            mass_model: f.mass_model.clone(),
-            effects: Effects::buoyancy().with_radiation(f.model.clone()),
-        },
-    )
-    .unwrap();
+    let (mut engine, handle, mut soak) = driven(f, pose, Water::calm(0.0));
     let coordinate = |engine: &FreeBodies| {
         let body = engine.get(handle).unwrap();
         match mode {
@@ -151,23 +157,7 @@ fn a_box_barge_decays_in_heave_roll_and_pitch_as_its_coefficients_predict() {
 fn the_memory_is_saved_and_resumed_bit_for_bit() {
     let f = floating(&builtin::sphere(0.5, 16, 8), 32, 500.0, 80);
     let step = StepParams::new(1.0 / 60.0, 2);
-    let setup = || {
-        let mut engine = FreeBodies::new(9.81);
-        let handle = engine.insert(Isometry3::translation(0.1, 0.08, 0.0));
-        let mut soak = Driver::new(Water::calm(0.0));
-        soak.register(
-            &mut engine,
-            handle,
-            BodyDesc {
-                name: "buoy".into(),
-                atlas: f.atlas.clone(),
-                mass_model: f.mass_model.clone(),
-                effects: Effects::buoyancy().with_radiation(f.model.clone()),
-            },
-        )
-        .unwrap();
-        (engine, handle, soak)
-    };
+    let setup = || driven(&f, Isometry3::translation(0.1, 0.08, 0.0), Water::calm(0.0));
     let advance = |engine: &mut FreeBodies, soak: &mut Driver<FreeHandle>, steps: usize| {
         for _ in 0..steps {
             soak.before_step(engine, &step).unwrap();
@@ -228,16 +218,7 @@ fn radiation_that_does_not_fit_is_refused() {
         density: 1025.0,
         ..Water::calm(0.0)
     });
-    let result = salt.register(
-        &mut engine,
-        handle,
-        BodyDesc {
-            name: "buoy".into(),
-            atlas: f.atlas.clone(),
-            mass_model: f.mass_model.clone(),
-            effects: Effects::buoyancy().with_radiation(f.model.clone()),
-        },
-    );
+    let result = salt.register(&mut engine, handle, desc(&f, "buoy"));
     assert!(matches!(result, Err(SoakError::Radiation { .. })), "{result:?}");
 }
 
@@ -302,24 +283,11 @@ fn heave_in_small_regular_waves_peaks_where_the_frequency_domain_rao_does() {
             g,
         )
         .unwrap();
-        let mut engine = FreeBodies::new(g);
         let pose = Isometry3::from_parts(
             Translation3::from(Vector3::new(0.0, height, 0.0) - rest * com.coords),
             rest,
         );
-        let handle = engine.insert(pose);
-        let mut soak = Driver::new(Water::new(sea));
-        soak.register(
-            &mut engine,
-            handle,
-            BodyDesc {
-                name: "sphere".into(),
-                atlas: sphere.atlas.clone(),
-                mass_model: sphere.mass_model.clone(),
-                effects: Effects::buoyancy().with_radiation(sphere.model.clone()),
-            },
-        )
-        .unwrap();
+        let (mut engine, handle, mut soak) = driven(&sphere, pose, Water::new(sea));
         let mut heave = Vec::new();
         for _ in 0..(40.0 / step.dt) as usize {
             soak.before_step(&mut engine, &step).unwrap();
