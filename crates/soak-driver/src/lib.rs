@@ -40,6 +40,7 @@ mod implicit;
 mod inertial;
 mod liquid;
 mod predicted_step;
+mod radiation;
 mod registry;
 mod state;
 mod step;

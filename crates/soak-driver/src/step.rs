@@ -19,6 +19,7 @@ use crate::engine::{Bodies, BodiesMut, EngineBody, Handle, StepParams};
 use crate::error::SoakError;
 use crate::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
 use crate::inertial::Inertial;
+use crate::radiation::{sea_excitation, water_motion};
 use crate::waves::{CoupledWaves, Pressed};
 use soak_seakeeping::RadiationState;
 
@@ -308,18 +309,26 @@ impl<H: Handle> Driver<H> {
                     // none as the body leaves the water.
                     let share = (2.0 * forces.submerged_volume / model.hydrostatics().volume).clamp(0.0, 1.0);
                     let rotation = &rb.pose.rotation;
-                    // The water's own vertical motion at the centre of
-                    // buoyancy: the body radiates as it heaves through it
-                    // (relative velocity and acceleration: the long-wave
-                    // limit of the diffraction force), on calm water as it
-                    // moves. The horizontal motion is left to the texels'
-                    // Froude–Krylov forces: a body does not ride the
-                    // orbital velocity it samples at its own place, whose
-                    // mean is no drift of the real sea's.
-                    let (flow, flow_acceleration) =
-                        water_motion(&self.water, &forces.center_of_buoyancy, t, dt);
-                    let (flow, flow_acceleration) =
-                        (Vector3::y() * flow.y, Vector3::y() * flow_acceleration.y);
+                    // On a sea of known waves the body radiates as it
+                    // moves and takes linear theory's excitation: the
+                    // texels' hydrostatic columns and what the model adds
+                    // to them (the pressure's decay with depth and the
+                    // diffraction). On other moving water it radiates
+                    // against the water's own vertical motion at the
+                    // centre of buoyancy (relative velocity and
+                    // acceleration: the long-wave limit of the
+                    // diffraction). The horizontal motion is left to the
+                    // texels' forces: a body does not ride the orbital
+                    // velocity it samples at its own place, whose mean is
+                    // no drift of the real sea's.
+                    let center = rb.pose * b.mass.center_of_mass;
+                    let excitation = sea_excitation(&self.water, model, rotation, &center, t);
+                    let (flow, flow_acceleration) = if excitation.is_some() {
+                        (Vector3::zeros(), Vector3::zeros())
+                    } else {
+                        let (u, a) = water_motion(&self.water, &forces.center_of_buoyancy, t, dt);
+                        (Vector3::y() * u.y, Vector3::y() * a.y)
+                    };
                     let velocity = RadiationState::local_velocity(
                         model,
                         rotation,
@@ -329,9 +338,10 @@ impl<H: Handle> Driver<H> {
                     run.state.record(model, velocity, t);
                     let (force, torque) = run.state.world_force(model, rotation);
                     let (linear, angular) = model.infinite_blocks(&state.pose.rotation);
+                    let excitation = excitation.unwrap_or_default();
                     radiation = Wrench {
-                        force: (force + linear * flow_acceleration) * share,
-                        torque: torque * share,
+                        force: (force + linear * flow_acceleration + excitation.force) * share,
+                        torque: (torque + excitation.torque) * share,
                     };
                     if !radiation.is_finite() {
                         self.firewall
@@ -705,23 +715,6 @@ impl SharedOptions {
             added_mass: b.effects.added_mass.as_deref().copied(),
         }
     }
-}
-
-/// The water's velocity (m/s) and its rate of change (m/s², central
-/// difference over `dt`) at `point` at time `t`; zero where either is not
-/// finite.
-fn water_motion(water: &Water, point: &Point3<f64>, t: f64, dt: f64) -> (Vector3<f64>, Vector3<f64>) {
-    let u = water.surface.velocity(point, t);
-    let h = 0.5 * dt.max(1e-6);
-    let a = (water.surface.velocity(point, t + h) - water.surface.velocity(point, t - h)) / (2.0 * h);
-    let finite = |v: Vector3<f64>| {
-        if v.iter().all(|c| c.is_finite()) {
-            v
-        } else {
-            Vector3::zeros()
-        }
-    };
-    (finite(u), finite(a))
 }
 
 fn last_part(w: &Wrench) -> Wrench {

@@ -246,15 +246,14 @@ fn amplitude_at(x: &[f64], dt: f64, start: usize, omega: f64) -> f64 {
 }
 
 /// Heave in small regular waves (2 cm) against the frequency-domain RAO
-/// of the same model. The time domain's excitation is soak's texel
-/// Froude–Krylov force, whose pressure is hydrostatic below the local
-/// surface (no decay of the wave's pressure with depth), plus the
-/// long-wave diffraction of the relative motion: at the sphere's KR of
-/// 0.6–1.8 that is 1.6 to 2.5 times the linear excitation (Haskind), so
-/// only the shape of the response is asserted: it peaks at the same
-/// frequency, the resonance of the sphere with its added mass.
+/// of the same model, at five frequencies around the sphere's resonance
+/// (KR 0.6–1.8): within 5 %. The time domain's excitation is the texels'
+/// hydrostatic columns under the Gerstner surface plus what linear theory
+/// adds to them (the pressure's decay with depth and the diffraction,
+/// `RadiationModel::excitation_beyond_columns`); without that addition the
+/// columns alone drove the sphere 1.6 to 2.5 times too hard.
 #[test]
-fn heave_in_small_regular_waves_peaks_where_the_frequency_domain_rao_does() {
+fn heave_in_small_regular_waves_follows_the_frequency_domain_rao() {
     let sphere = floating(&builtin::sphere(1.0, 24, 12), 128, 500.0, 300);
     let rest = *sphere.model.rotation();
     let com = sphere
@@ -304,7 +303,13 @@ fn heave_in_small_regular_waves_peaks_where_the_frequency_domain_rao_does() {
             predicted.last().unwrap()
         );
     }
+    for ((omega, ours), theirs) in omegas.iter().zip(&measured).zip(&predicted) {
+        assert!(
+            (ours / theirs - 1.0).abs() < 0.05,
+            "ω {omega}: heave RAO {ours:.3} against {theirs:.3}"
+        );
+    }
+    // The resonance of the sphere with its added mass is among them.
     let peak = |v: &[f64]| (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b])).unwrap();
-    assert_eq!(peak(&measured), peak(&predicted));
     assert_eq!(omegas[peak(&predicted)], 3.2);
 }

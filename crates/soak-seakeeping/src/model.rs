@@ -113,6 +113,12 @@ pub struct RadiationModel {
     /// Per frequency of the sweep, per heading (every 45° from +x toward
     /// +z), the excitation of each mode per metre of wave amplitude.
     excitation: Vec<[[Complex64; 6]; HEADINGS]>,
+    /// The same for the hydrostatic columns' wave force (see
+    /// [`RadiationModel::column_excitation`]), per frequency and heading.
+    columns: Vec<[[Complex64; 6]; HEADINGS]>,
+    /// Per wetted panel: its centroid's x and z (m) and `−n_y` × area
+    /// (m²), the water-plane seen through the hull.
+    waterline: Vec<[f64; 3]>,
     kernels: Vec<Kernel>,
     kernel_step: f64,
     length: f64,
@@ -229,6 +235,10 @@ impl RadiationModel {
             .map(|n| low + (high - low) * n as f64 / (count - 1) as f64)
             .collect();
         let count = panels.len();
+        let waterline: Vec<[f64; 3]> = panels
+            .iter()
+            .map(|p| [p.centroid.x, p.centroid.z, -p.normal.y * p.area])
+            .collect();
         let problem = Radiation::new(panels, Point3::new(0.0, height, 0.0), rho, g)?;
         // Each frequency's potentials give its coefficients and the wave
         // excitation at every 45° of heading.
@@ -237,6 +247,7 @@ impl RadiationModel {
             .added_mass;
         let mut frequencies = Vec::with_capacity(omegas.len());
         let mut excitation = Vec::with_capacity(omegas.len());
+        let mut columns = Vec::with_capacity(omegas.len());
         for &omega in &omegas {
             let potentials = problem.potentials(crate::radiation::Surface::Wavenumber(omega * omega / g))?;
             frequencies.push(problem.coefficients(&potentials));
@@ -248,6 +259,14 @@ impl RadiationModel {
                     .ok_or(SeakeepingError::Singular { omega })?;
             }
             excitation.push(per_heading);
+            columns.push(std::array::from_fn(|n| {
+                column_forces(
+                    &waterline,
+                    omega * omega / g,
+                    n as f64 * std::f64::consts::TAU / HEADINGS as f64,
+                    rho * g,
+                )
+            }));
         }
         let sweep = Sweep {
             infinite,
@@ -283,6 +302,8 @@ impl RadiationModel {
             hydrostatics,
             sweep,
             excitation,
+            columns,
+            waterline,
             kernels,
             kernel_step,
             length,
@@ -409,9 +430,71 @@ impl RadiationModel {
     /// the frequencies solved and in heading between every 45°; `None`
     /// outside the frequencies solved.
     pub fn excitation(&self, mode: usize, omega: f64, heading: f64) -> Option<Complex64> {
+        self.interpolate(&self.excitation, mode, omega, heading)
+    }
+
+    /// The linear part of the wave force the hydrostatic columns of soak's
+    /// texels give (`ρ g V_s` of the water under the local surface, up at
+    /// its centre: no decay of the wave's pressure with depth and no
+    /// diffraction) in the same regular waves as
+    /// [`RadiationModel::excitation`]: `ρ g ∫ e^{i k·x} dA` over the
+    /// water-plane for heave and its moments `−∫ z …` about x and
+    /// `∫ x …` about z; no surge, sway or yaw. N or N·m per metre of wave
+    /// amplitude, same phase. `None` outside the frequencies solved.
+    pub fn column_excitation(&self, mode: usize, omega: f64, heading: f64) -> Option<Complex64> {
+        self.interpolate(&self.columns, mode, omega, heading)
+    }
+
+    /// What linear theory's excitation adds to the columns' force in
+    /// regular waves of frequency `omega` (rad/s) along `heading` (rad,
+    /// axes at rest), per metre of amplitude, phase relative to the crest
+    /// at the centre of mass ([`RadiationModel::excitation`] −
+    /// [`RadiationModel::column_excitation`]): the pressure's decay with
+    /// depth (the Smith effect) and the diffraction. It vanishes in long
+    /// waves: below the frequencies solved it falls as ω² to none at
+    /// ω = 0; above them the excitation is taken to fall on as
+    /// `e^{−k d}` (d the centre of buoyancy's depth) from the last one
+    /// solved and the columns' force is summed panel by panel. Zero for
+    /// a mode out of range or a frequency that is not finite and positive.
+    pub fn excitation_beyond_columns(&self, mode: usize, omega: f64, heading: f64) -> Complex64 {
+        let zero = Complex64::new(0.0, 0.0);
+        let f = &self.sweep.frequencies;
+        let (Some(first), Some(last)) = (f.first(), f.last()) else {
+            return zero;
+        };
+        if mode >= 6 || !(omega.is_finite() && omega > 0.0) {
+            return zero;
+        }
+        let difference = |omega: f64| {
+            self.excitation(mode, omega, heading).unwrap_or(zero)
+                - self.column_excitation(mode, omega, heading).unwrap_or(zero)
+        };
+        if omega < first.omega {
+            difference(first.omega) * (omega / first.omega).powi(2)
+        } else if omega <= last.omega {
+            difference(omega)
+        } else {
+            let g = self.gravity;
+            let (k, k_last) = (omega * omega / g, last.omega * last.omega / g);
+            let depth = (-self.hydrostatics.center_of_buoyancy.y).max(0.0);
+            let x =
+                self.excitation(mode, last.omega, heading).unwrap_or(zero) * (-(k - k_last) * depth).exp();
+            x - column_forces(&self.waterline, k, heading, self.density * g)[mode]
+        }
+    }
+
+    /// `table` (per frequency, per heading, per mode) linear in ω between
+    /// the frequencies solved and in heading between every 45°.
+    fn interpolate(
+        &self,
+        table: &[[[Complex64; 6]; HEADINGS]],
+        mode: usize,
+        omega: f64,
+        heading: f64,
+    ) -> Option<Complex64> {
         let f = &self.sweep.frequencies;
         let (first, last) = (f.first()?.omega, f.last()?.omega);
-        if !(omega >= first && omega <= last) || mode >= 6 {
+        if !(omega >= first && omega <= last) || mode >= 6 || !heading.is_finite() {
             return None;
         }
         let k = f.partition_point(|c| c.omega <= omega).clamp(1, f.len() - 1) - 1;
@@ -419,9 +502,7 @@ impl RadiationModel {
         let turn = heading.rem_euclid(std::f64::consts::TAU) / (std::f64::consts::TAU / HEADINGS as f64);
         let h = (turn.floor() as usize).min(HEADINGS - 1);
         let u = turn - h as f64;
-        let at = |k: usize| {
-            self.excitation[k][h][mode] * (1.0 - u) + self.excitation[k][(h + 1) % HEADINGS][mode] * u
-        };
+        let at = |k: usize| table[k][h][mode] * (1.0 - u) + table[k][(h + 1) % HEADINGS][mode] * u;
         Some(at(k) * (1.0 - t) + at(k + 1) * t)
     }
 
@@ -484,6 +565,25 @@ pub fn decay_measure(x: &[f64], dt: f64) -> Option<(f64, f64)> {
 
 /// How many headings the excitation is computed at (every 45°).
 const HEADINGS: usize = 8;
+
+/// The hydrostatic columns' linear wave force per metre of amplitude in
+/// regular waves of wavenumber `k` (1/m) along `heading` (rad), `weight`
+/// = ρ g: `ρ g Σ (−n_y A) e^{i k (x cos β + z sin β)}` over the wetted
+/// panels (the water-plane integral, as the hull sees it: the lid and the
+/// hull close a volume, so for any f(x, z) the lid's integral is minus
+/// the hull's), with its moments about x (−z) and z (x).
+fn column_forces(waterline: &[[f64; 3]], k: f64, heading: f64, weight: f64) -> [Complex64; 6] {
+    let (cos, sin) = (heading.cos(), heading.sin());
+    let mut out = [Complex64::new(0.0, 0.0); 6];
+    for &[x, z, area] in waterline {
+        let (s, c) = (k * (x * cos + z * sin)).sin_cos();
+        let f = Complex64::new(c, s) * (area * weight);
+        out[1] += f;
+        out[3] -= f * z;
+        out[5] += f * x;
+    }
+    out
+}
 
 /// The pose of `body` turned by `rotation` with its centre of mass at
 /// (0, `height`, 0).

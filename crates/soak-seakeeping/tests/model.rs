@@ -107,6 +107,99 @@ fn a_half_dense_sphere_floats_at_its_centre_and_heaves_as_the_hemisphere() {
     assert!(model.release(0, 0.1, &times).is_none());
 }
 
+/// Bessel's J₁ by its integral, `(1/π) ∫₀^π cos(τ − x sin τ) dτ`.
+fn bessel_j1(x: f64) -> f64 {
+    let n = 4000;
+    let h = PI / n as f64;
+    (0..n)
+        .map(|i| {
+            let tau = (i as f64 + 0.5) * h;
+            (tau - x * tau.sin()).cos()
+        })
+        .sum::<f64>()
+        * h
+        / PI
+}
+
+/// The hydrostatic columns' wave force is the water-plane's integral of
+/// the wave, `ρ g ∫ e^{ikx} dA` (for a disc of radius R,
+/// `ρ g π R² · 2 J₁(kR)/(kR)`), and linear theory's excitation is the
+/// same in long waves and less in shorter ones (the pressure decays with
+/// depth): what the time domain adds to the columns.
+#[test]
+fn the_columns_wave_force_is_the_water_planes_and_theory_adds_the_decay() {
+    let model = sphere_model();
+    let h = model.hydrostatics();
+    let weight = 1000.0 * model.gravity();
+    let radius = (h.waterplane_area / PI).sqrt();
+    let frequencies = &model.sweep().frequencies;
+    for heading in [0.0, 0.3, 2.0] {
+        for c in frequencies.iter().step_by(6) {
+            let k = c.omega * c.omega / model.gravity();
+            let kr = k * radius;
+            let disc = weight * h.waterplane_area * 2.0 * bessel_j1(kr) / kr;
+            let columns = model.column_excitation(1, c.omega, heading).unwrap();
+            let unit = weight * h.waterplane_area;
+            assert!(
+                (columns.re - disc).abs() < 0.01 * unit && columns.im.abs() < 1e-3 * unit,
+                "kR {kr:.2}, heading {heading}: {columns} against {disc:.1}"
+            );
+            // Symmetric about the wave's direction: a wave along x rolls it
+            // not at all (to the centroid rule's 0.5 % on facets cut
+            // into triangles one way).
+            if heading == 0.0 {
+                let roll = model.column_excitation(3, c.omega, heading).unwrap();
+                assert!(roll.norm() < 5e-3 * unit * radius, "{roll}");
+            }
+            let theory = model.excitation(1, c.omega, heading).unwrap();
+            let beyond = model.excitation_beyond_columns(1, c.omega, heading);
+            assert!((theory - columns - beyond).norm() < 1e-9 * unit);
+            if heading == 0.0 {
+                eprintln!(
+                    "kR {kr:.2}: columns {:.0} N/m, disc {disc:.0}, theory |X| {:.0}",
+                    columns.re,
+                    theory.norm()
+                );
+            }
+        }
+    }
+    // Long waves: theory adds to the columns' force the inertia of the
+    // water the body displaces and sets moving, −ω² (ρV + A); at KR ≈ 1.8
+    // it leaves under half of it.
+    let first = frequencies[0].omega;
+    let beyond = model.excitation_beyond_columns(1, first, 0.0);
+    let (a, _) = model.sweep().at(1, 1, first);
+    let inertia = first * first * (1000.0 * h.volume + a);
+    eprintln!(
+        "kR {:.2}: theory adds {beyond:.0} N/m against −{inertia:.0}",
+        first * first / model.gravity() * radius
+    );
+    // (The imaginary part is the damping's, ω B, small in long waves.)
+    assert!(
+        (beyond.re / -inertia - 1.0).abs() < 0.03 && beyond.im.abs() < 0.1 * inertia,
+        "{beyond}"
+    );
+    let short = (1.8 * model.gravity() / radius).sqrt();
+    let ratio = model.excitation(1, short, 0.0).unwrap().norm()
+        / model.column_excitation(1, short, 0.0).unwrap().norm();
+    assert!(ratio < 0.5, "{ratio}");
+    // Below the frequencies solved the addition falls away; above them it
+    // stays finite; nothing for a frequency that is not one.
+    assert!(
+        model.excitation_beyond_columns(1, 0.1 * first, 0.0).norm()
+            < 0.011 * model.excitation_beyond_columns(1, first, 0.0).norm() + 1e-9
+    );
+    let last = frequencies.last().unwrap().omega;
+    assert!(
+        model
+            .excitation_beyond_columns(1, 2.0 * last, 0.0)
+            .norm()
+            .is_finite()
+    );
+    assert_eq!(model.excitation_beyond_columns(1, f64::NAN, 0.0).norm(), 0.0);
+    assert_eq!(model.excitation_beyond_columns(7, first, 0.0).norm(), 0.0);
+}
+
 #[test]
 fn the_memory_turns_with_the_body_and_refuses_what_is_not_finite() {
     let model = sphere_model();
