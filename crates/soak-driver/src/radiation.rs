@@ -35,8 +35,8 @@ pub(crate) fn water_motion(
 /// (the wave pressure's decay with depth and the diffraction), `β` the
 /// wave's heading in the body's axes at rest as it is turned now, and `θ`
 /// the wave's phase at the centre of mass `center` (m, world) at time `t`
-/// (s). Along the body's heave axis as it is turned by `rotation`
-/// (object → world). `None` on any other surface: there the body radiates
+/// (s); `rotation` is the body's as the model reads it
+/// ([`RadiationModel::heading`]). Vertical. `None` on any other surface: there the body radiates
 /// against the water's own vertical motion instead (see the step).
 pub(crate) fn sea_excitation(
     water: &Water,

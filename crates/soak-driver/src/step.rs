@@ -156,7 +156,8 @@ impl<H: Handle> Driver<H> {
                 b.applied = Wrench::default();
                 b.added_force = Wrench::default();
                 if let (Some(run), Some(model)) = (&mut b.radiation, &b.effects.radiation) {
-                    let velocity = RadiationState::local_velocity(model, &now.rotation, &v, &w);
+                    let velocity =
+                        RadiationState::local_velocity(model, &model.heading(&now.rotation), &v, &w);
                     run.state.record(model, velocity, t);
                     run.force = Wrench::default();
                 }
@@ -308,7 +309,8 @@ impl<H: Handle> Driver<H> {
                     // motions see the linear model unchanged), fading to
                     // none as the body leaves the water.
                     let share = (2.0 * forces.submerged_volume / model.hydrostatics().volume).clamp(0.0, 1.0);
-                    let rotation = &rb.pose.rotation;
+                    // Read in the model's frame: the body's heading.
+                    let rotation = &model.heading(&rb.pose.rotation);
                     // On a sea of known waves the body radiates as it
                     // moves and takes linear theory's excitation: the
                     // texels' hydrostatic columns and what the model adds
@@ -337,7 +339,7 @@ impl<H: Handle> Driver<H> {
                     );
                     run.state.record(model, velocity, t);
                     let (force, torque) = run.state.world_force(model, rotation);
-                    let (linear, angular) = model.infinite_blocks(&state.pose.rotation);
+                    let (linear, angular) = model.infinite_blocks(&model.heading(&state.pose.rotation));
                     let excitation = excitation.unwrap_or_default();
                     radiation = Wrench {
                         force: (force + linear * flow_acceleration + excitation.force) * share,

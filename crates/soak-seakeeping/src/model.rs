@@ -518,6 +518,24 @@ impl RadiationModel {
         Some((x / h).norm())
     }
 
+    /// The orientation the model reads a body turned by `rotation` (object
+    /// → water) in: its rest orientation turned about the vertical by the
+    /// body's yaw from it (the twist about y of `rotation · rest⁻¹`). The
+    /// wetted hull of a floating body tilts little from its rest, and
+    /// linear theory's modes are the water's: a ball rolling over keeps its
+    /// heave vertical and a boat its roll about its own length as it turns.
+    /// The rest orientation itself where the yaw is undefined (a body
+    /// turned upside down about a horizontal axis).
+    pub fn heading(&self, rotation: &UnitQuaternion<f64>) -> UnitQuaternion<f64> {
+        let turn = rotation * self.rotation.inverse();
+        let q = turn.quaternion();
+        let twist = nalgebra::Quaternion::new(q.w, 0.0, q.j, 0.0);
+        if twist.norm() < 1e-9 {
+            return self.rotation;
+        }
+        UnitQuaternion::from_quaternion(twist) * self.rotation
+    }
+
     /// A∞'s translational block in the water's axes for a body turned by
     /// `rotation` (object → water), kg, and its rotational block in object
     /// axes, kg·m² (the cross blocks are left out, see [`RadiationModel`]).
