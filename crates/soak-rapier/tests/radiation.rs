@@ -1,4 +1,4 @@
-//! `radiation = true` on a scene body: its model is baked when the scene
+//! Radiation on scene bodies: its model is baked when the scene
 //! is built (once for bodies of one mesh, mass and orientation), and a
 //! buoy released above its draft on calm water decays as linear theory
 //! says instead of bobbing forever.
@@ -70,8 +70,9 @@ fn a_buoy_with_radiation_decays_and_one_without_bobs_on() {
 }
 
 /// The crate and ball of a first scene on a sea (density 500, the
-/// two-wave swell of `data/scenes/buoy_on_waves.toml`), with radiation:
-/// ten minutes of simulated time. Without radiation they are pumped
+/// two-wave swell of `data/scenes/buoy_on_waves.toml`), with the default
+/// settings (radiation on, as for every body floating on a sea): ten
+/// minutes of simulated time. Without radiation they are pumped
 /// between −3 and +3 m; with it each follows linear theory: its heave at
 /// each wave's frequency (demodulated against the wave's phase at the
 /// body, which drifts) within 20 % of the model's RAO × the amplitude.
@@ -84,9 +85,9 @@ fn a_crate_and_a_ball_on_the_swell_heave_as_linear_theory_says() {
          {{ amplitude = 0.25, wavelength = 9.0, direction_deg = 0.0, steepness = 0.6 }},\n\
          {{ amplitude = 0.10, wavelength = 4.0, direction_deg = 35.0, steepness = 0.4, phase = 1.0 }},\n]\n\
          [[bodies]]\nname = \"crate\"\nmesh = \"builtin:box:1x0.5x0.5\"\nresolution = 64\n\
-         mass = {{ model = \"solid\", density = 500.0 }}\nposition = [0.0, 0.0, 0.0]\nradiation = true\n\
+         mass = {{ model = \"solid\", density = 500.0 }}\nposition = [0.0, 0.0, 0.0]\n\
          [[bodies]]\nname = \"ball\"\nmesh = \"builtin:sphere:0.25:32\"\nresolution = 64\n\
-         mass = {{ model = \"solid\", density = 500.0 }}\nposition = [0.0, 0.0, 5.0]\nradiation = true\n"
+         mass = {{ model = \"solid\", density = 500.0 }}\nposition = [0.0, 0.0, 5.0]\n"
     );
     let loaded = LoadedScene::from_str(&text, std::path::Path::new(".")).unwrap();
     let mut sim = Simulation::from_scene(&loaded).unwrap();
@@ -164,4 +165,47 @@ fn a_crate_and_a_ball_on_the_swell_heave_as_linear_theory_says() {
         // No pump: within the crest and trough and a body's size.
         assert!(heights[b].0 > -0.8 && heights[b].1 < 0.8, "{:?}", heights[b]);
     }
+}
+
+/// Whether a scene body radiates when the scene does not say: on for a
+/// body floating on a Gerstner sea, off on calm water, with interactive
+/// waves (bodies make their waves there), for a body told `false`, one
+/// with `added_mass`, and one too heavy to float (no error: it sinks
+/// without); `true` for a body too heavy to float is an error naming it.
+#[test]
+fn radiation_is_on_by_default_for_bodies_floating_on_a_sea_only() {
+    let sea = "[water]\nkind = \"gerstner\"\nwaves = [{ amplitude = 0.1, wavelength = 6.0, direction_deg = 0.0, steepness = 0.0 }]\n";
+    let calm = "[water]\nkind = \"plane\"\n";
+    let body = |extra: &str| {
+        format!(
+            "[[bodies]]\nname = \"b\"\nmesh = \"builtin:box:0.6x0.4x0.5\"\nresolution = 32\n\
+             mass = {{ model = \"solid\", density = 500.0 }}\n{extra}\n"
+        )
+    };
+    let radiates = |text: String| -> Result<bool, String> {
+        let text = format!("dt = 0.0166667\nduration = 1.0\n{text}");
+        let loaded = LoadedScene::from_str(&text, std::path::Path::new(".")).map_err(|e| e.to_string())?;
+        let sim = Simulation::from_scene(&loaded).map_err(|e| e.to_string())?;
+        let id = sim.bodies[0].id.unwrap();
+        Ok(sim.soak.body(id).unwrap().effects().radiation.is_some())
+    };
+    assert!(radiates(format!("{sea}{}", body(""))).unwrap());
+    assert!(!radiates(format!("{calm}{}", body(""))).unwrap());
+    assert!(radiates(format!("{calm}{}", body("radiation = true"))).unwrap());
+    assert!(!radiates(format!("{sea}{}", body("radiation = false"))).unwrap());
+    assert!(!radiates(format!("{sea}{}", body("added_mass = true"))).unwrap());
+    let waves = "[waves]\nsize = 64.0\ncells = 64\n";
+    assert!(!radiates(format!("{sea}{waves}{}", body(""))).unwrap());
+    let heavy = |extra: &str| {
+        format!(
+            "[[bodies]]\nname = \"anchor\"\nmesh = \"builtin:box:0.3x0.3x0.3\"\nresolution = 32\n\
+             mass = {{ model = \"solid\", density = 3000.0 }}\n{extra}\n"
+        )
+    };
+    assert!(!radiates(format!("{sea}{}", heavy(""))).unwrap());
+    let refused = radiates(format!("{sea}{}", heavy("radiation = true"))).unwrap_err();
+    assert!(
+        refused.contains("anchor") && refused.contains("radiation"),
+        "{refused}"
+    );
 }

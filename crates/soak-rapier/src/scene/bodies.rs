@@ -125,12 +125,23 @@ pub struct BodySpec {
     /// Radiation: the waves the body makes as it moves take its energy
     /// away (Cummins' equation with coefficients from a panel method on
     /// its mesh floating at rest in its initial orientation, see
-    /// [`crate::Effects::radiation`]); supersedes `added_mass`. Baked when
-    /// the scene is built (about a second per mesh and mass at the default
-    /// 300 panels), shared by bodies of one mesh, mass and orientation.
-    /// Off by default.
+    /// [`crate::Effects::radiation`]), and on a Gerstner sea it takes
+    /// linear theory's wave excitation; supersedes `added_mass`. Baked
+    /// when the scene is built (150 panels, 24 frequencies: about a second
+    /// per mesh and mass on two cores in a release build), shared by
+    /// bodies of one mesh, mass and orientation.
+    ///
+    /// When absent it is **on for a body that floats on a Gerstner sea**
+    /// (`[water] kind = "gerstner"` without interactive `[waves]`): a
+    /// dynamic body with buoyancy and a closed mesh, without `added_mass`,
+    /// `graph`, `open` or impact holes, that the panel method can float
+    /// (a body too heavy to float goes without). Buoyancy alone on waves
+    /// has no damping: such a body is pumped out of the water. Off
+    /// everywhere else (calm water and static height fields pay nothing).
+    /// `false` turns it off; `true` asks for it on any water, and a body
+    /// that cannot be baked is then an error.
     #[serde(default)]
-    pub radiation: bool,
+    pub radiation: Option<bool>,
     /// Slamming: the impact of entering the water (see [`crate::Slamming`]):
     /// `slamming = {}` for the defaults, `slamming = { cap = 0.5 }` to
     /// let one step's impact take at most half the body's downward
