@@ -19,7 +19,9 @@ pub use self::bodies::{RapierBodies, RapierBodiesRef};
 pub use self::error::{SceneError, SoakError};
 pub use self::force_generator::{ForceGenerator, SoakBody, step_params};
 pub use self::scene::{LoadedScene, Scene};
-pub use self::simulation::{BodyReport, Sample, SavedSimulation, SimBody, Simulation, water_of};
+pub use self::simulation::{
+    BodyReport, Sample, SavedSimulation, SimBody, Simulation, radiation_settings, water_of,
+};
 /// The engine-neutral driver [`ForceGenerator`] adapts to Rapier.
 pub use soak_driver;
 pub use soak_driver::{
@@ -28,6 +30,7 @@ pub use soak_driver::{
 };
 /// Water entering hulls (the liquid graph of [`Effects::flooding`]).
 pub use soak_graph;
+pub use soak_seakeeping;
 /// Surface wetting (the liquid texture of [`Effects::wetting`]).
 pub use soak_wet;
 

@@ -19,13 +19,21 @@ use crate::scene::{
 };
 use crate::{BodyDesc, Effects, ForceGenerator};
 
-/// Panels and frequencies of a scene body's radiation bake: against 300
+/// The settings a scene bakes a body's radiation with in `water`: its
+/// density and gravity, 150 panels and 24 frequencies. Against 300
 /// panels and 40 frequencies, free-decay period and decay per cycle
 /// within 0.9 % for a crate (heave, roll, pitch), a ball (heave) and a
 /// capsule buoy (heave, roll), in a quarter of the time (`soak
 /// seakeeping MESH --panels 150 --frequencies 24`).
-const RADIATION_PANELS: usize = 150;
-const RADIATION_FREQUENCIES: usize = 24;
+pub fn radiation_settings(water: &Water) -> soak_seakeeping::RadiationSettings {
+    soak_seakeeping::RadiationSettings {
+        density: water.density,
+        gravity: water.gravity,
+        panels: 150,
+        frequencies: 24,
+        ..soak_seakeeping::RadiationSettings::default()
+    }
+}
 
 /// Builds the fluid a scene describes.
 pub fn water_of(loaded: &LoadedScene) -> Result<Water, SceneError> {
@@ -351,13 +359,7 @@ impl Simulation {
                     match radiation_bakes.get(&key) {
                         Some(known) => Some(Arc::clone(known)),
                         None => {
-                            let settings = soak_seakeeping::RadiationSettings {
-                                density: soak.water().density,
-                                gravity: soak.water().gravity,
-                                panels: RADIATION_PANELS,
-                                frequencies: RADIATION_FREQUENCIES,
-                                ..soak_seakeeping::RadiationSettings::default()
-                            };
+                            let settings = radiation_settings(soak.water());
                             let body = soak_seakeeping::FloatingBody {
                                 mesh: &mesh,
                                 mass: mass.mass,

@@ -15,7 +15,7 @@ use crate::convert;
 use crate::error::SoakError;
 use crate::{ForceGenerator, SoakId};
 
-pub use self::build::water_of;
+pub use self::build::{radiation_settings, water_of};
 pub use self::saved::SavedSimulation;
 
 /// One body of a running scene.

@@ -19,6 +19,14 @@ pub enum ScalingError {
         /// What went wrong.
         source: BakeError,
     },
+    /// A mesh's radiation could not be baked.
+    #[error("baking the {mesh}'s radiation: {source}")]
+    Radiation {
+        /// The mesh.
+        mesh: &'static str,
+        /// What went wrong.
+        source: soak_rapier::soak_seakeeping::SeakeepingError,
+    },
     /// The swell could not be made.
     #[error(transparent)]
     Accuracy(#[from] crate::accuracy::AccuracyError),

@@ -26,12 +26,15 @@ fn look(c: &Column) -> (usize, Line, Marker) {
         (Variant::BuoyancyDrag, Some(WaterKind::Calm)) => 1,
         (Variant::Buoyancy, Some(WaterKind::Swell)) => 2,
         (Variant::BuoyancyDrag, Some(WaterKind::Swell)) => 3,
+        (Variant::BuoyancyRadiation, Some(WaterKind::Calm)) => 5,
+        (Variant::BuoyancyRadiation, Some(WaterKind::Swell)) => 6,
         _ => 4,
     };
     let marker = match c.variant {
         Variant::RapierAlone => Marker::Cross,
         Variant::Buoyancy => Marker::Circle,
         Variant::BuoyancyDrag => Marker::Square,
+        Variant::BuoyancyRadiation => Marker::Triangle,
     };
     let line = if c.device == Device::Gpu {
         Line::Dashed

@@ -7,7 +7,8 @@ use std::time::Instant;
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions, builtin};
 use soak_hydro::{Drag, MassModel, Water};
-use soak_rapier::{BodyDesc, Effects, ForceGenerator};
+use soak_rapier::soak_seakeeping::{FloatingBody, RadiationModel};
+use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakError, radiation_settings};
 
 use super::{
     Case, Column, Device, Measurement, ScalingError, ScalingOptions, ScalingReport, Variant, WaterKind,
@@ -41,6 +42,11 @@ pub struct Fleet {
     pub masses: [f64; 2],
     /// Baking both, ms.
     pub bake_ms: f64,
+    /// The sphere's mesh (its radiation is baked from it).
+    sphere_mesh: soak_bake::Mesh,
+    /// The box's and the sphere's radiation, baked when first asked for
+    /// ([`Fleet::radiation`]).
+    radiation: std::sync::OnceLock<[Arc<RadiationModel>; 2]>,
 }
 
 impl Fleet {
@@ -55,10 +61,8 @@ impl Fleet {
                 .map_err(|source| ScalingError::Bake { mesh: name, source })
         };
         let box_atlas = bake(&builtin::cuboid(BOX[0], BOX[1], BOX[2]), "box")?;
-        let sphere_atlas = bake(
-            &builtin::sphere(RADIUS, sphere_segments.0, sphere_segments.1),
-            "sphere",
-        )?;
+        let sphere_mesh = builtin::sphere(RADIUS, sphere_segments.0, sphere_segments.1);
+        let sphere_atlas = bake(&sphere_mesh, "sphere")?;
         let bake_ms = start.elapsed().as_secs_f64() * 1e3;
         let volumes = [box_atlas.volume(), sphere_atlas.volume()];
         Ok(Self {
@@ -67,7 +71,46 @@ impl Fleet {
             volumes,
             masses: volumes.map(|v| v * DENSITY),
             bake_ms,
+            sphere_mesh,
+            radiation: std::sync::OnceLock::new(),
         })
+    }
+
+    /// The radiation of body `i`'s mesh floating in `water`, baked once
+    /// per fleet (the first water asked for: its density and gravity are
+    /// every water's here) with a scene's settings.
+    ///
+    /// # Errors
+    /// A mesh whose radiation does not bake.
+    pub fn radiation(&self, i: usize, water: &Water) -> Result<Arc<RadiationModel>, ScalingError> {
+        if self.radiation.get().is_none() {
+            let bake = |mesh: &soak_bake::Mesh, atlas: &Atlas, name: &'static str| {
+                let mass = MassModel::Solid { density: DENSITY }
+                    .mass_properties(atlas)
+                    .map_err(|source| {
+                        ScalingError::Soak(SoakError::Hydro {
+                            name: name.to_string(),
+                            source,
+                        })
+                    })?;
+                let body = FloatingBody {
+                    mesh,
+                    mass: mass.mass,
+                    center_of_mass: mass.center_of_mass,
+                    inertia: mass.inertia,
+                    rotation: nalgebra::UnitQuaternion::identity(),
+                };
+                RadiationModel::bake(&body, &radiation_settings(water))
+                    .map(Arc::new)
+                    .map_err(|source| ScalingError::Radiation { mesh: name, source })
+            };
+            let made = [
+                bake(&builtin::cuboid(BOX[0], BOX[1], BOX[2]), &self.box_atlas, "box")?,
+                bake(&self.sphere_mesh, &self.sphere_atlas, "sphere")?,
+            ];
+            let _ = self.radiation.set(made);
+        }
+        Ok(self.radiation.get().expect("set above")[i % 2].clone())
     }
 
     /// The atlas of body `i`.
@@ -135,9 +178,15 @@ fn build(
             })
         }
     };
-    let effects = match column.variant {
-        Variant::RapierAlone | Variant::Buoyancy => Effects::buoyancy(),
-        Variant::BuoyancyDrag => Effects::buoyancy().with_drag(DRAG),
+    let effects = |i: usize| -> Result<Effects, ScalingError> {
+        Ok(match column.variant {
+            Variant::RapierAlone | Variant::Buoyancy => Effects::buoyancy(),
+            Variant::BuoyancyDrag => Effects::buoyancy().with_drag(DRAG),
+            Variant::BuoyancyRadiation => {
+                let water = height.as_ref().expect("the generator's columns have a water");
+                Effects::buoyancy().with_radiation(fleet.radiation(i, water)?)
+            }
+        })
     };
     for i in 0..n {
         let (x, z) = grid(i, n);
@@ -173,7 +222,7 @@ fn build(
                     name: format!("{} {i}", if i.is_multiple_of(2) { "box" } else { "sphere" }),
                     atlas: fleet.atlas(i).clone(),
                     mass_model: MassModel::Solid { density: DENSITY },
-                    effects: effects.clone(),
+                    effects: effects(i)?,
                 },
             )?;
         }

@@ -54,6 +54,10 @@ pub enum Variant {
     /// The force generator with buoyancy and drag (`Drag { coefficient:
     /// 0.8, linear: 20.0 }`).
     BuoyancyDrag,
+    /// The force generator with buoyancy and radiation (one model per
+    /// mesh, baked as a scene bakes it: what a scene gives a body floating
+    /// on a sea by default).
+    BuoyancyRadiation,
 }
 
 impl Variant {
@@ -63,6 +67,7 @@ impl Variant {
             Variant::RapierAlone => "Rapier alone",
             Variant::Buoyancy => "buoyancy",
             Variant::BuoyancyDrag => "buoyancy + drag",
+            Variant::BuoyancyRadiation => "buoyancy + radiation",
         }
     }
 }
@@ -128,8 +133,8 @@ impl Column {
     }
 
     /// The columns measured, in table order: Rapier alone, then per
-    /// water buoyancy and buoyancy + drag on the CPU, then (with `gpu`)
-    /// the same on the GPU.
+    /// water buoyancy, buoyancy + drag and buoyancy + radiation on the
+    /// CPU, then (with `gpu`) the first two on the GPU.
     pub fn all(gpu: bool) -> Vec<Column> {
         let mut v = vec![Column::RAPIER];
         let devices: &[Device] = if gpu {
@@ -141,6 +146,9 @@ impl Column {
             for water in [WaterKind::Calm, WaterKind::Swell] {
                 for variant in [Variant::Buoyancy, Variant::BuoyancyDrag] {
                     v.push(Column::soak(variant, water, device));
+                }
+                if device == Device::Cpu {
+                    v.push(Column::soak(Variant::BuoyancyRadiation, water, device));
                 }
             }
         }
