@@ -280,20 +280,53 @@ impl Memory {
     /// Advances by `dt` over which the velocity goes linearly from `v0` to
     /// `v1` (exact for that history).
     pub fn advance(&mut self, kernel: &Kernel, v0: f64, v1: f64, dt: f64) {
-        for (s, &p) in self.states.iter_mut().zip(&kernel.poles) {
-            let e = (p * dt).exp();
-            // ∫₀^dt e^{p(dt−τ)} (v0 + (v1 − v0) τ/dt) dτ.
-            let pd = p * dt;
-            let (phi1, phi2) = if pd.norm() < 1e-4 {
-                (
-                    Complex64::new(dt, 0.0) * (1.0 + pd / 2.0),
-                    Complex64::new(dt / 2.0, 0.0) * (1.0 + pd / 3.0),
-                )
-            } else {
-                ((e - 1.0) / p, ((e - 1.0) / pd - 1.0) / p)
-            };
-            // φ1 = ∫ e^{p(dt−τ)} dτ, φ2 = ∫ e^{p(dt−τ)} τ/dt dτ.
-            *s = e * *s + phi1 * v0 + phi2 * (v1 - v0);
+        self.advance_by(&kernel.step(dt), v0, v1);
+    }
+
+    /// [`Memory::advance`] with the step's factors already computed
+    /// ([`Kernel::step`]: the same for every body and step of one `dt`).
+    pub fn advance_by(&mut self, step: &[StepFactors], v0: f64, v1: f64) {
+        for (s, f) in self.states.iter_mut().zip(step) {
+            *s = f.decay * *s + f.constant * v0 + f.ramp * (v1 - v0);
         }
+    }
+}
+
+/// What one step of `dt` does to one state of a [`Memory`]: for a pole
+/// `p`, `decay = e^{p dt}`, `constant = ∫₀^dt e^{p(dt−τ)} dτ` and
+/// `ramp = ∫₀^dt e^{p(dt−τ)} τ/dt dτ`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepFactors {
+    /// `e^{p dt}`.
+    pub decay: Complex64,
+    /// The constant velocity's part, s.
+    pub constant: Complex64,
+    /// The velocity's ramp's part, s.
+    pub ramp: Complex64,
+}
+
+impl Kernel {
+    /// The factors of a step of `dt` (s) for each pole, in order.
+    pub fn step(&self, dt: f64) -> Vec<StepFactors> {
+        self.poles
+            .iter()
+            .map(|&p| {
+                let e = (p * dt).exp();
+                let pd = p * dt;
+                let (constant, ramp) = if pd.norm() < 1e-4 {
+                    (
+                        Complex64::new(dt, 0.0) * (1.0 + pd / 2.0),
+                        Complex64::new(dt / 2.0, 0.0) * (1.0 + pd / 3.0),
+                    )
+                } else {
+                    ((e - 1.0) / p, ((e - 1.0) / pd - 1.0) / p)
+                };
+                StepFactors {
+                    decay: e,
+                    constant,
+                    ramp,
+                }
+            })
+            .collect()
     }
 }

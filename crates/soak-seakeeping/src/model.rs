@@ -776,6 +776,22 @@ pub struct RadiationState {
     memory: Vec<Memory>,
     /// The last velocity, axes at rest (m/s and rad/s), and when, s.
     last: Option<([f64; 6], f64)>,
+    /// The step factors of the last step's length, per mode (not state:
+    /// not saved, never compared).
+    #[serde(skip)]
+    steps: StepCache,
+}
+
+/// The factors of the last step's length: recomputed when the step
+/// changes (the same arithmetic either way, so the memory does not depend
+/// on what was cached).
+#[derive(Clone, Debug, Default)]
+struct StepCache(Option<(u64, Vec<Vec<crate::memory::StepFactors>>)>);
+
+impl PartialEq for StepCache {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 impl RadiationState {
@@ -784,6 +800,7 @@ impl RadiationState {
         Self {
             memory: model.kernels.iter().map(Memory::new).collect(),
             last: None,
+            steps: StepCache::default(),
         }
     }
 
@@ -823,8 +840,15 @@ impl RadiationState {
         if let Some((last, then)) = self.last
             && time > then
         {
-            for (mode, memory) in self.memory.iter_mut().enumerate() {
-                memory.advance(&model.kernels[mode], last[mode], velocity[mode], time - then);
+            let dt = time - then;
+            let fresh = !matches!(&self.steps.0, Some((bits, _)) if *bits == dt.to_bits());
+            if fresh {
+                self.steps.0 = Some((dt.to_bits(), model.kernels.iter().map(|k| k.step(dt)).collect()));
+            }
+            if let Some((_, steps)) = &self.steps.0 {
+                for (mode, memory) in self.memory.iter_mut().enumerate() {
+                    memory.advance_by(&steps[mode], last[mode], velocity[mode]);
+                }
             }
         }
         self.last = Some((velocity, time));
