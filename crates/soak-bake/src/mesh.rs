@@ -166,6 +166,13 @@ impl Mesh {
     /// open mesh become ordinary triangles. A mesh already that small is
     /// returned as it is (welded).
     pub fn simplified(&self, target: usize) -> Mesh {
+        self.simplified_within(target, 0.05)
+    }
+
+    /// [`Mesh::simplified`] with a deviation of at most `deviation` times
+    /// the mesh's extent: the simplifier stops short of `target` rather
+    /// than deviate further.
+    pub fn simplified_within(&self, target: usize, deviation: f32) -> Mesh {
         let indices: Vec<u32> = self.welded_triangles().into_iter().flatten().collect();
         let ps: Vec<[f32; 3]> = self
             .positions
@@ -177,7 +184,7 @@ impl Mesh {
                 &indices,
                 &adapter,
                 3 * target.max(4),
-                0.05,
+                deviation,
                 meshopt::SimplifyOptions::None,
                 None,
             ),

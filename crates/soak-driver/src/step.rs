@@ -304,7 +304,9 @@ impl<H: Handle> Driver<H> {
             // with the drag.
             let mut radiation = Wrench::default();
             let inertial = match (&b.effects.radiation, &mut b.radiation, &b.effects.added_mass) {
-                (Some(model), Some(run), _) => {
+                // Radiation where the step resolves the body's motion (see
+                // `RadiationModel::resolved_by`); otherwise as without it.
+                (Some(model), Some(run), _) if model.resolved_by(dt) => {
                     // Whole from half the rest displacement up (small
                     // motions see the linear model unchanged), fading to
                     // none as the body leaves the water.

@@ -42,7 +42,8 @@ pub enum SeakeepingError {
         value: f64,
     },
     /// The body is too heavy to float: it would displace more than its
-    /// whole volume.
+    /// whole volume, or within 0.1 % of it (neutral: no water-plane to
+    /// float on, where linear theory about a rest has nothing to hold).
     #[error("the body sinks: floating would take {displaced} m³ of water, it encloses {volume} m³")]
     Sinks {
         /// The volume its mass would displace, m³.

@@ -184,19 +184,26 @@ impl RadiationModel {
         let rotation = settle(body, search, target)?;
         let body = &FloatingBody { rotation, ..*body };
         let height = float_height(body, &rotation, target)?;
-        let pose = rest_pose(body, &rotation, height);
+        let mut pose = rest_pose(body, &rotation, height);
+        let mut height = height;
         let mut coarse = wetted_panels(body.mesh, &pose, 1e9)?;
         // A mesh finer than the panels asked for is simplified first (a
-        // deviation of at most 5 % of its extent): its wetted triangles
-        // about the target.
+        // deviation of at most 0.5 % of its extent: the simplifier keeps
+        // more triangles than asked rather than lose the hull's shape),
+        // and floated again: the model's hydrostatics are its own hull's
+        // at the draft where that hull displaces the mass.
         let simplified;
         let mut mesh = body.mesh;
         if coarse.len() > settings.panels * 3 / 2 {
             let share = settings.panels as f64 / coarse.len() as f64;
-            simplified = body
-                .mesh
-                .simplified(((body.mesh.triangles.len() as f64 * share) as usize).max(8));
+            simplified = body.mesh.simplified_within(
+                ((body.mesh.triangles.len() as f64 * share) as usize).max(8),
+                0.005,
+            );
             mesh = &simplified;
+            let hull = FloatingBody { mesh, ..*body };
+            height = float_height(&hull, &rotation, target)?;
+            pose = rest_pose(&hull, &rotation, height);
             coarse = wetted_panels(mesh, &pose, 1e9)?;
         }
         let wetted: f64 = coarse.iter().map(|p| p.area).sum();
@@ -294,7 +301,7 @@ impl RadiationModel {
             })
             .collect();
         let turn = body.rotation.to_rotation_matrix().into_inner();
-        Ok(Self {
+        let model = Self {
             rotation: body.rotation,
             center_of_mass: body.center_of_mass,
             mass: body.mass,
@@ -310,7 +317,8 @@ impl RadiationModel {
             panels: count,
             density: rho,
             gravity: g,
-        })
+        };
+        Ok(model)
     }
 
     /// The body's orientation at rest (object axes → the water's): the
@@ -354,6 +362,15 @@ impl RadiationModel {
     /// of the water-plane's area.
     pub fn length(&self) -> f64 {
         self.length
+    }
+    /// Whether a time step of `dt` (s) resolves the body's own motion:
+    /// `dt √(g/L) ≤ 1` ([`RadiationModel::length`]), the step no longer
+    /// than the body's natural time. A step that does not (a millimetre
+    /// body at 1/10 s) cannot follow the waves it makes: the time domain
+    /// leaves its radiation out (the implicit heave step damps such a body
+    /// by itself).
+    pub fn resolved_by(&self, dt: f64) -> bool {
+        dt * (self.gravity / self.length).sqrt() <= 1.0
     }
     /// How many panels the wetted surface was cut into.
     pub fn panel_count(&self) -> usize {
@@ -705,7 +722,9 @@ fn float_height(
     };
     let (mut low, mut high) = (-1.01 * reach, 1.01 * reach);
     let whole = volume(low)?;
-    if target >= whole {
+    // Neutral within 0.1 % floats with no water-plane: refused with the
+    // heavy ones.
+    if target >= (1.0 - 1e-3) * whole {
         return Err(SeakeepingError::Sinks {
             displaced: target,
             volume: whole,

@@ -102,6 +102,10 @@ fn a_half_dense_sphere_floats_at_its_centre_and_heaves_as_the_hemisphere() {
     assert!((rao - 1.0).abs() < 0.01, "{rao}");
     assert!((x / limit - 1.0).abs() < 0.01, "{x} vs {limit}");
     assert!(model.rao(1, 0.5 * long, 0.0).is_none());
+    // A step resolves the body's motion up to its natural time √(L/g)
+    // (L ≈ 1 m: 0.32 s).
+    assert!(model.resolved_by(1.0 / 60.0) && model.resolved_by(0.3));
+    assert!(!model.resolved_by(0.33) && !model.resolved_by(1.0));
     // Yaw radiates nothing: no states.
     assert!(model.kernel(4).poles.is_empty());
     assert!(model.release(0, 0.1, &times).is_none());
@@ -238,6 +242,10 @@ fn a_body_too_heavy_to_float_is_refused() {
         rotation: UnitQuaternion::identity(),
     };
     let result = RadiationModel::bake(&body, &RadiationSettings::default());
+    assert!(matches!(result, Err(SeakeepingError::Sinks { .. })), "{result:?}");
+    // Neutral within 0.1 %: no water-plane to float on.
+    let neutral = FloatingBody { mass: 999.5, ..body };
+    let result = RadiationModel::bake(&neutral, &RadiationSettings::default());
     assert!(matches!(result, Err(SeakeepingError::Sinks { .. })), "{result:?}");
     let light = FloatingBody { mass: -1.0, ..body };
     assert!(matches!(

@@ -2,15 +2,18 @@
 //! its effects (buoyancy, drag, flooding, wetting, by level), Rapier stepped
 //! with the force generator, and the checks.
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::{PhysicsWorld, RigidBodyBuilder};
 use soak_graph::{Flooding, FlowOptions, LiquidGraph, Node, Permeability, Pipe, WATER_VISCOSITY};
 use soak_hydro::{AddedMass, BuoyancyMode, Drag, MassModel};
+use soak_rapier::soak_seakeeping::{FloatingBody, RadiationModel};
 use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakError, convert};
 use soak_wet::{Diffusion, Environment, FieldResolution, Liquid, Material, Wetting};
 
+use super::RadiationBakes;
 use super::energy::{allowance, periods, specific_energy};
 use super::error::StressError;
 use super::fixture::{Fixture, G, RHO_W, equilibrium, water, wave_period};
@@ -40,6 +43,7 @@ pub(crate) fn run_cell(
     f: &Fixture,
     max_steps: usize,
     mode: BuoyancyMode,
+    bakes: &RadiationBakes,
 ) -> Result<Outcome, StressError> {
     let start = Instant::now();
     let dt = 1.0 / cell.rate as f64;
@@ -143,6 +147,34 @@ pub(crate) fn run_cell(
             density: cell.density * RHO_W,
         }
     };
+    // Radiation: the closed shape floating at rest from the cell's start
+    // orientation, baked as a scene bakes it, once per mesh, scale and
+    // density; it supersedes the added mass.
+    let mut radiates = false;
+    if cell.level >= Level::Radiation {
+        let mass = mass_model
+            .mass_properties(&f.atlas)
+            .map_err(|source| SoakError::Hydro {
+                name: cell.name(),
+                source,
+            })?;
+        let settings = soak_rapier::radiation_settings(soak.water());
+        let key = (cell.mesh, cell.scale.to_bits(), cell.density.to_bits());
+        let model = bakes.get(key, || {
+            let body = FloatingBody {
+                mesh: &f.mesh,
+                mass: mass.mass,
+                center_of_mass: mass.center_of_mass,
+                inertia: mass.inertia,
+                rotation,
+            };
+            RadiationModel::bake(&body, &settings).ok().map(Arc::new)
+        });
+        if let Some(model) = model {
+            radiates = model.resolved_by(dt);
+            effects = effects.with_radiation(model);
+        }
+    }
     let centroid = {
         let v = soak_hydro::volume_moments(&f.atlas);
         v.origin + v.first / v.volume
@@ -327,6 +359,7 @@ pub(crate) fn run_cell(
         mean_vy,
         settled,
         settle_note,
+        radiates,
         pass: failures.is_empty(),
         failures,
     })

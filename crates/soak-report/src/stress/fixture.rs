@@ -16,6 +16,8 @@ pub(crate) const G: f64 = 9.81;
 
 /// A mesh baked at one scale, shared by its cells.
 pub(crate) struct Fixture {
+    /// The mesh, scaled (an open container's closed shape).
+    pub(crate) mesh: soak_bake::Mesh,
     pub(crate) atlas: Atlas,
     /// Enclosed volume, m³.
     pub(crate) volume: f64,
@@ -58,6 +60,7 @@ impl Fixture {
             });
         }
         Ok(Fixture {
+            mesh: m,
             size: volume.cbrt(),
             radius: atlas.bounding_radius(),
             volume,

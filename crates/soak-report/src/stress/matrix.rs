@@ -136,16 +136,22 @@ pub enum Level {
     /// + added mass: the equivalent ellipsoid's, scaled by the submerged
     ///   fraction.
     AddedMass,
+    /// + radiation (Cummins' equation from a panel method on the closed
+    ///   shape floating at rest, baked as a scene bakes it), which
+    ///   supersedes the added mass; a body the panel method cannot float
+    ///   (as dense as the water or denser) goes without, as in a scene.
+    Radiation,
 }
 
 impl Level {
     /// Every level of the matrix, in its order.
-    pub const ALL: [Level; 5] = [
+    pub const ALL: [Level; 6] = [
         Level::Buoyancy,
         Level::Drag,
         Level::Ingress,
         Level::Wetting,
         Level::AddedMass,
+        Level::Radiation,
     ];
 
     /// The short name in cell names and tables.
@@ -156,6 +162,7 @@ impl Level {
             Level::Ingress => "+ingress",
             Level::Wetting => "+wetting",
             Level::AddedMass => "+added_mass",
+            Level::Radiation => "+radiation",
         }
     }
 }
@@ -203,8 +210,8 @@ fn fmt_scale(s: f64) -> String {
     if s == 1.0 { "1m".into() } else { format!("{s:e}m") }
 }
 
-/// The full product: 10 meshes × 3 waters × 5 levels × 3 scales × 7
-/// densities × 3 rates = 9,450 cells.
+/// The full product: 10 meshes × 3 waters × 6 levels × 3 scales × 7
+/// densities × 3 rates = 11,340 cells.
 pub fn full_matrix() -> Vec<Cell> {
     let mut cells = Vec::new();
     for mesh in Shape::ALL {
@@ -230,7 +237,7 @@ pub fn full_matrix() -> Vec<Cell> {
     cells
 }
 
-/// Every mesh × water × effects (150 cells), each with one (density, time
+/// Every mesh × water × effects (180 cells), each with one (density, time
 /// step, scale) taken in turn from a list that pairs the extremes: the
 /// lightest and the heaviest bodies, the neutral one, the smallest and
 /// largest scales, the shortest and longest steps all appear, on every mesh
@@ -274,8 +281,8 @@ mod tests {
     #[test]
     fn the_matrices_have_their_sizes_and_names_round_trip() {
         let full = full_matrix();
-        assert_eq!(full.len(), 9450);
-        assert_eq!(quick_matrix().len(), 150);
+        assert_eq!(full.len(), 11340);
+        assert_eq!(quick_matrix().len(), 180);
         let mut names: Vec<String> = full.iter().map(Cell::name).collect();
         names.sort();
         names.dedup();

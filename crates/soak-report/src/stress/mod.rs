@@ -28,8 +28,11 @@ mod outcome;
 mod settling;
 mod table;
 
-use std::sync::Mutex;
+use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
+
+use soak_rapier::soak_seakeeping::RadiationModel;
 
 use soak_hydro::BuoyancyMode;
 
@@ -121,6 +124,7 @@ pub fn run_with(
         &fixtures[k]
     };
 
+    let bakes = RadiationBakes::default();
     let next = AtomicUsize::new(0);
     let finished = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Result<Outcome, StressError>>>> =
@@ -134,7 +138,7 @@ pub fn run_with(
                     }
                     let i = next.fetch_add(1, Ordering::Relaxed);
                     let Some(cell) = cells.get(i) else { break };
-                    let r = run_cell(cell, fixture_of(cell), options.max_steps, options.mode);
+                    let r = run_cell(cell, fixture_of(cell), options.max_steps, options.mode, &bakes);
                     if let Ok(mut results) = results.lock() {
                         results[i] = Some(r);
                     }
@@ -159,6 +163,30 @@ pub fn run_with(
         }
     }
     Ok(outcomes)
+}
+
+/// The radiation of each mesh, scale and relative density the cells ask
+/// for, baked once (by the first cell to ask; the others wait for it).
+/// `None` where the panel method cannot float the body.
+#[derive(Default)]
+pub(crate) struct RadiationBakes(Mutex<HashMap<RadiationKey, Arc<OnceLock<Option<Arc<RadiationModel>>>>>>);
+
+/// Mesh, scale bits, relative density bits.
+type RadiationKey = (Shape, u64, u64);
+
+impl RadiationBakes {
+    /// The model for `key`, baked by `bake` if no cell has asked before.
+    pub(crate) fn get(
+        &self,
+        key: RadiationKey,
+        bake: impl FnOnce() -> Option<Arc<RadiationModel>>,
+    ) -> Option<Arc<RadiationModel>> {
+        let slot = {
+            let mut map = self.0.lock().ok()?;
+            Arc::clone(map.entry(key).or_default())
+        };
+        slot.get_or_init(bake).clone()
+    }
 }
 
 /// The cells of the quick (`quick = true`) or the full matrix whose name

@@ -44,6 +44,10 @@ pub struct Outcome {
     pub finite: bool,
     /// Firewall events (rejected forces or states).
     pub firewall: u64,
+    /// The body radiated: a `+radiation` cell whose body the panel method
+    /// could float, at a step that resolves its motion
+    /// (`RadiationModel::resolved_by`).
+    pub radiates: bool,
     /// Largest growth of specific energy over the allowance (≤ 1 passes).
     pub energy_ratio: f64,
     /// Largest growth of specific energy, J/kg.
