@@ -169,10 +169,13 @@ pub fn run_with(
 /// for, baked once (by the first cell to ask; the others wait for it).
 /// `None` where the panel method cannot float the body.
 #[derive(Default)]
-pub(crate) struct RadiationBakes(Mutex<HashMap<RadiationKey, Arc<OnceLock<Option<Arc<RadiationModel>>>>>>);
+pub(crate) struct RadiationBakes(Mutex<HashMap<RadiationKey, Arc<RadiationSlot>>>);
 
 /// Mesh, scale bits, relative density bits.
 type RadiationKey = (Shape, u64, u64);
+
+/// One key's model, once baked (`None`: the body could not be floated).
+type RadiationSlot = OnceLock<Option<Arc<RadiationModel>>>;
 
 impl RadiationBakes {
     /// The model for `key`, baked by `bake` if no cell has asked before.
