@@ -127,9 +127,9 @@ pub struct BodySpec {
     /// its mesh floating at rest in its initial orientation, see
     /// [`crate::Effects::radiation`]), and on a Gerstner sea it takes
     /// linear theory's wave excitation; supersedes `added_mass`. Baked
-    /// when the scene is built (150 panels, 24 frequencies: about a second
-    /// per mesh and mass on two cores in a release build), shared by
-    /// bodies of one mesh, mass and orientation.
+    /// when the scene is built ([`crate::radiation_settings`]: one to
+    /// three seconds per mesh and mass on two cores in a release build),
+    /// shared by bodies of one mesh, mass and orientation.
     ///
     /// When absent it is **on for a body that floats on a Gerstner sea**
     /// (`[water] kind = "gerstner"` without interactive `[waves]`): a
