@@ -157,6 +157,24 @@ fn across_the_cliff_the_sliver_keeps_its_energy() {
     ]);
 }
 
+/// The radiation level on floating bodies of every kind of water, scale
+/// and step the matrix has (the level is the full matrix's alone: 30 of
+/// its 1,890 cells fail, light slivers and tori and a boat at 150 panels,
+/// listed in docs/stress.md).
+#[test]
+fn floating_bodies_with_radiation_keep_their_energy() {
+    assert_cells_pass(&[
+        "sphere/1m/0.5/1/60/sea/+radiation",
+        "box/1m/0.5/1/60/sea/+radiation",
+        "torus/1m/0.5/1/60/sea/+radiation",
+        "capsule/1e3m/0.9/1/10/sea/+radiation",
+        "sphere/1e-3m/0.5/1/240/sea/+radiation",
+        "cylinder/1m/0.5/1/60/cliff/+radiation",
+        "box/1e3m/0.01/1/240/cliff/+radiation",
+        "open_box/1m/0.5/1/60/plane/+radiation",
+    ]);
+}
+
 /// Runs each named cell of the full matrix (at its settings: 32² atlases,
 /// at most 300 steps) and requires every one to pass.
 fn assert_cells_pass(names: &[&str]) {
