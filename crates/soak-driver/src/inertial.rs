@@ -130,26 +130,74 @@ impl Inertial {
         self.linear.is_some()
     }
 
+    /// What Euler's equations of the whole inertia `J` (the body's `own`,
+    /// object axes, and the water's) add to the spin's acceleration beyond
+    /// what an engine applying the gyroscopic term of `own` alone does, at
+    /// angular velocity `omega` (world, rad/s) of a body turned by
+    /// `rotation`: `−J⁻¹ (ω × J ω) + I⁻¹ (ω × I ω)`, rad/s² (zero without
+    /// an added mass, or where either inertia cannot be inverted).
+    pub(crate) fn spin_difference(
+        &self,
+        own: &Matrix3<f64>,
+        rotation: &UnitQuaternion<f64>,
+        omega: &Vector3<f64>,
+    ) -> Vector3<f64> {
+        if self.linear.is_none() {
+            return Vector3::zeros();
+        }
+        let r = rotation.to_rotation_matrix().into_inner();
+        let whole = r * self.inertia * r.transpose();
+        let body = r * own * r.transpose();
+        match (whole.try_inverse(), body.try_inverse()) {
+            (Some(j), Some(i)) => {
+                let d = i * omega.cross(&(body * omega)) - j * omega.cross(&(whole * omega));
+                if d.iter().all(|x| x.is_finite()) {
+                    d
+                } else {
+                    Vector3::zeros()
+                }
+            }
+            _ => Vector3::zeros(),
+        }
+    }
+
     /// The wrench the engine must be given, moving the body's `own` inertia
     /// (object axes) and its mass alone, for the body turned by `rotation`
     /// to move as the body and the water it sets moving would under `w`
     /// (about the centre of mass, world) and gravity `g`: the same linear
     /// and angular accelerations. Without an added mass, `w` itself.
+    ///
+    /// `spin` is the body's angular velocity (world, rad/s) where the
+    /// engine applies the gyroscopic term `−ω × I ω` of the body's own
+    /// inertia `I` (Rapier's default): the body and its water then turn as
+    /// Euler's equations of their whole inertia `J = I + A` say,
+    /// `J ω̇ = τ − ω × J ω`, so the engine is handed
+    /// `I J⁻¹ (τ − ω × J ω) + ω × I ω`, and the kinetic energy
+    /// `½ ω·J ω` changes by the torque's work alone. (Handed `I J⁻¹ τ`,
+    /// the engine's own gyroscopic term would act on `J`'s answer, a
+    /// mismatch that does work on a spinning body whose added inertia is
+    /// not a multiple of its own: a light hull rolling and yawing gained
+    /// energy every turn.) `None` where the engine leaves the term out:
+    /// `I J⁻¹ τ`, which conserves that energy as well.
     pub(crate) fn for_engine(
         &self,
         w: &Wrench,
         own: &Matrix3<f64>,
         rotation: &UnitQuaternion<f64>,
         g: f64,
+        spin: Option<&Vector3<f64>>,
     ) -> Wrench {
         if self.linear.is_none() {
             return *w;
         }
         let a = self.acceleration(&w.force, g);
         let r = rotation.to_rotation_matrix().into_inner();
-        let torque = (r * self.inertia * r.transpose())
+        let whole = r * self.inertia * r.transpose();
+        let body = r * own * r.transpose();
+        let turn = spin.map_or_else(Vector3::zeros, |omega| self.spin_difference(own, rotation, omega));
+        let torque = whole
             .try_inverse()
-            .map(|inverse| r * own * r.transpose() * (inverse * w.torque))
+            .map(|inverse| body * (inverse * w.torque + turn))
             .filter(|t| t.iter().all(|x| x.is_finite()))
             .unwrap_or(w.torque);
         Wrench {
@@ -183,7 +231,7 @@ mod tests {
         let want = (w.force - Vector3::y() * m * g) / total;
         assert!((a - want).norm() < 1e-12 * want.norm());
         assert!((inertial.force_for(&a, g) - w.force).norm() < 1e-9 * w.force.norm());
-        let engine = inertial.for_engine(&w, &inertia, &UnitQuaternion::identity(), g);
+        let engine = inertial.for_engine(&w, &inertia, &UnitQuaternion::identity(), g, None);
         assert!((engine.force / m - Vector3::y() * g - want).norm() < 1e-9 * want.norm());
         // A sphere has no rotational added mass: the torque is untouched.
         assert!((engine.torque - w.torque).norm() < 1e-12);

@@ -47,6 +47,11 @@ pub(crate) struct Step<'a> {
     max_angular_speed: Option<f64>,
     /// The body's principal inertia, where Rapier applies gyroscopic forces.
     gyroscopic: Option<PrincipalInertia>,
+    /// With an added rotational inertia and the engine's gyroscopic term:
+    /// the spin's acceleration the driver's torque adds so that the body
+    /// turns as its whole inertia does ([`Inertial::spin_difference`]),
+    /// rad/s², world.
+    spin: Vector3<f64>,
 }
 
 /// Rapier's gyroscopic correction of `omega`, once per substep `h` of a
@@ -119,6 +124,11 @@ impl<'a> Step<'a> {
             substeps: substeps as usize,
             max_angular_speed: (!fast_rotation).then(|| std::f64::consts::FRAC_PI_4 / dt),
             gyroscopic: gyroscopic.then(|| mass.principal()),
+            spin: if gyroscopic {
+                inertial.spin_difference(&mass.inertia, &state.pose.rotation, &w0)
+            } else {
+                Vector3::zeros()
+            },
         })
     }
 
@@ -126,7 +136,7 @@ impl<'a> Step<'a> {
     fn accelerations(&self, w: &Wrench) -> (Vector3<f64>, Vector3<f64>) {
         (
             self.inertial.acceleration(&(w.force + self.drag.force), self.g),
-            self.inverse * (w.torque + self.drag.torque),
+            self.inverse * (w.torque + self.drag.torque) + self.spin,
         )
     }
 
@@ -141,7 +151,7 @@ impl<'a> Step<'a> {
     fn wrench_for(&self, v1: &Vector3<f64>, w1: &Vector3<f64>) -> Wrench {
         Wrench {
             force: self.inertial.force_for(&((v1 - self.v0) / self.dt), self.g) - self.drag.force,
-            torque: self.inertia * ((w1 - self.w0) / self.dt) - self.drag.torque,
+            torque: self.inertia * ((w1 - self.w0) / self.dt - self.spin) - self.drag.torque,
         }
     }
 

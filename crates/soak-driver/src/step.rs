@@ -426,7 +426,8 @@ impl<H: Handle> Driver<H> {
             // accelerations the body and the water would take.
             let applied = if inertial.has_added() {
                 let g = self.water.gravity * rb.gravity_scale;
-                let engine = inertial.for_engine(&wrench, &b.mass.inertia, &state.pose.rotation, g);
+                let spin = rb.gyroscopic.then_some(&rb.angular_velocity);
+                let engine = inertial.for_engine(&wrench, &b.mass.inertia, &state.pose.rotation, g, spin);
                 if engine.is_finite() { engine } else { wrench }
             } else {
                 wrench

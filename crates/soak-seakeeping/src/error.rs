@@ -51,6 +51,20 @@ pub enum SeakeepingError {
         /// Its whole volume, m³.
         volume: f64,
     },
+    /// The panel solution breaks reciprocity: the infinite-frequency
+    /// added mass, symmetric in theory, is not (a panel so badly shaped
+    /// or placed that its potential is wrong by orders of magnitude).
+    #[error(
+        "the panel solution is not reciprocal: the infinite-frequency added mass of modes {i} and {j} differs from its transpose by {ratio:.2} of their scale √(A_ii A_jj) (more than 0.2): the wetted hull's panels are degenerate; more panels, or a cleaner mesh near the waterline, may cure it"
+    )]
+    NotReciprocal {
+        /// The row's mode (0–2 surge, heave, sway; 3–5 their rotations).
+        i: usize,
+        /// The column's mode.
+        j: usize,
+        /// `|A_ij − A_ji| / √(A_ii A_jj)`.
+        ratio: f64,
+    },
     /// The panel system is singular at this frequency.
     #[error("the panel system is singular at ω = {omega} rad/s")]
     Singular {

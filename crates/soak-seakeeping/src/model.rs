@@ -252,6 +252,7 @@ impl RadiationModel {
         let infinite = problem
             .solve(crate::radiation::Surface::InfiniteFrequency)?
             .added_mass;
+        reciprocal(&infinite)?;
         let mut frequencies = Vec::with_capacity(omegas.len());
         let mut excitation = Vec::with_capacity(omegas.len());
         let mut columns = Vec::with_capacity(omegas.len());
@@ -569,6 +570,31 @@ impl RadiationModel {
             rest.transpose() * angular * rest,
         )
     }
+}
+
+/// Checks that `added` (6×6) is symmetric as theory says: each pair of
+/// modes within 0.2 of `√(A_ii A_jj)` (pairs whose scale is below 1e-9 of
+/// the largest such product are not judged: a sphere's roll has none).
+fn reciprocal(added: &Matrix6<f64>) -> Result<(), SeakeepingError> {
+    let scale = |i: usize, j: usize| (added[(i, i)] * added[(j, j)]).max(0.0).sqrt();
+    let largest = (0..6)
+        .flat_map(|i| (0..6).map(move |j| (i, j)))
+        .map(|(i, j)| scale(i, j))
+        .fold(0.0, f64::max);
+    for i in 0..6 {
+        for j in i + 1..6 {
+            let s = scale(i, j);
+            let difference = (added[(i, j)] - added[(j, i)]).abs();
+            if s > 1e-9 * largest && difference > 0.2 * s || !difference.is_finite() {
+                return Err(SeakeepingError::NotReciprocal {
+                    i,
+                    j,
+                    ratio: difference / s,
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The period (s: the mean spacing of the first four downward zero
