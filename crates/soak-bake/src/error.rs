@@ -75,7 +75,9 @@ pub enum MeshProblem {
         uv_area: f64,
     },
     /// An edge belongs to one triangle only: the mesh is not closed.
-    #[error("triangle {triangle} has an open edge between vertices {a} and {b} (the mesh is not closed)")]
+    #[error(
+        "triangle {triangle} has an open edge between vertices {a} and {b} (the mesh is not closed; an open container is read with `--open`, or `open = true` on a scene body, which caps its rims)"
+    )]
     OpenEdge {
         /// Triangle index.
         triangle: usize,

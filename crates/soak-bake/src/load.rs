@@ -60,6 +60,32 @@ fn name_of(path: &Path) -> String {
 /// libraries are not read. Polygons are triangulated; `v` is flipped to soak's
 /// UV convention (see [`load_mesh`]).
 pub fn load_obj_bytes(bytes: &[u8], path: &Path) -> Result<Mesh, LoadError> {
+    // A position that is not finite, named as the file numbers it (its
+    // line, and its vertex as faces count them from 1): the parser reads
+    // `nan` and `inf` as numbers, and the mesh it builds renumbers the
+    // vertices.
+    let mut vertex = 0usize;
+    for (line_no, line) in bytes.lines().enumerate() {
+        let Ok(line) = line else { break };
+        let mut words = line.split_whitespace();
+        if words.next() != Some("v") {
+            continue;
+        }
+        vertex += 1;
+        if words
+            .take(3)
+            .any(|w| w.parse::<f64>().is_ok_and(|x| !x.is_finite()))
+        {
+            return Err(LoadError::Obj {
+                path: path.to_path_buf(),
+                reason: format!(
+                    "line {}: vertex {vertex} `{}` is not a finite position",
+                    line_no + 1,
+                    line.trim()
+                ),
+            });
+        }
+    }
     let opts = tobj::LoadOptions {
         single_index: true,
         triangulate: true,

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use soak_bake::{Atlas, BakeOptions, LoadError, MeshProblem, load_mesh, validate};
+use soak_bake::{Atlas, BakeOptions, LoadError, MeshProblem, load_mesh, load_obj_bytes, validate};
 
 fn data(name: &str) -> String {
     let p: PathBuf = [env!("CARGO_MANIFEST_DIR"), "..", "..", "data", name]
@@ -66,6 +66,32 @@ fn obj_with_a_bad_number_names_the_line() {
 }
 
 #[test]
+fn obj_with_a_nan_names_the_files_line_and_vertex() {
+    // The third `v` line (line 4 of the file) holds a NaN: the file's
+    // vertex 3, whatever the loaded mesh's numbering.
+    let text = "# tetrahedron\nv 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n";
+    let msg = load_obj_bytes(text.as_bytes(), "nan.obj".as_ref())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("nan.obj") && msg.contains("line 4: vertex 3 `v nan 1 0` is not a finite position"),
+        "{msg}"
+    );
+    let inf = text.replace("v 0 0 1", "v 0 0 -inf");
+    let msg = load_obj_bytes(inf.as_bytes(), "inf.obj".as_ref())
+        .unwrap_err()
+        .to_string();
+    assert!(msg.contains("line 4: vertex 3 `v nan"), "{msg}");
+    let inf = text
+        .replace("v nan 1 0", "v 0 1 0")
+        .replace("v 0 0 1", "v 0 0 -inf");
+    let msg = load_obj_bytes(inf.as_bytes(), "inf.obj".as_ref())
+        .unwrap_err()
+        .to_string();
+    assert!(msg.contains("line 5: vertex 4 `v 0 0 -inf`"), "{msg}");
+}
+
+#[test]
 fn obj_uv_index_out_of_range_names_the_line() {
     let msg = load_mesh(&data("bad/uv_index_out_of_range.obj"))
         .unwrap_err()
@@ -83,6 +109,8 @@ fn obj_with_a_hole_loads_but_does_not_validate() {
     let e = validate(&mesh).unwrap_err();
     assert!(matches!(e.problem, MeshProblem::OpenEdge { .. }));
     assert!(e.to_string().starts_with("mesh `hole.obj` triangle"), "{e}");
+    // It says how an open container is read.
+    assert!(e.to_string().contains("`--open`, or `open = true`"), "{e}");
 }
 
 #[test]

@@ -82,11 +82,26 @@ fn main() -> std::process::ExitCode {
                 std::process::ExitCode::from(interrupt::EXIT_CODE)
             }
             None => {
-                eprintln!("error: {e:#}");
+                eprintln!("error: {}", message(&e));
                 std::process::ExitCode::FAILURE
             }
         },
     }
+}
+
+/// The error and its causes, each said once: a cause that its error's own
+/// message already quotes (`cannot read `x.obj`: No such file or
+/// directory`) is not repeated after it.
+fn message(e: &anyhow::Error) -> String {
+    let mut text = e.to_string();
+    for cause in e.chain().skip(1) {
+        let cause = cause.to_string();
+        if !text.contains(&cause) {
+            text.push_str(": ");
+            text.push_str(&cause);
+        }
+    }
+    text
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {

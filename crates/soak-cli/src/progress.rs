@@ -71,6 +71,14 @@ impl Progress {
     /// "about N s left" from the rate so far.
     fn left(&self, done: u64, now: Instant) -> String {
         let elapsed = now.duration_since(self.start).as_secs_f64();
+        // A run without an end (`duration = "forever"`): its pace.
+        if self.total == u64::MAX {
+            return format!(
+                "{done} {} in {}, until stopped",
+                self.unit,
+                seconds(elapsed.round())
+            );
+        }
         format!(
             "{done}/{} {}, {}",
             self.total,

@@ -82,6 +82,12 @@ pub struct Args {
     /// Output directory.
     #[arg(long, default_value = "out/render")]
     pub out: PathBuf,
+    /// Continue a render that was stopped: frames already in `--out` are
+    /// kept, not rendered again (each frame is written whole or not at
+    /// all, so one that is there is complete); the scene is still stepped
+    /// from the start to reach the others.
+    #[arg(long)]
+    pub resume: bool,
 }
 
 fn parse_point(s: &str) -> Result<Point3<f64>, String> {
@@ -173,7 +179,7 @@ pub fn run(args: &Args) -> Result<()> {
             target: args.target,
         },
     )?;
-    let mut written = 0;
+    let (mut written, mut kept) = (0, 0);
     let mut frames = Vec::new();
     let mut render_time = 0.0;
     crate::interrupt::install();
@@ -191,24 +197,35 @@ pub fn run(args: &Args) -> Result<()> {
             format!("t = {:.2} s, {written} frame(s) written", sim.time())
         });
         let wanted = step == last || args.every.is_some_and(|k| step.is_multiple_of(k));
-        if wanted {
+        let path = frame_path(&args.out, step);
+        if wanted && args.resume && path.is_file() {
+            frames.push(path);
+            kept += 1;
+        } else if wanted {
             let start = Instant::now();
             let image = renderer.frame(&sim)?;
             render_time += start.elapsed().as_secs_f64();
-            let path = frame_path(&args.out, step);
-            image
-                .save(&path)
-                .with_context(|| format!("cannot write {}", path.display()))?;
+            soak_rapier::write_atomically(&path, |w| {
+                image
+                    .write_to(w, image::ImageFormat::Png)
+                    .map_err(std::io::Error::other)
+            })
+            .with_context(|| format!("cannot write {}", path.display()))?;
             frames.push(path);
             written += 1;
         }
     }
     progress.finish();
     println!(
-        "wrote {written} frame(s) of {}×{} to {} (last: step {reached}, t = {:.3} s); {:.0} ms per frame on {}",
+        "wrote {written} frame(s) of {}×{} to {}{} (last: step {reached}, t = {:.3} s); {:.0} ms per frame on {}",
         args.width,
         args.height,
         args.out.display(),
+        if kept > 0 {
+            format!(", kept {kept} already there")
+        } else {
+            String::new()
+        },
         sim.time(),
         1e3 * render_time / f64::from(written.max(1)),
         renderer.adapter()

@@ -47,3 +47,12 @@ fn a_body_clear_of_the_water_is_said_to_be_so() {
     assert!(!text.contains("buoyancy centre"), "{text}");
     assert!(text.contains("solid, 500 kg/m³"), "{text}");
 }
+
+#[test]
+fn a_missing_file_prints_its_cause_once() {
+    let out = hydro(&["no/such/mesh.obj"]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("cannot read `no/such/mesh.obj`"), "{stderr}");
+    assert_eq!(stderr.matches("No such file or directory").count(), 1, "{stderr}");
+}

@@ -47,6 +47,36 @@ fn a_time_step_in_the_wrong_unit_is_refused() {
 }
 
 #[test]
+fn a_scene_can_run_forever_and_says_so() {
+    let forever = "duration = \"forever\"\n[water]\nkind = \"plane\"\n";
+    let scene = LoadedScene::from_str(forever, std::path::Path::new(".")).unwrap();
+    assert!(scene.scene.duration.is_infinite());
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    assert_eq!(sim.total_steps(), u64::MAX);
+    sim.step().unwrap();
+    // Seconds as before, integers too.
+    let ten = LoadedScene::from_str(
+        "duration = 10\n[water]\nkind = \"plane\"\n",
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    assert_eq!(ten.scene.duration, 10.0);
+    // Any other word, or no time at all, is refused with its line.
+    let e = LoadedScene::from_str(
+        "dt = 0.01\nduration = \"never\"\n[water]\nkind = \"plane\"\n",
+        std::path::Path::new("."),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("\"forever\""), "{e}");
+    let e = LoadedScene::from_str(
+        "dt = 0.01\nduration = -1.0\n[water]\nkind = \"plane\"\n",
+        std::path::Path::new("."),
+    )
+    .unwrap_err();
+    assert!(matches!(e, SceneError::Invalid { line: 2, .. }), "{e}");
+}
+
+#[test]
 fn keys_that_do_not_apply_are_refused() {
     let (e, msg) = error("bad/scene_waves_on_a_plane.toml");
     assert!(matches!(e, SceneError::Invalid { line: 3, .. }), "{msg}");

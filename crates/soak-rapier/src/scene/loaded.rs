@@ -202,7 +202,16 @@ impl LoadedScene {
         if s.dt > 0.25 {
             return Err(self.invalid("dt", format!("{} s is too long a step (at most 0.25 s)", s.dt)));
         }
-        positive("duration", s.duration)?;
+        // `"forever"` reads as +∞.
+        if s.duration.is_nan() || s.duration <= 0.0 {
+            return Err(self.invalid(
+                "duration",
+                format!(
+                    "must be a positive number of seconds or \"forever\", not {}",
+                    s.duration
+                ),
+            ));
+        }
         finite("gravity", &s.gravity)?;
         if s.output.every == 0 {
             return Err(self.invalid("output.every", "must be at least 1"));

@@ -80,6 +80,32 @@ fn default_dt() -> f64 {
 fn default_duration() -> f64 {
     10.0
 }
+/// `duration`: a number of seconds or `"forever"`.
+fn duration_or_forever<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Duration {
+        Seconds(f64),
+        Word(String),
+    }
+    match Duration::deserialize(d)? {
+        Duration::Seconds(s) => Ok(s),
+        Duration::Word(w) if w == "forever" => Ok(f64::INFINITY),
+        Duration::Word(w) => Err(serde::de::Error::custom(format!(
+            "duration must be a number of seconds or \"forever\", not \"{w}\""
+        ))),
+    }
+}
+
+/// `duration` as [`duration_or_forever`] reads it.
+fn write_duration<S: serde::Serializer>(d: &f64, s: S) -> Result<S::Ok, S::Error> {
+    if d.is_infinite() && *d > 0.0 {
+        s.serialize_str("forever")
+    } else {
+        s.serialize_f64(*d)
+    }
+}
+
 fn default_gravity() -> [f64; 3] {
     [0.0, -9.81, 0.0]
 }
@@ -94,8 +120,14 @@ pub struct Scene {
     /// Time step, s.
     #[serde(default = "default_dt")]
     pub dt: f64,
-    /// Simulated duration, s.
-    #[serde(default = "default_duration")]
+    /// Simulated duration, s: a positive number, or `"forever"` (read as
+    /// infinity) for a run that goes on until it is stopped (the viewer,
+    /// interactive use, `soak simulate` with checkpoints).
+    #[serde(
+        default = "default_duration",
+        deserialize_with = "duration_or_forever",
+        serialize_with = "write_duration"
+    )]
     pub duration: f64,
     /// Gravity, m/s².
     #[serde(default = "default_gravity")]

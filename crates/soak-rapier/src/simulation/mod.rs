@@ -6,16 +6,21 @@
 //! ([`SavedSimulation`]).
 
 mod build;
+mod checkpoint;
 mod saved;
 
 use rapier3d::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::convert;
 use crate::error::SoakError;
 use crate::{ForceGenerator, SoakId};
 
 pub use self::build::{radiation_settings, water_of};
+pub use self::checkpoint::{
+    CHECKPOINT_MAGIC, CHECKPOINT_VERSION, CheckpointError, decode_checkpoint, read_checkpoint,
+    write_atomically, write_checkpoint,
+};
 pub use self::saved::SavedSimulation;
 
 /// One body of a running scene.
@@ -33,7 +38,7 @@ pub struct SimBody {
 }
 
 /// One recorded sample of one body.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Sample {
     /// Time, s.
     pub t: f64,
@@ -168,6 +173,20 @@ impl Simulation {
         &self.samples
     }
 
+    /// Takes the samples recorded so far (recording goes on): a run that
+    /// streams them out keeps none in memory.
+    pub fn take_samples(&mut self) -> Vec<Sample> {
+        std::mem::take(&mut self.samples)
+    }
+
+    /// Records from now on as [`Simulation::record`] does, after the
+    /// `samples` a saved run had recorded (none taken now: a resumed run's
+    /// samples are the uninterrupted run's).
+    pub fn resume_recording(&mut self, samples: Vec<Sample>) {
+        self.recording = true;
+        self.samples = samples;
+    }
+
     /// Time step, s.
     pub fn dt(&self) -> f64 {
         self.world.integration_parameters.dt as f64
@@ -183,9 +202,14 @@ impl Simulation {
         self.steps
     }
 
-    /// Number of steps for the scene's duration.
+    /// Number of steps for the scene's duration (`u64::MAX` for a scene
+    /// that runs forever).
     pub fn total_steps(&self) -> u64 {
-        (self.duration / self.dt()).round() as u64
+        if self.duration.is_infinite() {
+            u64::MAX
+        } else {
+            (self.duration / self.dt()).round() as u64
+        }
     }
 
     /// One step.
@@ -318,13 +342,20 @@ impl Simulation {
                     }
                 })
                 .collect();
-            let path = dir.join(format!("{safe}_liquid_{:06}.png", self.steps));
-            soak_wet::write_liquid_png(sb.atlas(), w.liquid(), w.material().saturation, &path).map_err(
+            // Written beside its name and renamed into place: a run killed
+            // while writing leaves no half image.
+            let file = format!("{safe}_liquid_{:06}.png", self.steps);
+            let (path, partial) = (dir.join(&file), dir.join(format!(".{file}.partial")));
+            soak_wet::write_liquid_png(sb.atlas(), w.liquid(), w.material().saturation, &partial).map_err(
                 |source| SoakError::Wet {
                     name: b.name.clone(),
                     source,
                 },
             )?;
+            std::fs::rename(&partial, &path).map_err(|source| SoakError::Io {
+                path: path.clone(),
+                source,
+            })?;
             written.push(path);
         }
         Ok(written)

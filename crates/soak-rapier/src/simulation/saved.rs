@@ -70,13 +70,32 @@ impl Simulation {
     /// flooding bodies) take their saved states.
     pub fn resume(saved: &SavedSimulation) -> Result<Self, SceneError> {
         let loaded = LoadedScene::from_str(&saved.scene_text, &saved.scene_path)?;
-        let mut sim = Self::from_scene(&loaded)?;
+        Self::resume_scene(&loaded, saved)
+    }
+
+    /// [`Simulation::resume`] from a scene already loaded (and perhaps
+    /// changed in code since: a duration or a backend set as on the
+    /// command line), which must be the saved run's scene file, word for
+    /// word.
+    ///
+    /// # Errors
+    /// [`SceneError::Invalid`] when `loaded`'s text is not the save's (the
+    /// scene file was edited since) or the save does not fit the scene;
+    /// the scene's own errors building it.
+    pub fn resume_scene(loaded: &LoadedScene, saved: &SavedSimulation) -> Result<Self, SceneError> {
         let bad = |message: String| SceneError::Invalid {
             path: loaded.path.clone(),
             line: 1,
             key: "(saved state)".into(),
             message,
         };
+        if loaded.text != saved.scene_text {
+            return Err(bad(format!(
+                "the scene file is not the one the run was saved from (`{}`): it was edited since; restore it, or start the run again",
+                saved.scene_path.display()
+            )));
+        }
+        let mut sim = Self::from_scene(loaded)?;
         if saved.generator.bodies.len() != sim.soak.bodies().len()
             || saved.punched.len() != sim.holes.len()
             || saved.splashed.len() != sim.splashes.len()

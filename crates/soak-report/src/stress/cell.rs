@@ -334,7 +334,7 @@ pub(crate) fn run_cell(
 
     Ok(Outcome {
         cell: cell.name(),
-        mesh: cell.mesh.label(),
+        mesh: cell.mesh.label().to_string(),
         scale: cell.scale,
         density: cell.density,
         dt,

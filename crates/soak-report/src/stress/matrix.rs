@@ -96,7 +96,7 @@ impl Shape {
 }
 
 /// The fluid of a cell.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum WaterKind {
     /// Calm water at y = 0.
@@ -122,7 +122,7 @@ impl WaterKind {
 }
 
 /// The effects of a cell; each level adds to the one before.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Level {
     /// Archimedes buoyancy.

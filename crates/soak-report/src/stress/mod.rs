@@ -85,6 +85,7 @@ pub fn run(cells: &[Cell], options: &StressOptions) -> Result<Vec<Outcome>, Stre
         &Control {
             stop: &|| false,
             done: &|_, _| {},
+            finished: &|_| {},
         },
     )
 }
@@ -96,6 +97,10 @@ pub struct Control<'a> {
     pub stop: &'a (dyn Fn() -> bool + Sync),
     /// Told after each cell how many cells are done, of how many.
     pub done: &'a (dyn Fn(usize, usize) + Sync),
+    /// Handed each cell's outcome as soon as the cell has run (in the
+    /// order the cells finish): `soak stress --journal` writes it down, so
+    /// that a run killed at any moment keeps every cell it finished.
+    pub finished: &'a (dyn Fn(&Outcome) + Sync),
 }
 
 /// [`run`] under `control`: the outcomes of the cells that ran, in the
@@ -139,6 +144,9 @@ pub fn run_with(
                     let i = next.fetch_add(1, Ordering::Relaxed);
                     let Some(cell) = cells.get(i) else { break };
                     let r = run_cell(cell, fixture_of(cell), options.max_steps, options.mode, &bakes);
+                    if let Ok(outcome) = &r {
+                        (control.finished)(outcome);
+                    }
                     if let Ok(mut results) = results.lock() {
                         results[i] = Some(r);
                     }

@@ -1,11 +1,11 @@
 //! What one cell measured.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::matrix::{Level, WaterKind};
 
 /// What physics says the body does.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Expect {
     /// Lighter than water: floats with the displaced fraction equal to its
@@ -17,13 +17,14 @@ pub enum Expect {
     Neutral,
 }
 
-/// What one cell measured, and whether it passed.
-#[derive(Clone, Debug, Serialize)]
+/// What one cell measured, and whether it passed (read back from its JSON
+/// as `soak stress --journal` writes it).
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Outcome {
     /// The cell's name ([`super::Cell::name`]).
     pub cell: String,
     /// The mesh's label.
-    pub mesh: &'static str,
+    pub mesh: String,
     /// Scale factor of the mesh.
     pub scale: f64,
     /// Relative density ρ_b/ρ_w.

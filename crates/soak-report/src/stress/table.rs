@@ -99,8 +99,10 @@ pub fn markdown_table(
         "| mesh | water | effects | cells | finite | firewall | energy | liquid | floats | sinks | neutral | passed |"
     );
     w!(out, "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-    let mut groups: Vec<(&str, WaterKind, Level)> =
-        outcomes.iter().map(|o| (o.mesh, o.water, o.effects)).collect();
+    let mut groups: Vec<(&str, WaterKind, Level)> = outcomes
+        .iter()
+        .map(|o| (o.mesh.as_str(), o.water, o.effects))
+        .collect();
     groups.dedup();
     for (mesh, water, level) in groups {
         let g: Vec<&Outcome> = outcomes
