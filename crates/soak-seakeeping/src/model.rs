@@ -920,3 +920,43 @@ impl RadiationState {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_added_mass_that_is_not_symmetric_is_refused() {
+        // A sphere's: symmetric, no rotational part (judged on its
+        // translations alone).
+        let sphere = Matrix6::from_diagonal(&Vector6::new(72.4, 129.1, 71.1, 0.0, 0.0, 0.0));
+        assert_eq!(reciprocal(&sphere), Ok(()));
+        // A boat's, within a few parts in a thousand: accepted.
+        let mut boat = Matrix6::from_diagonal(&Vector6::new(25.9, 934.3, 332.1, 9.6, 308.7, 469.8));
+        boat[(0, 5)] = -74.8;
+        boat[(5, 0)] = -74.4;
+        boat[(2, 3)] = 42.4;
+        boat[(3, 2)] = 42.3;
+        assert_eq!(reciprocal(&boat), Ok(()));
+        // The same boat with the waterline strip's sway-heave term:
+        // −1,589 kg one way, 1.6 kg the other.
+        let mut broken = boat;
+        broken[(2, 1)] = -1588.6;
+        broken[(1, 2)] = 1.6;
+        match reciprocal(&broken) {
+            Err(SeakeepingError::NotReciprocal { i: 1, j: 2, ratio }) => {
+                assert!(
+                    (ratio - 1590.2 / (934.3f64 * 332.1).sqrt()).abs() < 1e-9,
+                    "{ratio}"
+                );
+            }
+            other => panic!("{other:?}"),
+        }
+        let mut nan = boat;
+        nan[(4, 1)] = f64::NAN;
+        assert!(matches!(
+            reciprocal(&nan),
+            Err(SeakeepingError::NotReciprocal { i: 1, j: 4, .. })
+        ));
+    }
+}

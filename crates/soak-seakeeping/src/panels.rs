@@ -132,3 +132,38 @@ fn waterline_strip(panel: &Panel) -> bool {
     let depth = v.iter().map(|p| -p.y).fold(0.0, f64::max);
     touches && depth < 0.05 * longest
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Point3;
+
+    /// One upright triangle, a metre along the water, its lower edge
+    /// `depth` (m) under it.
+    fn triangle(depth: f64) -> Mesh {
+        Mesh::new(
+            "triangle".to_string(),
+            vec![
+                Point3::new(0.0, -depth, 0.0),
+                Point3::new(1.0, -depth, 0.0),
+                Point3::new(0.5, 0.5, 0.0),
+            ],
+            None,
+            vec![[0, 1, 2]],
+        )
+    }
+
+    #[test]
+    fn a_strip_the_water_plane_leaves_along_a_shallow_edge_is_left_out() {
+        // 1 mm deep and a metre long: a strip, dropped.
+        let strip = wetted_panels(&triangle(0.001), &Isometry3::identity(), 10.0).unwrap();
+        assert!(strip.is_empty(), "{} panels", strip.len());
+        // 20 cm deep: kept whole (two panels of the clipped quadrilateral).
+        let kept = wetted_panels(&triangle(0.2), &Isometry3::identity(), 10.0).unwrap();
+        assert_eq!(kept.len(), 2);
+        let area: f64 = kept.iter().map(|p| p.area).sum();
+        // The trapezoid under the water: 0.2 m deep, 1 m and 0.8286 m wide.
+        let top = 1.0 - 0.2 / 0.7;
+        assert!((area - 0.2 * (1.0 + top) / 2.0).abs() < 1e-12, "{area}");
+    }
+}
