@@ -125,6 +125,7 @@ impl<H: Handle> Driver<H> {
             self.bodies[id.0].radiation = Some(Box::new(RadiationRun {
                 state,
                 force: Wrench::default(),
+                share: None,
             }));
         }
         if self.bodies[id.0].effects.slamming.is_some() {
