@@ -64,9 +64,6 @@ pub(crate) struct RadiationRun {
     /// The memory force of the last step, world (N, N·m about the centre
     /// of mass), scaled by the share under water.
     pub(crate) force: Wrench,
-    /// The share of A∞ the last step counted (`None` before the first):
-    /// as it grows the water set moving takes its momentum from the body.
-    pub(crate) share: Option<f64>,
 }
 
 /// What slamming keeps between steps: plain values, no allocation.

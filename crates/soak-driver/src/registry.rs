@@ -125,7 +125,6 @@ impl<H: Handle> Driver<H> {
             self.bodies[id.0].radiation = Some(Box::new(RadiationRun {
                 state,
                 force: Wrench::default(),
-                share: None,
             }));
         }
         if self.bodies[id.0].effects.slamming.is_some() {

@@ -57,10 +57,6 @@ pub struct BodyRunState {
     /// N and N·m).
     #[serde(default)]
     pub radiation: Option<(soak_seakeeping::RadiationState, Wrench)>,
-    /// The share of radiation's A∞ the last step counted (radiation
-    /// bodies after their first step): the next step's entry is its growth.
-    #[serde(default)]
-    pub radiation_share: Option<f64>,
     /// The body is no longer driven ([`Driver::retire`]): restored, it
     /// stays retired.
     #[serde(default)]
@@ -85,7 +81,6 @@ impl PartialEq for BodyRunState {
             && self.liquid_density == other.liquid_density
             && self.slam_added_mass == other.slam_added_mass
             && self.radiation == other.radiation
-            && self.radiation_share == other.radiation_share
             && self.retired == other.retired
             && same_wetting
     }
@@ -144,7 +139,6 @@ impl<H: Handle> Driver<H> {
                     liquid_density: b.effects.flooding.as_ref().and(b.flood.density),
                     slam_added_mass: b.slam.as_ref().and_then(|s| s.last_added),
                     radiation: b.radiation.as_ref().map(|r| (r.state.clone(), r.force)),
-                    radiation_share: b.radiation.as_ref().and_then(|r| r.share),
                     retired: b.retired,
                 })
                 .collect(),
@@ -272,7 +266,6 @@ impl<H: Handle> Driver<H> {
             if let (Some(run), Some((state, force))) = (&mut b.radiation, &s.radiation) {
                 run.state = state.clone();
                 run.force = *force;
-                run.share = s.radiation_share;
             }
             if s.retired {
                 b.retire();

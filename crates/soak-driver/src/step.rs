@@ -333,9 +333,12 @@ impl<H: Handle> Driver<H> {
                         let (u, a) = water_motion(&self.water, &forces.center_of_buoyancy, t, dt);
                         (Vector3::y() * u.y, Vector3::y() * a.y)
                     };
-                    let relative = rb.linear_velocity - flow;
-                    let velocity =
-                        RadiationState::local_velocity(model, rotation, &relative, &rb.angular_velocity);
+                    let velocity = RadiationState::local_velocity(
+                        model,
+                        rotation,
+                        &(rb.linear_velocity - flow),
+                        &rb.angular_velocity,
+                    );
                     run.state.record(model, velocity, t);
                     let (force, torque) = run.state.world_force(model, rotation);
                     let (linear, angular) = model.infinite_blocks(&model.heading(&state.pose.rotation));
@@ -344,23 +347,6 @@ impl<H: Handle> Driver<H> {
                         force: (force + linear * flow_acceleration + excitation.force) * share,
                         torque: (torque + excitation.torque) * share,
                     };
-                    // Entering the water, the share of A∞ grows: the water
-                    // it sets moving takes its momentum from the body
-                    // (`d(J v)/dt = F`, an inelastic impact), as slamming
-                    // says of the water-plane. Counted with the body's
-                    // velocity unchanged, the share's growth would hand the
-                    // body the water's energy on every entry, and a body
-                    // skipping in and out of the water on a cross term of
-                    // A∞ would be pushed the same way at every bounce.
-                    // Leaving it, the water keeps its momentum.
-                    let entry = share - run.share.unwrap_or(share);
-                    run.share = Some(share);
-                    if entry > 0.0 {
-                        let turn = rb.pose.rotation.to_rotation_matrix().into_inner();
-                        let spin = turn * (angular * (turn.transpose() * rb.angular_velocity));
-                        radiation.force -= linear * relative * (entry / dt);
-                        radiation.torque -= spin * (entry / dt);
-                    }
                     if !radiation.is_finite() {
                         self.firewall
                             .reject(step, &b.name, "radiation", format!("non-finite {radiation:?}"));

@@ -253,7 +253,6 @@ impl RadiationModel {
             .solve(crate::radiation::Surface::InfiniteFrequency)?
             .added_mass;
         reciprocal(&infinite)?;
-        let infinite = kinetic(&infinite, length);
         let mut frequencies = Vec::with_capacity(omegas.len());
         let mut excitation = Vec::with_capacity(omegas.len());
         let mut columns = Vec::with_capacity(omegas.len());
@@ -598,23 +597,6 @@ fn reciprocal(added: &Matrix6<f64>) -> Result<(), SeakeepingError> {
     Ok(())
 }
 
-/// The nearest matrix to `added` (6×6, A∞ after [`reciprocal`]) that is a
-/// kinetic energy's, as the water's added mass is: its symmetric part with
-/// negative eigenvalues set to zero, the rotations scaled by `length` (m)
-/// so that all six modes weigh alike. A panel solution's few parts in a
-/// thousand of asymmetry are averaged out; and where a mode radiates
-/// almost nothing (a 5 mm draft's surge and roll), its noise cannot make
-/// `M + A∞` of a very light body indefinite, a mode along which any force
-/// would do work without end.
-fn kinetic(added: &Matrix6<f64>, length: f64) -> Matrix6<f64> {
-    let units = Vector6::new(1.0, 1.0, 1.0, length, length, length);
-    let scaled = Matrix6::from_fn(|i, j| 0.5 * (added[(i, j)] + added[(j, i)]) / (units[i] * units[j]));
-    let eigen = scaled.symmetric_eigen();
-    let clamped = eigen.eigenvalues.map(|v| v.max(0.0));
-    let projected = eigen.eigenvectors * Matrix6::from_diagonal(&clamped) * eigen.eigenvectors.transpose();
-    Matrix6::from_fn(|i, j| 0.5 * (projected[(i, j)] + projected[(j, i)]) * units[i] * units[j])
-}
-
 /// The period (s: the mean spacing of the first four downward zero
 /// crossings) and the decay per cycle (the mean ratio of the first two
 /// pairs of successive positive peaks, the release `x[0]` counted as the
@@ -942,44 +924,6 @@ impl RadiationState {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The projection leaves a kinetic energy's matrix alone, averages out
-    /// an asymmetry, and takes out a direction of negative energy (the
-    /// open box's 5 mm draft: surge 1.3 kg, heave 275 kg, a noisy cross
-    /// term of 25 kg that made the block indefinite) and nothing else.
-    #[test]
-    fn the_added_mass_is_made_a_kinetic_energys() {
-        let mut boat = Matrix6::from_diagonal(&Vector6::new(25.9, 934.3, 332.1, 9.6, 308.7, 469.8));
-        boat[(0, 5)] = -74.6;
-        boat[(5, 0)] = -74.6;
-        let same = kinetic(&boat, 1.3);
-        assert!((same - boat).abs().max() < 1e-9 * boat.abs().max(), "{same}");
-        let mut skew = boat;
-        skew[(0, 5)] = -74.8;
-        skew[(5, 0)] = -74.4;
-        assert!((kinetic(&skew, 1.3) - boat).abs().max() < 1e-9 * boat.abs().max());
-        let mut noisy = Matrix6::from_diagonal(&Vector6::new(1.3, 275.1, 2.0, 12.7, 0.25, 12.6));
-        noisy[(0, 1)] = 25.0;
-        noisy[(1, 0)] = 25.0;
-        assert!(noisy.symmetric_eigen().eigenvalues.min() < -0.9);
-        let fixed = kinetic(&noisy, 0.56);
-        let eigen = fixed.symmetric_eigen().eigenvalues;
-        assert!(eigen.min() > -1e-9 * eigen.max(), "{eigen}");
-        assert_eq!(fixed, fixed.transpose());
-        // The modes the noise does not touch keep their value.
-        for m in 2..6 {
-            assert!(
-                (fixed[(m, m)] - noisy[(m, m)]).abs() < 1e-9,
-                "{m}: {}",
-                fixed[(m, m)]
-            );
-        }
-        // Along the negative direction the energy is now zero.
-        let v = noisy.symmetric_eigen();
-        let k = v.eigenvalues.imin();
-        let d = v.eigenvectors.column(k);
-        assert!((d.transpose() * fixed * d)[(0, 0)].abs() < 1e-9);
-    }
 
     #[test]
     fn an_added_mass_that_is_not_symmetric_is_refused() {
