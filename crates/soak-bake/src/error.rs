@@ -141,14 +141,82 @@ pub enum MeshProblem {
     },
 }
 
-/// A mesh failed validation. The message names the mesh and the element.
+/// A mesh failed validation. The message names the mesh and the element:
+/// in the file's own terms (its lines and vertex numbers) when the mesh was
+/// read from an OBJ file, in the mesh's indices otherwise.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("mesh `{mesh}` {problem}")]
+#[error("mesh `{mesh}` {}", in_file.as_deref().map_or_else(|| problem.to_string(), str::to_owned))]
 pub struct MeshError {
     /// The mesh's name (file name or builtin name).
     pub mesh: String,
-    /// What is wrong with it.
+    /// What is wrong with it, in the mesh's (zero-based) indices.
     pub problem: MeshProblem,
+    /// The same problem in the file's terms (`the face on line 13 has an
+    /// open edge between vertices 5 and 6`), when the mesh carries its
+    /// file's numbering ([`Mesh::source`](crate::Mesh::source)) and the
+    /// problem names its elements.
+    pub in_file: Option<String>,
+}
+
+impl MeshError {
+    /// The error for `problem` found in `mesh`, told in the file's terms
+    /// where the mesh carries its file's numbering.
+    pub fn new(mesh: &crate::Mesh, problem: MeshProblem) -> Self {
+        let in_file = mesh.source.as_ref().and_then(|s| in_file_terms(s, &problem));
+        Self {
+            mesh: mesh.name.clone(),
+            problem,
+            in_file,
+        }
+    }
+}
+
+const OPEN_HINT: &str =
+    "an open container is read with `--open`, or `open = true` on a scene body, which caps its rims";
+
+/// `problem` in the file's lines and vertex numbers; `None` where it names
+/// nothing the file numbers (or something soak made, such as a cap).
+fn in_file_terms(source: &crate::SourceNumbering, problem: &MeshProblem) -> Option<String> {
+    let v = |i: u32| source.vertex(i);
+    let line = |t: usize| source.face_line(t);
+    Some(match *problem {
+        MeshProblem::OpenEdge { triangle, a, b } => format!(
+            "the face on line {} has an open edge between vertices {} and {} (the file's numbering): the mesh is not closed; {OPEN_HINT}",
+            line(triangle)?,
+            v(a)?,
+            v(b)?
+        ),
+        MeshProblem::NonManifoldEdge {
+            a,
+            b,
+            count,
+            triangle,
+        } => format!(
+            "the edge between vertices {} and {} (the file's numbering) is shared by {count} triangles (non-manifold), the first from the face on line {}",
+            v(a)?,
+            v(b)?,
+            line(triangle)?
+        ),
+        MeshProblem::InconsistentWinding { triangle, neighbour } => format!(
+            "the faces on lines {} and {} have inconsistent winding across their shared edge",
+            line(triangle)?,
+            line(neighbour)?
+        ),
+        MeshProblem::DegenerateTriangle { triangle, area } => format!(
+            "the face on line {} is degenerate: its area {area:.3e} m² is zero relative to the mesh size",
+            line(triangle)?
+        ),
+        MeshProblem::OverlappingUvs { triangle, other } => format!(
+            "the faces on lines {} and {} have overlapping UVs (unwrap it to generate a physics atlas)",
+            line(triangle)?,
+            line(other)?
+        ),
+        MeshProblem::RimNotManifold { vertex } => format!(
+            "two rims meet at vertex {} (the file's numbering): the open mesh's boundary is not manifold there",
+            v(vertex)?
+        ),
+        _ => return None,
+    })
 }
 
 /// Loading a mesh from a file or a `builtin:` name failed.

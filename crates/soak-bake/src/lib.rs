@@ -27,7 +27,7 @@ pub use self::columns::Columns;
 pub use self::error::{BakeError, ExportError, LoadError, MeshError, MeshProblem};
 pub use self::export::AtlasImage;
 pub use self::load::{load_gltf_bytes, load_mesh, load_obj_bytes};
-pub use self::mesh::{Mesh, Opening};
+pub use self::mesh::{Mesh, Opening, SourceNumbering};
 pub use self::open::{Cavities, boundary_loops, cap_cavities, cap_openings, triangulate};
 pub use self::pack::{DEFAULT_PADDING, pack_charts};
 pub use self::unwrap::{UnwrapOptions, UnwrapReport, unwrap};

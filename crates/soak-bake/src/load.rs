@@ -9,7 +9,7 @@ use nalgebra::{Matrix4, Point2, Point3};
 
 use crate::builtin;
 use crate::error::LoadError;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, SourceNumbering};
 
 /// Loads a mesh from a file path (`.obj`, `.gltf`, `.glb`) or a `builtin:` name.
 ///
@@ -64,14 +64,36 @@ pub fn load_obj_bytes(bytes: &[u8], path: &Path) -> Result<Mesh, LoadError> {
     // line, and its vertex as faces count them from 1): the parser reads
     // `nan` and `inf` as numbers, and the mesh it builds renumbers the
     // vertices.
+    //
+    // The same pass records the file's numbering for later messages: the
+    // first vertex number at each position (as the parser reads it, f32),
+    // and each face's line once per triangle it makes.
     let mut vertex = 0usize;
+    let mut file_vertex: std::collections::HashMap<[u32; 3], u32> = std::collections::HashMap::new();
+    let mut face_lines: Vec<u32> = Vec::new();
     for (line_no, line) in bytes.lines().enumerate() {
         let Ok(line) = line else { break };
         let mut words = line.split_whitespace();
-        if words.next() != Some("v") {
-            continue;
+        match words.next() {
+            Some("v") => {}
+            Some("f") => {
+                let corners = words.count();
+                face_lines.extend(std::iter::repeat_n(line_no as u32 + 1, corners.saturating_sub(2)));
+                continue;
+            }
+            _ => continue,
         }
         vertex += 1;
+        let xyz: Vec<f32> = words
+            .clone()
+            .take(3)
+            .filter_map(|w| w.parse::<f32>().ok())
+            .collect();
+        if let [x, y, z] = xyz[..] {
+            file_vertex
+                .entry([x.to_bits(), y.to_bits(), z.to_bits()])
+                .or_insert(vertex as u32);
+        }
         if words
             .take(3)
             .any(|w| w.parse::<f64>().is_ok_and(|x| !x.is_finite()))
@@ -104,11 +126,14 @@ pub fn load_obj_bytes(bytes: &[u8], path: &Path) -> Result<Mesh, LoadError> {
     let mut uvs = Vec::new();
     let mut all_uvs = true;
     let mut triangles = Vec::new();
+    let mut vertices = Vec::new();
     for model in &models {
         let m = &model.mesh;
         let base = positions.len() as u32;
         let n = m.positions.len() / 3;
         for k in 0..n {
+            let key = [0, 1, 2].map(|i| m.positions[3 * k + i].to_bits());
+            vertices.push(file_vertex.get(&key).copied().unwrap_or(0));
             positions.push(Point3::new(
                 m.positions[3 * k] as f64,
                 m.positions[3 * k + 1] as f64,
@@ -137,12 +162,14 @@ pub fn load_obj_bytes(bytes: &[u8], path: &Path) -> Result<Mesh, LoadError> {
             reason: "no faces".into(),
         });
     }
-    Ok(Mesh::new(
-        name_of(path),
-        positions,
-        all_uvs.then_some(uvs),
-        triangles,
-    ))
+    let triangle_count = triangles.len();
+    let mut mesh = Mesh::new(name_of(path), positions, all_uvs.then_some(uvs), triangles);
+    // Faces the parser skipped or split otherwise than `n − 2` would shift
+    // every line after them: then no numbering rather than a wrong one.
+    if face_lines.len() == triangle_count {
+        mesh.source = Some(SourceNumbering { vertices, face_lines });
+    }
+    Ok(mesh)
 }
 
 /// Finds the line behind an OBJ parser error, so the message names it.

@@ -22,6 +22,39 @@ pub struct Mesh {
     /// order of their triangles (which come after the mesh's own); empty for
     /// a mesh that was closed to begin with.
     pub openings: Vec<Opening>,
+    /// How the file this mesh was read from numbers its vertices and faces,
+    /// so that errors name them as the file does; `None` for a mesh made in
+    /// code (and for glTF, whose accessors have no lines).
+    pub source: Option<SourceNumbering>,
+}
+
+/// The numbering of the file a mesh was read from (Wavefront OBJ).
+///
+/// The loader renumbers vertices (one per distinct `v/vt/vn` corner) and
+/// unwrapping splits them again along seams; these tables take a vertex or
+/// triangle of the mesh back to the file's own terms. A number of 0 marks a
+/// vertex or triangle soak made (a cap's).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct SourceNumbering {
+    /// For each vertex: the file's number of the vertex at its position,
+    /// 1-based as the file's faces count them (the first `v` line at that
+    /// position, if several share it).
+    pub vertices: Vec<u32>,
+    /// For each triangle: the line of the face it came from, 1-based (a
+    /// polygon of `n` corners gives `n − 2` triangles, all on its line).
+    pub face_lines: Vec<u32>,
+}
+
+impl SourceNumbering {
+    /// The file's number of vertex `v`, if it came from the file.
+    pub fn vertex(&self, v: u32) -> Option<u32> {
+        self.vertices.get(v as usize).copied().filter(|&n| n > 0)
+    }
+
+    /// The file's line of the face triangle `t` came from, if it did.
+    pub fn face_line(&self, t: usize) -> Option<u32> {
+        self.face_lines.get(t).copied().filter(|&n| n > 0)
+    }
 }
 
 impl Mesh {
@@ -38,6 +71,7 @@ impl Mesh {
             uvs,
             triangles,
             openings: Vec::new(),
+            source: None,
         }
     }
 
@@ -196,6 +230,7 @@ impl Mesh {
             uvs: None,
             triangles: kept.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
             openings: Vec::new(),
+            source: None,
         }
     }
 

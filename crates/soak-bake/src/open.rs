@@ -20,7 +20,7 @@
 use nalgebra::{Point2, Point3, Vector3};
 
 use crate::error::{MeshError, MeshProblem};
-use crate::mesh::{Mesh, Opening};
+use crate::mesh::{Mesh, Opening, SourceNumbering};
 use crate::pack::{DEFAULT_PADDING, pack_charts};
 use crate::validate::{validate_geometry, validate_topology};
 
@@ -55,10 +55,7 @@ pub fn boundary_loops(mesh: &Mesh) -> Result<Vec<Vec<u32>>, MeshError> {
     let mut next: std::collections::BTreeMap<u32, u32> = std::collections::BTreeMap::new();
     for &(a, b) in &directed {
         if count(a, b) == 1 && next.insert(a, b).is_some() {
-            return Err(MeshError {
-                mesh: mesh.name.clone(),
-                problem: MeshProblem::RimNotManifold { vertex: a },
-            });
+            return Err(MeshError::new(mesh, MeshProblem::RimNotManifold { vertex: a }));
         }
     }
     let mut loops = Vec::new();
@@ -73,19 +70,13 @@ pub fn boundary_loops(mesh: &Mesh) -> Result<Vec<Vec<u32>>, MeshError> {
         let mut v = start;
         loop {
             let Some(&w) = next.get(&v) else {
-                return Err(MeshError {
-                    mesh: mesh.name.clone(),
-                    problem: MeshProblem::RimNotManifold { vertex: v },
-                });
+                return Err(MeshError::new(mesh, MeshProblem::RimNotManifold { vertex: v }));
             };
             if w == start {
                 break;
             }
             if !seen.insert(w) {
-                return Err(MeshError {
-                    mesh: mesh.name.clone(),
-                    problem: MeshProblem::RimNotManifold { vertex: w },
-                });
+                return Err(MeshError::new(mesh, MeshProblem::RimNotManifold { vertex: w }));
             }
             rim.push(w);
             v = w;
@@ -218,10 +209,7 @@ pub fn cap_openings(mesh: &Mesh) -> Result<Mesh, MeshError> {
         validate_topology(mesh)?;
         return Ok(mesh.clone());
     }
-    let fail = |problem| MeshError {
-        mesh: mesh.name.clone(),
-        problem,
-    };
+    let fail = |problem| MeshError::new(mesh, problem);
     let mut positions = mesh.positions.clone();
     let mut triangles = mesh.triangles.clone();
     let mut openings = Vec::with_capacity(loops.len());
@@ -338,8 +326,23 @@ pub fn cap_openings(mesh: &Mesh) -> Result<Mesh, MeshError> {
         chart_of.extend(cap_chart.iter().map(|c| c + 1));
         pack_charts(&coords, &chart_of, loops.len() + 1, DEFAULT_PADDING).0
     });
+    // The file's numbering carried over: a cap's vertex is a copy of its
+    // rim's (the same position), its triangles are soak's own.
+    let source = mesh.source.as_ref().map(|s| {
+        let mut vertices = s.vertices.clone();
+        vertices.extend(
+            loops
+                .iter()
+                .flat_map(|rim| rim.iter().rev())
+                .map(|&v| s.vertex(v).unwrap_or(0)),
+        );
+        let mut face_lines = s.face_lines.clone();
+        face_lines.resize(triangles.len(), 0);
+        SourceNumbering { vertices, face_lines }
+    });
     let mut closed = Mesh::new(mesh.name.clone(), positions, uvs, triangles);
     closed.openings = openings;
+    closed.source = source.filter(|s| s.vertices.len() == closed.positions.len());
     validate_topology(&closed)?;
     Ok(closed)
 }

@@ -10,7 +10,7 @@ use nalgebra::{Point2, Vector3};
 use serde::{Deserialize, Serialize};
 
 use crate::error::MeshError;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, SourceNumbering};
 use crate::pack::{DEFAULT_PADDING, pack_charts};
 use crate::uv_overlap::find_overlap;
 use crate::validate::validate_geometry;
@@ -159,6 +159,8 @@ pub fn unwrap(mesh: &Mesh, options: UnwrapOptions) -> Result<(Mesh, UnwrapReport
     let mut positions = Vec::new();
     let mut coords = Vec::new();
     let mut chart_of_vertex = Vec::new();
+    // Each new vertex's vertex in `mesh`, to carry the file's numbering.
+    let mut origin: Vec<u32> = Vec::new();
     let mut triangles = vec![[0u32; 3]; n_tri];
     let mut local_index: Vec<u32> = vec![u32::MAX; mesh.positions.len()];
     let mut touched: Vec<usize> = Vec::new();
@@ -173,6 +175,7 @@ pub fn unwrap(mesh: &Mesh, options: UnwrapOptions) -> Result<(Mesh, UnwrapReport
                 let key = weld[k] as usize;
                 if local_index[key] == u32::MAX {
                     let p = mesh.positions[orig[k] as usize];
+                    origin.push(orig[k]);
                     local_index[key] = positions.len() as u32;
                     touched.push(key);
                     positions.push(p);
@@ -191,6 +194,10 @@ pub fn unwrap(mesh: &Mesh, options: UnwrapOptions) -> Result<(Mesh, UnwrapReport
     let (uvs, scale) = pack_charts(&coords, &chart_of_vertex, final_charts.len(), options.padding);
     let mut out = Mesh::new(mesh.name.clone(), positions, Some(uvs), triangles);
     out.openings = mesh.openings.clone();
+    out.source = mesh.source.as_ref().map(|s| SourceNumbering {
+        vertices: origin.iter().map(|&v| s.vertex(v).unwrap_or(0)).collect(),
+        face_lines: s.face_lines.clone(),
+    });
 
     // Texel density per triangle: UV area over surface area, relative to the mean.
     let mut total_area = 0.0;

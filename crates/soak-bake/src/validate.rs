@@ -10,10 +10,7 @@ pub const DEGENERATE_AREA: f64 = 1e-14;
 pub const DEGENERATE_UV_AREA: f64 = 1e-14;
 
 fn fail(mesh: &Mesh, problem: MeshProblem) -> MeshError {
-    MeshError {
-        mesh: mesh.name.clone(),
-        problem,
-    }
+    MeshError::new(mesh, problem)
 }
 
 /// Non-empty, indices in range, finite positions, no zero-area triangles.

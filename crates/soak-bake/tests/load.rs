@@ -2,7 +2,10 @@
 
 use std::path::PathBuf;
 
-use soak_bake::{Atlas, BakeOptions, LoadError, MeshProblem, load_mesh, load_obj_bytes, validate};
+use soak_bake::{
+    Atlas, BakeOptions, LoadError, MeshProblem, UnwrapOptions, cap_openings, load_mesh, load_obj_bytes,
+    unwrap, validate, validate_topology,
+};
 
 fn data(name: &str) -> String {
     let p: PathBuf = [env!("CARGO_MANIFEST_DIR"), "..", "..", "data", name]
@@ -108,7 +111,13 @@ fn obj_with_a_hole_loads_but_does_not_validate() {
     let mesh = load_mesh(&data("bad/hole.obj")).unwrap();
     let e = validate(&mesh).unwrap_err();
     assert!(matches!(e.problem, MeshProblem::OpenEdge { .. }));
-    assert!(e.to_string().starts_with("mesh `hole.obj` triangle"), "{e}");
+    // Named in the file's terms: its first face (line 26, `f 1/1 2/2 3/3`)
+    // has the open edge from its vertex 2 to its vertex 3.
+    assert!(
+        e.to_string()
+            .starts_with("mesh `hole.obj` the face on line 26 has an open edge between vertices 2 and 3"),
+        "{e}"
+    );
     // It says how an open container is read.
     assert!(e.to_string().contains("`--open`, or `open = true`"), "{e}");
 }
@@ -269,4 +278,103 @@ fn gltf_with_a_buffer_uri_that_is_not_utf8_is_an_error() {
     let ok = br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"a%20b.bin"}]}"#;
     let e = soak_bake::load_gltf_bytes(ok, std::path::Path::new("uri.gltf"), None).unwrap_err();
     assert!(!e.to_string().contains("UTF-8"), "{e}");
+}
+
+/// A box without its top, its faces' corners split by their texture
+/// coordinates (the loader makes one vertex per `v/vt` pair), its last side
+/// a quad; the open edge the validation meets first is on line 16, from the
+/// file's vertex 5 to its vertex 6.
+const OPEN_CRATE: &str = "# an open crate
+v 0 0 0
+v 1 0 0
+v 1 0 1
+v 0 0 1
+v 0 1 0
+v 1 1 0
+v 1 1 1
+v 0 1 1
+vt 0.1 0.1
+vt 0.2 0.1
+vt 0.2 0.2
+vt 0.1 0.2
+f 1/1 2/2 3/3
+f 1/1 3/3 4/1
+f 1/4 5/2 6/3
+f 1/4 6/3 2/1
+f 2/2 6/3 7/4
+f 2/2 7/4 3/1
+f 3/1 7/2 8/3
+f 3/1 8/3 4/4
+f 4/1 8/2 5/3 1/4
+";
+
+#[test]
+fn an_open_mesh_is_named_in_the_files_own_numbering() {
+    let path = PathBuf::from("open_crate.obj");
+    let mesh = load_obj_bytes(OPEN_CRATE.as_bytes(), &path).unwrap();
+    assert!(mesh.positions.len() > 8, "the loader split the corners");
+    let expected = "mesh `open_crate.obj` the face on line 16 has an open edge between vertices 5 and 6 (the file's numbering)";
+    let e = validate_topology(&mesh).unwrap_err();
+    assert!(e.to_string().starts_with(expected), "{e}");
+    assert!(e.to_string().contains("`--open`, or `open = true`"), "{e}");
+    // The mesh's own indices stay in the typed problem.
+    let MeshProblem::OpenEdge { triangle, a, b } = e.problem else {
+        panic!("{e:?}")
+    };
+    assert_eq!(triangle, 2);
+    let source = mesh.source.as_ref().unwrap();
+    assert_eq!((source.vertex(a), source.vertex(b)), (Some(5), Some(6)));
+    assert_eq!(source.face_line(triangle), Some(16));
+    assert_eq!(source.face_lines.len(), 10, "the quad counts twice, on its line");
+    assert_eq!(source.face_lines[9], 22);
+
+    // Scaled and unwrapped again (new vertices along new seams), it is
+    // still told in the file's terms.
+    let scaled = mesh.clone().without_uvs().map_positions(|p| p * 3.0);
+    let (unwrapped, _) = unwrap(&scaled, UnwrapOptions::default()).unwrap();
+    let e = validate_topology(&unwrapped).unwrap_err();
+    assert!(e.to_string().starts_with(expected), "{e}");
+
+    // A mesh made in code has no file: its own indices.
+    let mut made = mesh.clone();
+    made.source = None;
+    let e = validate_topology(&made).unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("mesh `open_crate.obj` triangle 2 has an open edge"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_capped_open_mesh_keeps_the_files_numbering() {
+    // One side's face turned over: the rims it leaves meet at the file's
+    // vertex 7 (two open edges leave it), named so.
+    let text = OPEN_CRATE.replace("f 2/2 6/3 7/4", "f 2/2 7/4 6/3");
+    let mesh = load_obj_bytes(text.as_bytes(), &PathBuf::from("flipped.obj")).unwrap();
+    let e = cap_openings(&mesh).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "mesh `flipped.obj` two rims meet at vertex 7 (the file's numbering): the open mesh's boundary is not manifold there"
+    );
+    // Capped, the crate carries the numbering over.
+    let closed =
+        cap_openings(&load_obj_bytes(OPEN_CRATE.as_bytes(), &PathBuf::from("c.obj")).unwrap()).unwrap();
+    let source = closed.source.as_ref().unwrap();
+    assert_eq!(source.vertices.len(), closed.positions.len());
+    assert_eq!(source.face_lines.len(), closed.triangles.len());
+    // The cap's triangles are soak's; its vertices copy the rim's (5 to 8).
+    let first_cap = closed.first_opening_triangle().unwrap() as usize;
+    assert!((first_cap..closed.triangles.len()).all(|t| source.face_line(t).is_none()));
+    let cap_vertices: Vec<u32> = source.vertices[mesh_len(OPEN_CRATE)..].to_vec();
+    let mut sorted = cap_vertices.clone();
+    sorted.sort_unstable();
+    assert_eq!(sorted, vec![5, 6, 7, 8]);
+}
+
+fn mesh_len(text: &str) -> usize {
+    load_obj_bytes(text.as_bytes(), &PathBuf::from("x.obj"))
+        .unwrap()
+        .positions
+        .len()
 }
