@@ -3,7 +3,8 @@
 # scene of scripts/long_run/busy.toml, its resident memory sampled every
 # minute, then stopped with Ctrl-C (it writes its checkpoint and says where
 # it stopped). Prints the memory at each minute and what the CSV holds at
-# the end: rows, any value that is not finite, the liquid ledgers.
+# the end (scripts/long_run/ledger.py): rows, any value that is not finite,
+# speed, height and the liquid ledgers.
 #   bash scripts/long_run.sh [MINUTES]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,18 +22,4 @@ done
 kill -INT "$pid"
 wait "$pid" || true
 tail -6 "$dir/out.txt"
-python3 - "$dir/busy.csv" <<'PY'
-import csv, math, sys
-rows = list(csv.DictReader(open(sys.argv[1])))
-bodies = {}
-for r in rows:
-    bodies.setdefault(r["body"], []).append(r)
-for name, rs in bodies.items():
-    bad = sum(1 for r in rs for k, v in r.items() if k != "body" and not math.isfinite(float(v)))
-    soaked = [1e3 * float(r["surface_liquid_m3"]) for r in rs]
-    inside = [float(r["liquid_inside_m3"]) for r in rs]
-    half = len(rs) // 2
-    print(f"{name}: {len(rs)} rows to t = {rs[-1]['t_s']} s, {bad} not finite; "
-          f"soaked {min(soaked[half:]):.2f}–{max(soaked[half:]):.2f} L over the second half; "
-          f"inside at most {max(inside):.3f} m³")
-PY
+python3 scripts/long_run/ledger.py "$dir/busy.csv"

@@ -3,7 +3,9 @@
 # scripts/long_run/busy.toml under Xvfb (default: an hour of wall time; it
 # closes itself with --seconds), its resident memory sampled every minute.
 # Prints the memory at each minute, then the viewer's own summary (frames,
-# step time, simulated time) and where it wrote its last frame.
+# step time, simulated time), what its CSV holds (scripts/long_run/ledger.py:
+# rows, any value that is not finite, speed, height and the liquid ledgers)
+# and where it wrote its last frame.
 #   bash scripts/long_view.sh [MINUTES]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,7 +17,7 @@ trap 'rm -rf "$dir"' EXIT
 export XDG_RUNTIME_DIR="$dir/runtime"
 mkdir -m 700 "$XDG_RUNTIME_DIR"
 xvfb-run -a -s "-screen 0 1280x720x24" target/release/soak view scripts/long_run/busy.toml \
-  --seconds $((minutes * 60)) --screenshot "$dir/last.png" > "$dir/out.txt" 2> "$dir/err.txt" &
+  --seconds $((minutes * 60)) --screenshot "$dir/last.png" --csv "$dir/view.csv" > "$dir/out.txt" 2> "$dir/err.txt" &
 runner=$!
 sleep 20
 pid=$(pgrep -n -x soak || true)
@@ -29,4 +31,5 @@ for minute in $(seq 0 "$minutes"); do
 done
 wait "$runner" || true
 cat "$dir/out.txt" "$dir/err.txt"
+python3 scripts/long_run/ledger.py "$dir/view.csv"
 cp "$dir/last.png" long_view_last.png 2> /dev/null && echo "last frame: long_view_last.png" || true

@@ -1,6 +1,5 @@
 //! `soak simulate SCENE.toml`: run a scene headless.
 
-use std::io::{Seek, Write};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -8,7 +7,7 @@ use anyhow::Context;
 use serde::{Deserialize, Serialize};
 use soak_rapier::scene::{DEFAULT_TOLERANCE, ResolutionSpec};
 use soak_rapier::{
-    Backend, LoadedScene, Sample, SavedSimulation, Simulation, read_checkpoint, write_atomically,
+    Backend, LoadedScene, Sample, SampleCsv, SavedSimulation, Simulation, read_checkpoint, write_atomically,
     write_checkpoint,
 };
 
@@ -156,96 +155,6 @@ struct RunCheckpoint {
     pngs: usize,
 }
 
-/// The CSV, written as the run makes its rows.
-struct CsvStream {
-    path: PathBuf,
-    writer: std::io::BufWriter<std::fs::File>,
-    /// Bytes written so far (buffered included).
-    bytes: u64,
-    last_flush: Instant,
-}
-
-impl CsvStream {
-    /// A new file with its header.
-    fn create(path: &Path) -> anyhow::Result<Self> {
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-        }
-        let file = std::fs::File::create(path).with_context(|| format!("cannot write {}", path.display()))?;
-        let mut csv = Self {
-            path: path.to_path_buf(),
-            writer: std::io::BufWriter::new(file),
-            bytes: 0,
-            last_flush: Instant::now(),
-        };
-        csv.write(CSV_HEADER)?;
-        Ok(csv)
-    }
-
-    /// The file a checkpoint left at `bytes`: cut back to them (rows
-    /// written after the checkpoint are written again) and continued.
-    fn resume(path: &Path, bytes: u64) -> anyhow::Result<Self> {
-        let mut file = std::fs::OpenOptions::new()
-            .read(true)
-            .write(true)
-            .open(path)
-            .with_context(|| format!("cannot reopen the CSV {} to continue it", path.display()))?;
-        let len = file.metadata()?.len();
-        anyhow::ensure!(
-            len >= bytes,
-            "the CSV {} has {len} bytes, fewer than the {bytes} it had at the checkpoint: it was changed since; start the run again",
-            path.display()
-        );
-        file.set_len(bytes)?;
-        file.seek(std::io::SeekFrom::End(0))?;
-        Ok(Self {
-            path: path.to_path_buf(),
-            writer: std::io::BufWriter::new(file),
-            bytes,
-            last_flush: Instant::now(),
-        })
-    }
-
-    fn write(&mut self, text: &str) -> anyhow::Result<()> {
-        self.writer
-            .write_all(text.as_bytes())
-            .with_context(|| format!("writing {}", self.path.display()))?;
-        self.bytes += text.len() as u64;
-        Ok(())
-    }
-
-    /// Appends the rows of `samples`.
-    fn rows(&mut self, sim: &Simulation, samples: &[Sample]) -> anyhow::Result<()> {
-        for s in samples {
-            let row = csv_row(&sim.bodies[s.body].name, s);
-            self.write(&row)?;
-        }
-        if self.last_flush.elapsed() >= Duration::from_secs(1) {
-            self.flush()?;
-        }
-        Ok(())
-    }
-
-    /// Hands what is buffered to the file.
-    fn flush(&mut self) -> anyhow::Result<()> {
-        self.writer
-            .flush()
-            .with_context(|| format!("writing {}", self.path.display()))?;
-        self.last_flush = Instant::now();
-        Ok(())
-    }
-
-    /// Flushed and on disk: the bytes a checkpoint may count on.
-    fn sync(&mut self) -> anyhow::Result<u64> {
-        self.flush()?;
-        self.writer
-            .get_ref()
-            .sync_data()
-            .with_context(|| format!("writing {}", self.path.display()))?;
-        Ok(self.bytes)
-    }
-}
-
 /// Where `soak simulate` evaluates the texel sums.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum SimBackend {
@@ -299,7 +208,10 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
                 sim.resume_recording(c.samples.clone());
             }
             let csv = match (&args.csv, c.csv_bytes) {
-                (Some(p), Some(bytes)) => Some(CsvStream::resume(p, bytes)?),
+                (Some(p), Some(bytes)) => Some(
+                    SampleCsv::resume(p, bytes)
+                        .with_context(|| format!("continuing the CSV {}", p.display()))?,
+                ),
                 _ => None,
             };
             eprintln!(
@@ -313,7 +225,12 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         None => {
             let mut sim = Simulation::from_scene(&loaded)?;
             sim.record(args.csv.is_some() || keep_samples);
-            let csv = args.csv.as_deref().map(CsvStream::create).transpose()?;
+            let csv = match args.csv.as_deref() {
+                Some(p) => {
+                    Some(SampleCsv::create(p).with_context(|| format!("cannot write {}", p.display()))?)
+                }
+                None => None,
+            };
             (sim, csv, 0)
         }
     };
@@ -408,7 +325,8 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         if let Some(csv) = &mut csv {
             let samples = sim.samples();
             if samples.len() > cursor {
-                csv.rows(&sim, &samples[cursor..])?;
+                csv.rows(&sim, &samples[cursor..])
+                    .with_context(|| format!("writing {}", csv.path().display()))?;
             }
             if keep_samples {
                 cursor = sim.samples().len();
@@ -437,7 +355,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     }
     progress.finish();
     if let Some(csv) = &mut csv {
-        csv.sync()?;
+        sync(csv)?;
     }
     let last_checkpoint = match &args.checkpoint {
         Some(path) => Some(save(path, &loaded, &sim, &options, &mut csv, keep_samples, pngs)?),
@@ -518,6 +436,12 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The CSV on disk; its bytes.
+fn sync(csv: &mut SampleCsv) -> anyhow::Result<u64> {
+    csv.sync()
+        .with_context(|| format!("writing {}", csv.path().display()))
+}
+
 /// Writes a checkpoint of the run now: the CSV synced to disk first, so
 /// that the checkpoint never counts rows the file does not hold.
 fn save(
@@ -525,12 +449,12 @@ fn save(
     loaded: &LoadedScene,
     sim: &Simulation,
     options: &RunOptions,
-    csv: &mut Option<CsvStream>,
+    csv: &mut Option<SampleCsv>,
     keep_samples: bool,
     pngs: usize,
 ) -> anyhow::Result<(u64, f64)> {
     let start = Instant::now();
-    let csv_bytes = csv.as_mut().map(CsvStream::sync).transpose()?;
+    let csv_bytes = csv.as_mut().map(sync).transpose()?;
     let checkpoint = RunCheckpoint {
         options: options.clone(),
         saved: sim.save(loaded)?,
@@ -579,29 +503,4 @@ fn write_gltf(path: &std::path::Path, loaded: &LoadedScene, sim: &Simulation) ->
     })
     .with_context(|| format!("writing {}", path.display()))?;
     Ok(())
-}
-
-/// The CSV's header line.
-const CSV_HEADER: &str = "t_s,body,x_m,y_m,z_m,qx,qy,qz,qw,vx_m_s,vy_m_s,vz_m_s,wx_rad_s,wy_rad_s,wz_rad_s,\
-buoyancy_x_n,buoyancy_y_n,buoyancy_z_n,drag_x_n,drag_y_n,drag_z_n,submerged_volume_m3,mass_kg,liquid_inside_m3,\
-surface_liquid_m3\n";
-
-/// One sample's CSV row, its line end included.
-fn csv_row(name: &str, s: &Sample) -> String {
-    let f = |v: &[f64]| v.iter().map(|x| format!("{x:.6}")).collect::<Vec<_>>().join(",");
-    format!(
-        "{:.5},{},{},{},{},{},{},{},{:.6},{:.4},{:.6},{:.9}\n",
-        s.t,
-        name,
-        f(&s.position),
-        f(&s.rotation),
-        f(&s.linear_velocity),
-        f(&s.angular_velocity),
-        f(&s.buoyancy),
-        f(&s.drag),
-        s.submerged_volume,
-        s.mass,
-        s.liquid_inside,
-        s.surface_liquid
-    )
 }

@@ -56,6 +56,12 @@ pub struct Args {
     /// Write the last frame presented, read back from the window, as a PNG.
     #[arg(long, value_name = "PNG")]
     pub screenshot: Option<PathBuf>,
+    /// Write the bodies' time series as CSV, the columns of `soak simulate
+    /// --csv` (a row per body every `output.every` steps, handed to the
+    /// file at least once a second), from the moment the window opens; a
+    /// restart or a reload starts the time column again in the same file.
+    #[arg(long, value_name = "CSV")]
+    pub csv: Option<PathBuf>,
 }
 
 /// `soak view`.
@@ -106,6 +112,7 @@ pub fn run(args: &Args) -> Result<()> {
         frames: args.frames,
         seconds: args.seconds,
         screenshot: args.screenshot.clone(),
+        csv: args.csv.clone(),
     };
     let report = soak_view::run(&path, options)?;
     println!(

@@ -20,9 +20,9 @@ pub use self::error::{SceneError, SoakError};
 pub use self::force_generator::{ForceGenerator, SoakBody, step_params};
 pub use self::scene::{LoadedScene, Scene};
 pub use self::simulation::{
-    BodyReport, CHECKPOINT_MAGIC, CHECKPOINT_VERSION, CheckpointError, Sample, SavedSimulation, SimBody,
-    Simulation, decode_checkpoint, radiation_settings, read_checkpoint, water_of, write_atomically,
-    write_checkpoint,
+    BodyReport, CHECKPOINT_MAGIC, CHECKPOINT_VERSION, CSV_HEADER, CheckpointError, Sample, SampleCsv,
+    SavedSimulation, SimBody, Simulation, decode_checkpoint, radiation_settings, read_checkpoint, water_of,
+    write_atomically, write_checkpoint,
 };
 /// The engine-neutral driver [`ForceGenerator`] adapts to Rapier.
 pub use soak_driver;

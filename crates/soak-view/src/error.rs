@@ -31,6 +31,14 @@ pub enum ViewError {
     /// The window could not be opened or drawn to.
     #[error("the window: {0}")]
     Window(String),
+    /// The time series (`ViewOptions::csv`) could not be written.
+    #[error("cannot write the CSV `{path}`: {source}")]
+    Csv {
+        /// The file.
+        path: std::path::PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
     /// A screenshot could not be written.
     #[error("cannot write `{path}`: {message}")]
     Screenshot {

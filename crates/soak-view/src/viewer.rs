@@ -21,7 +21,7 @@ use std::time::{Duration, Instant, SystemTime};
 use nalgebra::Point3;
 use soak_bake::Mesh;
 use soak_rapier::scene::LoadedScene;
-use soak_rapier::{Simulation, convert};
+use soak_rapier::{SampleCsv, Simulation, convert};
 use soak_shade::render::{RenderScene, adapter_label};
 use winit::application::ApplicationHandler;
 use winit::dpi::{PhysicalPosition, PhysicalSize};
@@ -88,6 +88,12 @@ pub struct ViewOptions {
     /// Write the last frame presented (read back from the window's
     /// surface) as a PNG here when the viewer closes.
     pub screenshot: Option<PathBuf>,
+    /// Write the bodies' time series here as CSV, the columns and the
+    /// pace of `soak simulate --csv` (a row per body every `output.every`
+    /// steps, handed to the file at least once a second and on close). The
+    /// series starts when the window opens; a restart or a reload starts
+    /// the time column again in the same file.
+    pub csv: Option<PathBuf>,
 }
 
 impl Default for ViewOptions {
@@ -104,6 +110,7 @@ impl Default for ViewOptions {
             frames: None,
             seconds: None,
             screenshot: None,
+            csv: None,
         }
     }
 }
@@ -200,6 +207,13 @@ fn show(
         }
         options.play = false;
     }
+    let csv = match &options.csv {
+        Some(path) => Some(SampleCsv::create(path).map_err(|source| ViewError::Csv {
+            path: path.clone(),
+            source,
+        })?),
+        None => None,
+    };
     let shared = Arc::new(Shared::new(sim, source, &options));
     let worker = {
         let shared = Arc::clone(&shared);
@@ -215,8 +229,8 @@ fn show(
                     .thread_name(|i| format!("soak-view world {i}"))
                     .build()
                 {
-                    Ok(pool) => pool.install(|| simulate(&shared)),
-                    Err(_) => simulate(&shared),
+                    Ok(pool) => pool.install(|| simulate(&shared, csv)),
+                    Err(_) => simulate(&shared, csv),
                 }
             })
             .map_err(|e| ViewError::Window(format!("cannot start the simulation thread: {e}")))?

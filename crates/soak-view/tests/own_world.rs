@@ -106,6 +106,7 @@ fn shown() {
     let e = run_world(bare, vec![], ViewOptions::default()).unwrap_err();
     assert!(matches!(e, ViewError::Meshes { bodies: 1, meshes: 0 }), "{e}");
     let shot = std::env::temp_dir().join(format!("soak-view-own-{}.png", std::process::id()));
+    let csv = std::env::temp_dir().join(format!("soak-view-own-{}.csv", std::process::id()));
     let report = run_world(
         sim,
         vec![mesh],
@@ -114,12 +115,34 @@ fn shown() {
             overlay: false,
             frames: Some(30),
             screenshot: Some(shot.clone()),
+            csv: Some(csv.clone()),
             ..ViewOptions::default()
         },
     )
     .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(report.frames, 30);
     assert!(report.time > 0.0, "the world stepped: {report:?}");
+    // The series: the header, then a row per step from the window's
+    // opening (the world samples every step), its time rising to the end.
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let _ = std::fs::remove_file(&csv);
+    let mut lines = text.lines();
+    assert!(lines.next().unwrap().starts_with("t_s,body,x_m,"));
+    let times: Vec<f64> = lines
+        .map(|l| {
+            assert!(l.split(',').nth(1) == Some("crate"), "{l}");
+            l.split(',').next().unwrap().parse().unwrap()
+        })
+        .collect();
+    assert!(times.len() >= 2, "{text}");
+    assert_eq!(times[0], 0.0);
+    assert!(times.windows(2).all(|w| w[1] > w[0]), "{times:?}");
+    assert!(
+        (times[times.len() - 1] - report.time).abs() < 1e-4,
+        "{} {}",
+        times[times.len() - 1],
+        report.time
+    );
     let image = image::open(&shot).unwrap().to_rgba8();
     let _ = std::fs::remove_file(&shot);
     assert_eq!(image.dimensions(), (320, 180));

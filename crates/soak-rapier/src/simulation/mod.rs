@@ -7,6 +7,7 @@
 
 mod build;
 mod checkpoint;
+mod csv;
 mod saved;
 
 use rapier3d::prelude::*;
@@ -21,6 +22,7 @@ pub use self::checkpoint::{
     CHECKPOINT_MAGIC, CHECKPOINT_VERSION, CheckpointError, decode_checkpoint, read_checkpoint,
     write_atomically, write_checkpoint,
 };
+pub use self::csv::{CSV_HEADER, SampleCsv};
 pub use self::saved::SavedSimulation;
 
 /// One body of a running scene.
@@ -166,6 +168,11 @@ impl Simulation {
         if on && self.samples.is_empty() {
             self.sample();
         }
+    }
+
+    /// Whether samples are being recorded ([`Simulation::record`]).
+    pub fn is_recording(&self) -> bool {
+        self.recording
     }
 
     /// The recorded samples.

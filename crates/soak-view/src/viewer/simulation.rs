@@ -6,7 +6,7 @@
 use std::sync::{Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
-use soak_rapier::Simulation;
+use soak_rapier::{SampleCsv, Simulation};
 
 use super::{MAX_LAG, STARVED, Source, ViewOptions};
 
@@ -92,8 +92,19 @@ pub(super) fn with_world<R>(shared: &Shared, f: impl FnOnce(&mut Live) -> R) -> 
     r
 }
 
-/// The simulation thread: steps at the clock's pace while playing.
-pub(super) fn simulate(shared: &Shared) {
+/// The simulation thread: steps at the clock's pace while playing, and
+/// streams the bodies' samples to `csv` if there is one (synced to disk
+/// when the window closes).
+pub(super) fn simulate(shared: &Shared, mut csv: Option<SampleCsv>) {
+    run(shared, &mut csv);
+    if let Some(csv) = &mut csv
+        && let Err(e) = csv.sync()
+    {
+        eprintln!("cannot write the CSV {}: {e}", csv.path().display());
+    }
+}
+
+fn run(shared: &Shared, csv: &mut Option<SampleCsv>) {
     // The clock: simulated time `anchor.1` at wall time `anchor.0`.
     let mut anchor: Option<(Instant, f64)> = None;
     let mut recent: Vec<(Instant, f64, f64)> = Vec::new(); // (wall, sim time, step ms)
@@ -160,11 +171,24 @@ pub(super) fn simulate(shared: &Shared) {
             }
             lock(&shared.stats).behind = behind;
         }
+        // A world new to the series (the first, a restart's, a reload's)
+        // records from its present state.
+        if csv.is_some() && !live.sim.is_recording() {
+            live.sim.record(true);
+        }
         let start = Instant::now();
         let result = live.sim.step();
         let step_ms = start.elapsed().as_secs_f64() * 1e3;
         live.generation += 1;
         let t = live.sim.time();
+        let written = match csv {
+            Some(file) => {
+                let samples = live.sim.take_samples();
+                file.rows(&live.sim, &samples)
+                    .map_err(|e| format!("cannot write the CSV {}: {e}", file.path().display()))
+            }
+            None => Ok(()),
+        };
         drop(live);
         if stepping {
             let mut c = lock(&shared.control);
@@ -183,6 +207,12 @@ pub(super) fn simulate(shared: &Shared) {
         }
         if let Err(e) = result {
             stats.error = Some(format!("the simulation stopped: {e}"));
+            drop(stats);
+            lock(&shared.control).play = false;
+        } else if let Err(e) = written {
+            // The series asked for is not being kept: stop rather than
+            // run on without it.
+            stats.error = Some(e);
             drop(stats);
             lock(&shared.control).play = false;
         }
