@@ -4,6 +4,7 @@
 // layout can change without changing the API.
 mod added_mass;
 mod error;
+mod fft2;
 mod hydrostatics;
 mod mass;
 mod parallel;
@@ -42,8 +43,9 @@ pub use self::tiled::{
     DragTexels, SEA_TILE_TOLERANCE, TileCounts, TileMoments, TiledAtlas, evaluate_with_drag,
 };
 pub use self::water::{
-    AIR_DENSITY, Gerstner, GerstnerWave, HeightField, MAX_PATCH_NODES, Plane, STANDARD_GRAVITY, Surface,
-    SurfaceKind, SurfacePatch, Unbounded, WATER_DENSITY, Water,
+    AIR_DENSITY, DEFAULT_SEA_CELLS, Gerstner, GerstnerWave, HeightField, MAX_PATCH_NODES, Plane, SEA_CELLS,
+    STANDARD_GRAVITY, SeaFields, SeaMode, SeaSpectrum, SpectralSea, SpectrumShape, Surface, SurfaceKind,
+    SurfacePatch, Unbounded, WATER_DENSITY, Water,
 };
 pub use self::water_plane::{WaterPlane, water_plane};
 pub use self::waves::{InteractiveWaves, MAX_WAVE_CELLS, WaveHeights, WaveRegion, WavesState};

@@ -18,11 +18,8 @@
 //! absorbs the waves that reach it ([`InteractiveWaves::absorbed`] counts
 //! their energy), so that they do not come back in on the other side.
 
-use std::sync::Arc;
-
-use rayon::prelude::*;
+use crate::fft2::Fft2;
 use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftPlanner};
 use serde::Serialize;
 
 use crate::error::WaterError;
@@ -79,8 +76,7 @@ pub struct InteractiveWaves {
     /// Energy the sponge took, J.
     absorbed: f64,
     time: f64,
-    forward: Arc<dyn Fft<f64>>,
-    inverse: Arc<dyn Fft<f64>>,
+    fft: Fft2,
     scratch: Vec<Complex<f64>>,
     /// `|k|` per mode, rad/m, in the transform's order.
     k: Vec<f64>,
@@ -113,7 +109,6 @@ impl InteractiveWaves {
     pub fn new(region: WaveRegion, gravity: f64, density: f64, sponge: usize) -> Result<Self, WaterError> {
         check_waves(&region, gravity, density, sponge)?;
         let n = region.cells;
-        let mut planner = FftPlanner::new();
         Ok(Self {
             region,
             gravity,
@@ -124,8 +119,7 @@ impl InteractiveWaves {
             sponge,
             absorbed: 0.0,
             time: 0.0,
-            forward: planner.plan_fft_forward(n),
-            inverse: planner.plan_fft_inverse(n),
+            fft: Fft2::new(n),
             scratch: vec![Complex::default(); n * n],
             k: {
                 let base = 2.0 * std::f64::consts::PI / region.size;
@@ -636,17 +630,9 @@ impl InteractiveWaves {
         data
     }
 
-    /// The 2-D transform in place: the rows, then the columns (as rows of
-    /// the transpose), the rows in parallel (each row's transform is the
-    /// same on any number of threads).
+    /// The 2-D transform in place.
     fn fft2(&self, data: &mut [Complex<f64>], forward: bool, scratch: &mut [Complex<f64>]) {
-        let n = self.region.cells;
-        let fft = if forward { &self.forward } else { &self.inverse };
-        let rows = |data: &mut [Complex<f64>]| data.par_chunks_mut(n * 8).for_each(|c| fft.process(c));
-        rows(data);
-        transpose(data, scratch, n);
-        rows(scratch);
-        transpose(scratch, data, n);
+        self.fft.process(data, forward, scratch);
     }
 
     /// Advances the surface by `dt` (s) with the pressure held over the
@@ -753,13 +739,5 @@ impl InteractiveWaves {
             }
         }
         self.absorbed += before - self.energy();
-    }
-}
-
-fn transpose(from: &[Complex<f64>], to: &mut [Complex<f64>], n: usize) {
-    for r in 0..n {
-        for c in 0..n {
-            to[c * n + r] = from[r * n + c];
-        }
     }
 }

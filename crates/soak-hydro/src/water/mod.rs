@@ -11,6 +11,10 @@
 //!   Gerstner map.
 //! - `height_field`: [`HeightField`](crate::HeightField).
 //! - `unbounded`: [`Unbounded`](crate::Unbounded).
+//! - `spectrum`: [`SeaSpectrum`](crate::SeaSpectrum) (JONSWAP,
+//!   Pierson–Moskowitz, cos-2s spreading) and
+//!   [`SpectralSea`](crate::SpectralSea), a sea realised on a periodic
+//!   FFT tile.
 //! - `patch`: [`SurfacePatch`](crate::SurfacePatch), any surface sampled
 //!   once over a region and interpolated.
 
@@ -18,6 +22,7 @@ mod gerstner;
 mod height_field;
 mod patch;
 mod plane;
+mod spectrum;
 mod surface;
 mod unbounded;
 
@@ -28,5 +33,8 @@ pub(crate) use self::patch::PatchGrid;
 pub(crate) use self::patch::PatchVelocityGrid;
 pub use self::patch::{MAX_PATCH_NODES, SurfacePatch};
 pub use self::plane::Plane;
+pub use self::spectrum::{
+    DEFAULT_SEA_CELLS, SEA_CELLS, SeaFields, SeaMode, SeaSpectrum, SpectralSea, SpectrumShape,
+};
 pub use self::surface::{AIR_DENSITY, STANDARD_GRAVITY, Surface, SurfaceKind, WATER_DENSITY, Water};
 pub use self::unbounded::Unbounded;

@@ -1,0 +1,51 @@
+//! The square 2-D FFT the interactive waves and the spectral sea share.
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+use rustfft::num_complex::Complex;
+use rustfft::{Fft, FftPlanner};
+
+/// Forward and inverse 2-D transforms of an `n × n` grid stored row by row
+/// (cell `(ix, iz)` at `iz · n + ix`), unnormalised: the rows, then the
+/// columns as rows of the transpose, the rows in parallel (each row's
+/// transform is the same on any number of threads, so the result is too).
+#[derive(Clone)]
+pub(crate) struct Fft2 {
+    n: usize,
+    forward: Arc<dyn Fft<f64>>,
+    inverse: Arc<dyn Fft<f64>>,
+}
+
+impl Fft2 {
+    /// The transforms of an `n × n` grid.
+    pub(crate) fn new(n: usize) -> Self {
+        let mut planner = FftPlanner::new();
+        Self {
+            n,
+            forward: planner.plan_fft_forward(n),
+            inverse: planner.plan_fft_inverse(n),
+        }
+    }
+
+    /// The transform of `data` in place (`forward`: `Σ x e^{−i k·x}`;
+    /// otherwise `Σ X e^{+i k·x}`, not divided by `n²`); `scratch` holds
+    /// `n²` values.
+    pub(crate) fn process(&self, data: &mut [Complex<f64>], forward: bool, scratch: &mut [Complex<f64>]) {
+        let n = self.n;
+        let fft = if forward { &self.forward } else { &self.inverse };
+        let rows = |data: &mut [Complex<f64>]| data.par_chunks_mut(n * 8).for_each(|c| fft.process(c));
+        rows(data);
+        transpose(data, scratch, n);
+        rows(scratch);
+        transpose(scratch, data, n);
+    }
+}
+
+fn transpose(from: &[Complex<f64>], to: &mut [Complex<f64>], n: usize) {
+    for r in 0..n {
+        for c in 0..n {
+            to[c * n + r] = from[r * n + c];
+        }
+    }
+}

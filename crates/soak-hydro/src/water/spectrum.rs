@@ -1,0 +1,563 @@
+//! A spectral sea: a directional wave spectrum (JONSWAP or
+//! Pierson–Moskowitz by significant height and peak period, cos-2s
+//! spreading) realised on a periodic tile by the inverse FFT, with the
+//! surface particles' choppy horizontal displacement and orbital velocity.
+//!
+//! Every mode of the tile's wavenumber grid `k = 2π (n, l) / L` is one
+//! linear deep-water wave travelling along `k` at `ω = √(g |k|)`, with a
+//! complex amplitude `A_k` drawn from the spectrum (a complex Gaussian of
+//! variance `2 S(k) Δk²`, so that the elevation's variance is the
+//! spectrum's `m₀ = H_s² / 16` in expectation). The surface particle at
+//! rest on the node `x₀` is, at time `t`, at
+//!
+//! - height `η = Re Σ A_k e^{i(k·x₀ − ωt)}`,
+//! - horizontal displacement `D = λ Re Σ i k̂ A_k e^{i(k·x₀ − ωt)}`
+//!   (`λ` the choppiness: 1 is linear theory's particle orbit),
+//!
+//! so that one mode of amplitude `a` is exactly the [`Gerstner`](super::Gerstner)
+//! wave of that amplitude with steepness `λ k a`.
+
+use nalgebra::Vector2;
+use rand::{Rng, SeedableRng};
+use rustfft::num_complex::Complex;
+use serde::{Deserialize, Serialize};
+
+use crate::error::WaterError;
+use crate::fft2::Fft2;
+
+/// The shape of a sea's frequency spectrum `S(ω)`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum SpectrumShape {
+    /// Pierson–Moskowitz: a fully developed sea,
+    /// `S(ω) = (5/16) H_s² ω_p⁴ ω⁻⁵ exp(−5/4 (ω_p/ω)⁴)`.
+    PiersonMoskowitz,
+    /// JONSWAP: a fetch-limited sea, Pierson–Moskowitz's shape with its peak
+    /// raised by `gamma^r`, `r = exp(−(ω − ω_p)² / (2 σ² ω_p²))`,
+    /// `σ = 0.07` below the peak and `0.09` above it; `gamma` 1 is
+    /// Pierson–Moskowitz, 3.3 the mean of the JONSWAP measurements.
+    Jonswap {
+        /// Peak enhancement `γ`, at least 1.
+        gamma: f64,
+    },
+}
+
+/// A directional wave spectrum: a sea state by its significant height and
+/// peak period, the direction it travels and how widely it spreads.
+///
+/// `S(ω, θ) = S(ω) D(θ)`, `S(ω)` scaled so that `∫ S dω = H_s² / 16`
+/// exactly (JONSWAP's usual factor `1 − 0.287 ln γ` is that scaling's
+/// approximation), and `D(θ) ∝ cos^{2s}((θ − θ_m)/2)` with `∫ D dθ = 1`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SeaSpectrum {
+    /// The spectrum's shape.
+    pub shape: SpectrumShape,
+    /// Significant wave height `H_s = 4 √m₀`, m.
+    pub significant_height: f64,
+    /// Peak period `T_p = 2π / ω_p`, s.
+    pub peak_period: f64,
+    /// Mean direction of travel, degrees from +x towards +z.
+    pub direction_deg: f64,
+    /// The cos-2s spreading exponent `s` (0: waves from every direction
+    /// alike; 1 wide; 10 a wind sea; 75 a swell).
+    pub spreading: f64,
+}
+
+/// Points of the numerical integrals of the spectrum's and the spreading's
+/// normalisations (composite Simpson).
+const QUADRATURE: usize = 20_000;
+
+impl SeaSpectrum {
+    /// A JONSWAP sea of significant height `hs` (m) and peak period `tp`
+    /// (s) with `γ` = 3.3, travelling along +x with spreading `s` = 10.
+    pub fn jonswap(hs: f64, tp: f64) -> Self {
+        Self {
+            shape: SpectrumShape::Jonswap { gamma: 3.3 },
+            significant_height: hs,
+            peak_period: tp,
+            direction_deg: 0.0,
+            spreading: 10.0,
+        }
+    }
+
+    /// Checks every field: finite, `H_s` and `T_p` > 0, `γ` ≥ 1, `s` ≥ 0
+    /// (and at most 1,000).
+    pub fn validate(&self) -> Result<(), WaterError> {
+        let gamma = match self.shape {
+            SpectrumShape::PiersonMoskowitz => 1.0,
+            SpectrumShape::Jonswap { gamma } => gamma,
+        };
+        let checks = [
+            (
+                "significant_height",
+                self.significant_height,
+                self.significant_height > 0.0,
+            ),
+            ("peak_period", self.peak_period, self.peak_period > 0.0),
+            ("gamma", gamma, gamma >= 1.0),
+            ("direction_deg", self.direction_deg, true),
+            (
+                "spreading",
+                self.spreading,
+                (0.0..=1000.0).contains(&self.spreading),
+            ),
+        ];
+        for (name, value, ok) in checks {
+            if !(value.is_finite() && ok) {
+                return Err(WaterError::Parameter { name, value });
+            }
+        }
+        Ok(())
+    }
+
+    /// Peak angular frequency `ω_p = 2π / T_p`, rad/s.
+    pub fn peak_frequency(&self) -> f64 {
+        std::f64::consts::TAU / self.peak_period
+    }
+
+    /// Deep-water wavelength of the peak, `g T_p² / (2π)`, m.
+    pub fn peak_wavelength(&self, gravity: f64) -> f64 {
+        gravity * self.peak_period.powi(2) / std::f64::consts::TAU
+    }
+
+    /// The tile a sea of this spectrum is realised on by default: eight
+    /// peak wavelengths (m), so that the peak is the tile's eighth mode and
+    /// its neighbours resolve it (at four, JONSWAP's narrow peak falls
+    /// between modes and the realised `H_s` is 1.7 % high on average).
+    /// With [`DEFAULT_SEA_CELLS`] the shortest wave is a sixteenth of the
+    /// peak's, at four times its frequency (the spectrum's tail beyond
+    /// holds 0.5 % of its energy).
+    pub fn default_tile(&self, gravity: f64) -> f64 {
+        8.0 * self.peak_wavelength(gravity)
+    }
+
+    /// The shape before scaling, at `x = ω / ω_p`.
+    fn unscaled(&self, x: f64) -> f64 {
+        if x <= 0.0 {
+            return 0.0;
+        }
+        let pm = x.powi(-5) * (-1.25 * x.powi(-4)).exp();
+        match self.shape {
+            SpectrumShape::PiersonMoskowitz => pm,
+            SpectrumShape::Jonswap { gamma } => {
+                let sigma = if x <= 1.0 { 0.07 } else { 0.09 };
+                pm * gamma.powf((-(x - 1.0).powi(2) / (2.0 * sigma * sigma)).exp())
+            }
+        }
+    }
+
+    /// The factor that takes [`Self::unscaled`] (in `x = ω/ω_p`) to
+    /// `S(ω)`: `m₀ / (ω_p ∫ unscaled dx)`.
+    fn scale(&self) -> f64 {
+        // The shape is below 1e-40 of its peak under x = 0.1 and falls as
+        // x⁻⁵ above; the tail beyond x = 40 (a 4·10⁻⁷ share) is added in
+        // closed form.
+        let (a, b) = (0.1, 40.0);
+        let integral = simpson(|x| self.unscaled(x), a, b, QUADRATURE) + 0.25 * self.unscaled(b) * b;
+        let m0 = self.significant_height.powi(2) / 16.0;
+        m0 / (self.peak_frequency() * integral)
+    }
+
+    /// The frequency spectrum `S(ω)` at each of `omegas` (rad/s), m²·s:
+    /// `∫₀^∞ S dω = H_s² / 16`.
+    pub fn densities(&self, omegas: &[f64]) -> Vec<f64> {
+        let (scale, wp) = (self.scale(), self.peak_frequency());
+        omegas.iter().map(|&w| scale * self.unscaled(w / wp)).collect()
+    }
+
+    /// The frequency spectrum `S(ω)` at one `omega` (rad/s), m²·s (the
+    /// scaling is computed on each call: for many frequencies use
+    /// [`Self::densities`]).
+    pub fn density(&self, omega: f64) -> f64 {
+        self.densities(&[omega])[0]
+    }
+
+    /// The spreading `D(θ)` (1/rad) at each direction of travel `thetas`
+    /// (radians from +x towards +z): `∫_{−π}^{π} D dθ = 1`.
+    pub fn spreading_densities(&self, thetas: &[f64]) -> Vec<f64> {
+        let s = self.spreading;
+        let norm = simpson(
+            |a| (0.5 * a).cos().powf(2.0 * s),
+            -std::f64::consts::PI,
+            std::f64::consts::PI,
+            QUADRATURE,
+        );
+        let mean = self.direction_deg.to_radians();
+        thetas
+            .iter()
+            .map(|&t| {
+                let d = wrap_angle(t - mean);
+                (0.5 * d).cos().abs().powf(2.0 * s) / norm
+            })
+            .collect()
+    }
+}
+
+/// `a` taken into (−π, π].
+fn wrap_angle(a: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let r = a.rem_euclid(tau);
+    if r > std::f64::consts::PI { r - tau } else { r }
+}
+
+/// Composite Simpson's rule over `n` (even) intervals.
+fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
+    let n = n + n % 2;
+    let h = (b - a) / n as f64;
+    let mut sum = f(a) + f(b);
+    for i in 1..n {
+        sum += f(a + i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
+    }
+    sum * h / 3.0
+}
+
+/// One wave of a sea given mode by mode ([`SpectralSea::from_modes`]):
+/// the tile's mode `(n, l)` (wavenumber `2π (n, l) / L`), its amplitude and
+/// phase.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SeaMode {
+    /// Wavenumber index along x, within `−cells/2 < n < cells/2`.
+    pub n: i32,
+    /// Wavenumber index along z, within `−cells/2 < l < cells/2`.
+    pub l: i32,
+    /// Amplitude, m.
+    pub amplitude: f64,
+    /// Phase, radians: the wave's elevation is `a cos(k·x − ωt + phase)`.
+    pub phase: f64,
+}
+
+/// The cells a side of a sea's tile by default.
+pub const DEFAULT_SEA_CELLS: usize = 256;
+
+/// The smallest and largest tile side in cells.
+pub const SEA_CELLS: std::ops::RangeInclusive<usize> = 8..=2048;
+
+/// A sea realised on a periodic square tile: the complex amplitude of
+/// every mode of its FFT grid, drawn from a [`SeaSpectrum`] by a seed
+/// (the same seed, the same sea, on any machine), or given mode by mode.
+/// [`SpectralSea::fields`] evaluates the whole tile at a time `t` with a
+/// few inverse FFTs.
+#[derive(Clone)]
+pub struct SpectralSea {
+    /// Mean water level, m.
+    pub level: f64,
+    /// The tile's side, m (the sea repeats with this period along x and z).
+    pub size: f64,
+    /// Cells along each side (a power of two).
+    pub cells: usize,
+    /// Choppiness `λ`: the horizontal displacement's factor (0: heights
+    /// only; 1: linear theory's orbits).
+    pub choppiness: f64,
+    /// Gravity for the dispersion relation, m/s².
+    pub gravity: f64,
+    /// `A_k` per mode in the transform's order (`l` row, `n` column, each
+    /// index `i < cells/2` as itself, otherwise `i − cells`), m.
+    amplitudes: Vec<Complex<f64>>,
+    fft: Fft2,
+}
+
+impl std::fmt::Debug for SpectralSea {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SpectralSea")
+            .field("level", &self.level)
+            .field("size", &self.size)
+            .field("cells", &self.cells)
+            .field("choppiness", &self.choppiness)
+            .field("gravity", &self.gravity)
+            .finish_non_exhaustive()
+    }
+}
+
+/// A tile's fields at one time, every array `cells²` long in row order
+/// (node `(ix, iz)` at `iz · cells + ix`, at rest at `(ix, iz) · size /
+/// cells`): the surface particle resting on each node, where it is and how
+/// it moves.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SeaFields {
+    /// The time, s.
+    pub time: f64,
+    /// Mean water level, m.
+    pub level: f64,
+    /// The tile's side, m.
+    pub size: f64,
+    /// Cells along each side.
+    pub cells: usize,
+    /// Elevation above the mean level, m.
+    pub height: Vec<f64>,
+    /// Horizontal displacement along x and z, m.
+    pub displacement: [Vec<f64>; 2],
+    /// The elevation's gradient over the rest position `(∂η/∂x₀, ∂η/∂z₀)`.
+    pub height_gradient: [Vec<f64>; 2],
+    /// The displacement's gradient over the rest position
+    /// `[∂Dx/∂x₀, ∂Dx/∂z₀ = ∂Dz/∂x₀, ∂Dz/∂z₀]`.
+    pub displacement_gradient: [Vec<f64>; 3],
+    /// The particle's velocity `(x, y, z)`, m/s.
+    pub velocity: [Vec<f64>; 3],
+}
+
+impl SeaFields {
+    /// The surface particle resting on node `(ix, iz)`: its position, m.
+    pub fn particle(&self, ix: usize, iz: usize) -> [f64; 3] {
+        let i = iz * self.cells + ix;
+        let d = self.size / self.cells as f64;
+        [
+            ix as f64 * d + self.displacement[0][i],
+            self.level + self.height[i],
+            iz as f64 * d + self.displacement[1][i],
+        ]
+    }
+
+    /// The realised significant height `4 √⟨η²⟩` over the tile's nodes, m.
+    pub fn significant_height(&self) -> f64 {
+        let m0 = self.height.iter().map(|h| h * h).sum::<f64>() / self.height.len() as f64;
+        4.0 * m0.sqrt()
+    }
+}
+
+impl SpectralSea {
+    /// The sea `spectrum` realised on a tile `size` m across of `cells`
+    /// nodes a side, from `seed`, at mean `level` (m), choppiness 1, under
+    /// `gravity` (m/s²).
+    ///
+    /// # Errors
+    /// [`WaterError::Parameter`] for an invalid spectrum, level, size or
+    /// gravity, or `cells` not a power of two within [`SEA_CELLS`].
+    pub fn realize(
+        spectrum: &SeaSpectrum,
+        level: f64,
+        size: f64,
+        cells: usize,
+        seed: u64,
+        gravity: f64,
+    ) -> Result<Self, WaterError> {
+        spectrum.validate()?;
+        check_tile(level, size, cells, gravity)?;
+        let n = cells;
+        let dk = std::f64::consts::TAU / size;
+        let (scale, wp) = (spectrum.scale(), spectrum.peak_frequency());
+        let s = spectrum.spreading;
+        let norm = simpson(
+            |a| (0.5 * a).cos().powf(2.0 * s),
+            -std::f64::consts::PI,
+            std::f64::consts::PI,
+            QUADRATURE,
+        );
+        let mean = spectrum.direction_deg.to_radians();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let mut amplitudes = vec![Complex::default(); n * n];
+        for (i, a) in amplitudes.iter_mut().enumerate() {
+            // Two normal deviates per mode, drawn for every mode in order
+            // (the Nyquist row and column and k = 0 included) so that the
+            // sea of a seed does not depend on which modes carry energy.
+            let (u1, u2): (f64, f64) = (rng.random(), rng.random());
+            let r = (-2.0 * (1.0 - u1).ln()).sqrt();
+            let (sn, cs) = (std::f64::consts::TAU * u2).sin_cos();
+            let (nx, nz) = (signed(i % n, n), signed(i / n, n));
+            if nx == -(n as i64) / 2 || nz == -(n as i64) / 2 || (nx == 0 && nz == 0) {
+                continue;
+            }
+            let k = Vector2::new(nx as f64, nz as f64) * dk;
+            let kk = k.norm();
+            let omega = (gravity * kk).sqrt();
+            // S(kx, kz) = S(ω) D(θ) (dω/dk) / k, dω/dk = g / (2ω).
+            let d = (0.5 * wrap_angle(k.y.atan2(k.x) - mean))
+                .cos()
+                .abs()
+                .powf(2.0 * s)
+                / norm;
+            let density = scale * spectrum.unscaled(omega / wp) * d * gravity / (2.0 * omega * kk);
+            // E|A|² = 2 S Δk²: each of the two parts has variance S Δk².
+            let sigma = (density * dk * dk).sqrt();
+            *a = Complex::new(sigma * r * cs, sigma * r * sn);
+        }
+        Ok(Self {
+            level,
+            size,
+            cells,
+            choppiness: 1.0,
+            gravity,
+            amplitudes,
+            fft: Fft2::new(n),
+        })
+    }
+
+    /// A sea given mode by mode on a tile `size` m across of `cells` nodes
+    /// a side, at mean `level` (m), choppiness 1, under `gravity` (m/s²).
+    ///
+    /// # Errors
+    /// As [`SpectralSea::realize`], and [`WaterError::Wave`] naming a mode
+    /// outside the grid (or its Nyquist row or column) or with an amplitude
+    /// or phase that is not finite (or a negative amplitude).
+    pub fn from_modes(
+        level: f64,
+        size: f64,
+        cells: usize,
+        modes: &[SeaMode],
+        gravity: f64,
+    ) -> Result<Self, WaterError> {
+        check_tile(level, size, cells, gravity)?;
+        let half = (cells / 2) as i32;
+        let mut amplitudes = vec![Complex::default(); cells * cells];
+        for (index, m) in modes.iter().enumerate() {
+            let bad = |field, value| WaterError::Wave { index, field, value };
+            if m.n.abs() >= half {
+                return Err(bad("n", m.n as f64));
+            }
+            if m.l.abs() >= half {
+                return Err(bad("l", m.l as f64));
+            }
+            if !(m.amplitude.is_finite() && m.amplitude >= 0.0) {
+                return Err(bad("amplitude", m.amplitude));
+            }
+            if !m.phase.is_finite() {
+                return Err(bad("phase", m.phase));
+            }
+            let ix = m.n.rem_euclid(cells as i32) as usize;
+            let iz = m.l.rem_euclid(cells as i32) as usize;
+            amplitudes[iz * cells + ix] += Complex::from_polar(m.amplitude, m.phase);
+        }
+        Ok(Self {
+            level,
+            size,
+            cells,
+            choppiness: 1.0,
+            gravity,
+            amplitudes,
+            fft: Fft2::new(cells),
+        })
+    }
+
+    /// The same sea with choppiness `lambda` (0 to 1 keeps most seas from
+    /// folding over; a fold is where the displacement's Jacobian
+    /// `det(I + ∇D)` falls to 0).
+    ///
+    /// # Errors
+    /// [`WaterError::Parameter`] for a negative or non-finite `lambda`.
+    pub fn with_choppiness(mut self, lambda: f64) -> Result<Self, WaterError> {
+        if !(lambda.is_finite() && lambda >= 0.0) {
+            return Err(WaterError::Parameter {
+                name: "choppiness",
+                value: lambda,
+            });
+        }
+        self.choppiness = lambda;
+        Ok(self)
+    }
+
+    /// The complex amplitude of mode `(n, l)`, m (0 outside the grid).
+    pub fn amplitude(&self, n: i64, l: i64) -> Complex<f64> {
+        let c = self.cells as i64;
+        if n.abs() >= c / 2 || l.abs() >= c / 2 {
+            return Complex::default();
+        }
+        self.amplitudes[(l.rem_euclid(c) * c + n.rem_euclid(c)) as usize]
+    }
+
+    /// Every mode with energy: its wavenumber `(kx, kz)` (rad/m), its
+    /// angular frequency (rad/s) and `|A|²` (m²).
+    pub fn modes(&self) -> impl Iterator<Item = ([f64; 2], f64, f64)> + '_ {
+        let n = self.cells;
+        let dk = std::f64::consts::TAU / self.size;
+        self.amplitudes
+            .iter()
+            .enumerate()
+            .filter(|(_, a)| a.norm_sqr() > 0.0)
+            .map(move |(i, a)| {
+                let k = [signed(i % n, n) as f64 * dk, signed(i / n, n) as f64 * dk];
+                let omega = (self.gravity * k[0].hypot(k[1])).sqrt();
+                (k, omega, a.norm_sqr())
+            })
+    }
+
+    /// The whole tile at time `t` (s): eleven inverse transforms of
+    /// `cells²` (the elevation, the displacement, their gradients and the
+    /// particles' velocity).
+    pub fn fields(&self, t: f64) -> SeaFields {
+        let n = self.cells;
+        let dk = std::f64::consts::TAU / self.size;
+        let lambda = self.choppiness;
+        // Per mode: A e^{−iωt}, k and k̂, ω.
+        let turned: Vec<Turned> = self
+            .amplitudes
+            .iter()
+            .enumerate()
+            .map(|(i, a)| {
+                let k = [signed(i % n, n) as f64 * dk, signed(i / n, n) as f64 * dk];
+                let kk = k[0].hypot(k[1]);
+                if kk == 0.0 || a.norm_sqr() == 0.0 {
+                    return Turned::default();
+                }
+                let omega = (self.gravity * kk).sqrt();
+                Turned {
+                    a: a * Complex::from_polar(1.0, -omega * t),
+                    k,
+                    unit: [k[0] / kk, k[1] / kk],
+                    omega,
+                }
+            })
+            .collect();
+        let mut scratch = vec![Complex::default(); n * n];
+        let i = Complex::i();
+        let mut field = |f: &dyn Fn(&Turned) -> Complex<f64>| -> Vec<f64> {
+            let mut data: Vec<Complex<f64>> = turned.iter().map(f).collect();
+            self.fft.process(&mut data, false, &mut scratch);
+            data.into_iter().map(|c| c.re).collect()
+        };
+        let height = field(&|m| m.a);
+        let dx = field(&|m| i * lambda * m.unit[0] * m.a);
+        let dz = field(&|m| i * lambda * m.unit[1] * m.a);
+        let hx = field(&|m| i * m.k[0] * m.a);
+        let hz = field(&|m| i * m.k[1] * m.a);
+        let dxx = field(&|m| -lambda * m.unit[0] * m.k[0] * m.a);
+        let dxz = field(&|m| -lambda * m.unit[0] * m.k[1] * m.a);
+        let dzz = field(&|m| -lambda * m.unit[1] * m.k[1] * m.a);
+        let vx = field(&|m| lambda * m.omega * m.unit[0] * m.a);
+        let vy = field(&|m| -i * m.omega * m.a);
+        let vz = field(&|m| lambda * m.omega * m.unit[1] * m.a);
+        SeaFields {
+            time: t,
+            level: self.level,
+            size: self.size,
+            cells: n,
+            height,
+            displacement: [dx, dz],
+            height_gradient: [hx, hz],
+            displacement_gradient: [dxx, dxz, dzz],
+            velocity: [vx, vy, vz],
+        }
+    }
+}
+
+/// One mode at the time of [`SpectralSea::fields`]: `A e^{−iωt}` (m), `k`
+/// (rad/m), `k̂` and `ω` (rad/s).
+#[derive(Clone, Copy, Default)]
+struct Turned {
+    a: Complex<f64>,
+    k: [f64; 2],
+    unit: [f64; 2],
+    omega: f64,
+}
+
+/// Transform index `i` of `n` as a signed wavenumber index.
+fn signed(i: usize, n: usize) -> i64 {
+    if i < n / 2 { i as i64 } else { i as i64 - n as i64 }
+}
+
+fn check_tile(level: f64, size: f64, cells: usize, gravity: f64) -> Result<(), WaterError> {
+    let checks = [
+        ("level", level, true),
+        ("tile", size, size > 0.0),
+        ("gravity", gravity, gravity > 0.0),
+        (
+            "cells",
+            cells as f64,
+            cells.is_power_of_two() && SEA_CELLS.contains(&cells),
+        ),
+    ];
+    for (name, value, ok) in checks {
+        if !(value.is_finite() && ok) {
+            return Err(WaterError::Parameter { name, value });
+        }
+    }
+    Ok(())
+}
