@@ -22,6 +22,7 @@ mod gerstner;
 mod height_field;
 mod patch;
 mod plane;
+mod spectral_surface;
 mod spectrum;
 mod surface;
 mod unbounded;
@@ -33,6 +34,7 @@ pub(crate) use self::patch::PatchGrid;
 pub(crate) use self::patch::PatchVelocityGrid;
 pub use self::patch::{MAX_PATCH_NODES, SurfacePatch};
 pub use self::plane::Plane;
+pub use self::spectral_surface::SpectralSurface;
 pub use self::spectrum::{
     DEFAULT_SEA_CELLS, SEA_CELLS, SeaFields, SeaMode, SeaSpectrum, SpectralSea, SpectrumShape,
 };

@@ -291,6 +291,9 @@ pub struct SeaFields {
     /// The displacement's gradient over the rest position
     /// `[∂Dx/∂x₀, ∂Dx/∂z₀ = ∂Dz/∂x₀, ∂Dz/∂z₀]`.
     pub displacement_gradient: [Vec<f64>; 3],
+    /// The cross derivatives `∂²/∂x₀∂z₀` of the elevation and of the
+    /// displacement along x and z (the twists bicubic interpolation needs).
+    pub twist: [Vec<f64>; 3],
     /// The particle's velocity `(x, y, z)`, m/s.
     pub velocity: [Vec<f64>; 3],
 }
@@ -305,6 +308,101 @@ impl SeaFields {
             self.level + self.height[i],
             iz as f64 * d + self.displacement[1][i],
         ]
+    }
+
+    /// The bicubic Hermite interpolant of one field (its values, gradient
+    /// and twist at the nodes) at rest position `(x0, z0)` (m, taken into
+    /// the tile): its value and its gradient over the rest position.
+    fn hermite(&self, f: &[f64], fx: &[f64], fz: &[f64], fxz: &[f64], x0: f64, z0: f64) -> (f64, [f64; 2]) {
+        let n = self.cells;
+        let d = self.size / n as f64;
+        let (gx, gz) = ((x0 / d).rem_euclid(n as f64), (z0 / d).rem_euclid(n as f64));
+        let (ix, iz) = ((gx.floor() as usize).min(n - 1), (gz.floor() as usize).min(n - 1));
+        let (u, v) = (gx - ix as f64, gz - iz as f64);
+        // Cubic Hermite basis on [0, 1]: value at 0, value at 1, slope at
+        // 0, slope at 1; and their derivatives.
+        let basis = |t: f64| {
+            let (t2, t3) = (t * t, t * t * t);
+            (
+                [
+                    2.0 * t3 - 3.0 * t2 + 1.0,
+                    -2.0 * t3 + 3.0 * t2,
+                    t3 - 2.0 * t2 + t,
+                    t3 - t2,
+                ],
+                [
+                    6.0 * t2 - 6.0 * t,
+                    -6.0 * t2 + 6.0 * t,
+                    3.0 * t2 - 4.0 * t + 1.0,
+                    3.0 * t2 - 2.0 * t,
+                ],
+            )
+        };
+        let ((bu, du), (bv, dv)) = (basis(u), basis(v));
+        let (mut value, mut ddu, mut ddv) = (0.0, 0.0, 0.0);
+        for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            let i = ((iz + b) % n) * n + (ix + a) % n;
+            // Derivatives over the rest position, in cells.
+            let (c0, cu, cv, cuv) = (f[i], fx[i] * d, fz[i] * d, fxz[i] * d * d);
+            value += c0 * bu[a] * bv[b]
+                + cu * bu[a + 2] * bv[b]
+                + cv * bu[a] * bv[b + 2]
+                + cuv * bu[a + 2] * bv[b + 2];
+            ddu += c0 * du[a] * bv[b]
+                + cu * du[a + 2] * bv[b]
+                + cv * du[a] * bv[b + 2]
+                + cuv * du[a + 2] * bv[b + 2];
+            ddv += c0 * bu[a] * dv[b]
+                + cu * bu[a + 2] * dv[b]
+                + cv * bu[a] * dv[b + 2]
+                + cuv * bu[a + 2] * dv[b + 2];
+        }
+        (value, [ddu / d, ddv / d])
+    }
+
+    /// The surface particle at rest at any `(x0, z0)` (m; the fields'
+    /// bicubic Hermite interpolants between the nodes): where it is (m),
+    /// the Jacobian `[[∂x/∂x₀, ∂x/∂z₀], [∂z/∂x₀, ∂z/∂z₀]]` of its
+    /// horizontal position over its rest position, and the gradient of its
+    /// elevation over its rest position.
+    pub fn particle_at(&self, x0: f64, z0: f64) -> ([f64; 3], [[f64; 2]; 2], [f64; 2]) {
+        let [hx, hz] = &self.height_gradient;
+        let [dxx, dxz, dzz] = &self.displacement_gradient;
+        let [txz, tdx, tdz] = &self.twist;
+        let (h, gh) = self.hermite(&self.height, hx, hz, txz, x0, z0);
+        let (dx, gdx) = self.hermite(&self.displacement[0], dxx, dxz, tdx, x0, z0);
+        let (dz, gdz) = self.hermite(&self.displacement[1], dxz, dzz, tdz, x0, z0);
+        (
+            [x0 + dx, self.level + h, z0 + dz],
+            [[1.0 + gdx[0], gdx[1]], [gdz[0], 1.0 + gdz[1]]],
+            gh,
+        )
+    }
+
+    /// The rest position of the surface particle above world `(x, z)` (m),
+    /// by Newton's method on the interpolated displacement from the guess
+    /// that the particle is displaced by `shift` (m).
+    pub fn rest_position(&self, x: f64, z: f64, shift: [f64; 2]) -> [f64; 2] {
+        let (mut x0, mut z0) = (x - shift[0], z - shift[1]);
+        for _ in 0..16 {
+            let (p, j, _) = self.particle_at(x0, z0);
+            let (rx, rz) = (p[0] - x, p[2] - z);
+            if rx.abs() + rz.abs() < 1e-12 * (1.0 + x.abs() + z.abs()) {
+                break;
+            }
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            let (dx, dz) = if det > 1e-3 {
+                (
+                    (j[1][1] * rx - j[0][1] * rz) / det,
+                    (j[0][0] * rz - j[1][0] * rx) / det,
+                )
+            } else {
+                (rx, rz)
+            };
+            x0 -= dx;
+            z0 -= dz;
+        }
+        [x0, z0]
     }
 
     /// The realised significant height `4 √⟨η²⟩` over the tile's nodes, m.
@@ -469,9 +567,9 @@ impl SpectralSea {
             })
     }
 
-    /// The whole tile at time `t` (s): eleven inverse transforms of
-    /// `cells²` (the elevation, the displacement, their gradients and the
-    /// particles' velocity).
+    /// The whole tile at time `t` (s): fourteen inverse transforms of
+    /// `cells²` (the elevation, the displacement, their gradients and
+    /// twists, and the particles' velocity).
     pub fn fields(&self, t: f64) -> SeaFields {
         let n = self.cells;
         let dk = std::f64::consts::TAU / self.size;
@@ -511,6 +609,9 @@ impl SpectralSea {
         let dxx = field(&|m| -lambda * m.unit[0] * m.k[0] * m.a);
         let dxz = field(&|m| -lambda * m.unit[0] * m.k[1] * m.a);
         let dzz = field(&|m| -lambda * m.unit[1] * m.k[1] * m.a);
+        let hxz = field(&|m| -m.k[0] * m.k[1] * m.a);
+        let dx_xz = field(&|m| -i * lambda * m.unit[0] * m.k[0] * m.k[1] * m.a);
+        let dz_xz = field(&|m| -i * lambda * m.unit[1] * m.k[0] * m.k[1] * m.a);
         let vx = field(&|m| lambda * m.omega * m.unit[0] * m.a);
         let vy = field(&|m| -i * m.omega * m.a);
         let vz = field(&|m| lambda * m.omega * m.unit[1] * m.a);
@@ -523,6 +624,7 @@ impl SpectralSea {
             displacement: [dx, dz],
             height_gradient: [hx, hz],
             displacement_gradient: [dxx, dxz, dzz],
+            twist: [hxz, dx_xz, dz_xz],
             velocity: [vx, vy, vz],
         }
     }

@@ -1,0 +1,186 @@
+//! A [`SpectralSea`] as a water surface: the tile evaluated once per time
+//! for every reader, the choppy map inverted between its nodes.
+
+use std::sync::{Arc, RwLock};
+
+use nalgebra::{Point3, Vector3};
+
+use super::{SeaFields, SpectralSea, Surface};
+
+/// A spectral sea as a [`Surface`], repeating with its tile's period.
+///
+/// The tile's fields are evaluated once per time (fourteen inverse FFTs)
+/// and kept until a read at another time: every body of a step reads the
+/// same evaluation. Above a horizontal point the surface is the particle
+/// whose rest position the choppy map takes there, found by Newton's
+/// method on the bicubic Hermite interpolants of the displacement and
+/// elevation between the tile's nodes (from their exact gradients and
+/// twists); the interpolation's error falls as the fourth power of the
+/// node spacing against a wavelength, and is measured against the exact
+/// sum over the modes in the tests.
+///
+/// The fluid's velocity at a point is the orbital velocity of the surface
+/// particle above it, decaying below the mean level as `e^{k̄ (y − level)}`
+/// with `k̄` the sea's energy-weighted mean wavenumber (each mode decays
+/// with its own `k` in linear theory: this is the one-wavenumber
+/// approximation of that sum); above the mean level it is the surface
+/// particle's.
+pub struct SpectralSurface {
+    sea: SpectralSea,
+    /// The energy-weighted mean wavenumber, rad/m.
+    mean_wavenumber: f64,
+    /// The largest slope of a mode, `Σ |A| k`: a bound of the interpolant's
+    /// rise over half a cell.
+    slope_bound: f64,
+    fields: RwLock<Option<Arc<SeaFields>>>,
+}
+
+impl Clone for SpectralSurface {
+    fn clone(&self) -> Self {
+        Self::new(self.sea.clone())
+    }
+}
+
+impl std::fmt::Debug for SpectralSurface {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SpectralSurface")
+            .field("sea", &self.sea)
+            .finish_non_exhaustive()
+    }
+}
+
+impl SpectralSurface {
+    /// The surface of `sea`.
+    pub fn new(sea: SpectralSea) -> Self {
+        let (mut energy, mut weighted, mut slope) = (0.0, 0.0, 0.0);
+        for (k, _, a2) in sea.modes() {
+            let kk = k[0].hypot(k[1]);
+            energy += a2;
+            weighted += a2 * kk;
+            slope += a2.sqrt() * kk;
+        }
+        Self {
+            mean_wavenumber: if energy > 0.0 { weighted / energy } else { 0.0 },
+            slope_bound: slope,
+            sea,
+            fields: RwLock::new(None),
+        }
+    }
+
+    /// The sea.
+    pub fn sea(&self) -> &SpectralSea {
+        &self.sea
+    }
+
+    /// The tile's fields at time `t` (s): evaluated on the first read at
+    /// `t`, shared by every read at `t` until one at another time.
+    pub fn fields(&self, t: f64) -> Arc<SeaFields> {
+        if let Some(f) = self.fields.read().unwrap_or_else(|e| e.into_inner()).as_ref()
+            && f.time == t
+        {
+            return Arc::clone(f);
+        }
+        let mut slot = self.fields.write().unwrap_or_else(|e| e.into_inner());
+        if let Some(f) = slot.as_ref()
+            && f.time == t
+        {
+            return Arc::clone(f);
+        }
+        let f = Arc::new(self.sea.fields(t));
+        *slot = Some(Arc::clone(&f));
+        f
+    }
+
+    fn velocity_at(&self, f: &SeaFields, rest: [f64; 2], y: f64) -> Vector3<f64> {
+        let [vx, vy, vz] = &f.velocity;
+        let n = f.cells;
+        let d = f.size / n as f64;
+        // Bilinear between the nodes.
+        let (gx, gz) = (
+            (rest[0] / d).rem_euclid(n as f64),
+            (rest[1] / d).rem_euclid(n as f64),
+        );
+        let (ix, iz) = ((gx.floor() as usize).min(n - 1), (gz.floor() as usize).min(n - 1));
+        let (u, v) = (gx - ix as f64, gz - iz as f64);
+        let at = |c: &[f64]| {
+            let i = |a: usize, b: usize| ((iz + b) % n) * n + (ix + a) % n;
+            (1.0 - v) * ((1.0 - u) * c[i(0, 0)] + u * c[i(1, 0)])
+                + v * ((1.0 - u) * c[i(0, 1)] + u * c[i(1, 1)])
+        };
+        let decay = (self.mean_wavenumber * (y - f.level).min(0.0)).exp();
+        Vector3::new(at(vx), at(vy), at(vz)) * decay
+    }
+}
+
+impl Surface for SpectralSurface {
+    fn height(&self, x: f64, z: f64, t: f64) -> f64 {
+        let f = self.fields(t);
+        let rest = f.rest_position(x, z, [0.0, 0.0]);
+        f.particle_at(rest[0], rest[1]).0[1]
+    }
+
+    fn probe(
+        &self,
+        p: &Point3<f64>,
+        t: f64,
+        with_velocity: bool,
+        hint: &mut [f64; 2],
+    ) -> (f64, Vector3<f64>) {
+        let f = self.fields(t);
+        let rest = f.rest_position(p.x, p.z, *hint);
+        *hint = [p.x - rest[0], p.z - rest[1]];
+        let height = f.particle_at(rest[0], rest[1]).0[1];
+        let v = if with_velocity {
+            self.velocity_at(&f, rest, p.y)
+        } else {
+            Vector3::zeros()
+        };
+        (height - p.y, v)
+    }
+
+    fn velocity(&self, p: &Point3<f64>, t: f64) -> Vector3<f64> {
+        let f = self.fields(t);
+        let rest = f.rest_position(p.x, p.z, [0.0, 0.0]);
+        self.velocity_at(&f, rest, p.y)
+    }
+
+    /// `(∂f/∂x, ∂f/∂z) = J⁻ᵀ ∇₀η`: the elevation's gradient over the rest
+    /// position through the choppy map's Jacobian.
+    fn slope(&self, x: f64, z: f64, t: f64, hint: &[f64; 2]) -> [f64; 2] {
+        let f = self.fields(t);
+        let rest = f.rest_position(x, z, *hint);
+        let (_, j, g) = f.particle_at(rest[0], rest[1]);
+        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+        if det.abs() < 1e-12 {
+            return [0.0, 0.0];
+        }
+        // Solve Jᵀ s = g.
+        [
+            (j[1][1] * g[0] - j[1][0] * g[1]) / det,
+            (j[0][0] * g[1] - j[0][1] * g[0]) / det,
+        ]
+    }
+
+    /// The nodes' lowest and highest elevation, widened by the most the
+    /// interpolant can rise over half a cell.
+    fn height_bounds(&self, t: f64) -> Option<(f64, f64)> {
+        let f = self.fields(t);
+        let (lo, hi) = f
+            .height
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &h| {
+                (lo.min(h), hi.max(h))
+            });
+        let pad = 0.5 * self.slope_bound * f.size / f.cells as f64;
+        Some((f.level + lo - pad, f.level + hi + pad))
+    }
+
+    /// The tile's shortest wave: two cells.
+    fn sampling_length(&self, _t: f64) -> Option<f64> {
+        Some(2.0 * self.sea.size / self.sea.cells as f64)
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+}
