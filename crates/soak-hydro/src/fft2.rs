@@ -42,10 +42,17 @@ impl Fft2 {
     }
 }
 
+/// `to = fromᵀ` for `n × n` grids, in blocks of 16 × 16 so that both
+/// sides stay in cache.
 fn transpose(from: &[Complex<f64>], to: &mut [Complex<f64>], n: usize) {
-    for r in 0..n {
-        for c in 0..n {
-            to[c * n + r] = from[r * n + c];
+    const B: usize = 16;
+    for r0 in (0..n).step_by(B) {
+        for c0 in (0..n).step_by(B) {
+            for r in r0..(r0 + B).min(n) {
+                for c in c0..(c0 + B).min(n) {
+                    to[c * n + r] = from[r * n + c];
+                }
+            }
         }
     }
 }

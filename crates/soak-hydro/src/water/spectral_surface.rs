@@ -9,7 +9,7 @@ use super::{SeaFields, SpectralSea, Surface};
 
 /// A spectral sea as a [`Surface`], repeating with its tile's period.
 ///
-/// The tile's fields are evaluated once per time (fourteen inverse FFTs)
+/// The tile's fields are evaluated once per time (seven inverse FFTs)
 /// and kept until a read at another time: every body of a step reads the
 /// same evaluation. Above a horizontal point the surface is the particle
 /// whose rest position the choppy map takes there, found by Newton's
