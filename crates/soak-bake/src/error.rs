@@ -271,7 +271,7 @@ pub enum LoadError {
         /// The file.
         path: PathBuf,
         /// The validation error.
-        source: MeshError,
+        source: Box<MeshError>,
     },
     /// A `builtin:` name could not be parsed.
     #[error("builtin mesh `{name}`: {reason}")]

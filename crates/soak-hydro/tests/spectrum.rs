@@ -466,10 +466,22 @@ fn the_surface_inverts_the_choppy_map_as_the_exact_sums_do() {
         );
         assert!(slope_worst < 1e-5, "{slope_worst}");
         errors.push(worst);
-        // The bounds hold every height read.
+        // The bounds hold every height read, between the nodes too.
         let (lo, hi) = surface.height_bounds(4.0).unwrap();
-        let f = surface.fields(4.0);
-        assert!(f.height.iter().all(|h| (lo..=hi).contains(&(h + f.level))));
+        let mut seen = (f64::INFINITY, f64::NEG_INFINITY);
+        for i in 0..20_000 {
+            let (x, z) = (
+                (i as f64 * 0.6180339887).fract() * size,
+                (i as f64 * 0.7548776662).fract() * size,
+            );
+            let h = surface.height(x, z, 4.0);
+            seen = (seen.0.min(h), seen.1.max(h));
+        }
+        assert!(lo <= seen.0 && seen.1 <= hi, "bounds {lo}..{hi}, read {seen:?}");
+        assert!(
+            hi - lo < 1.5 * (seen.1 - seen.0),
+            "bounds {lo}..{hi}, read {seen:?}"
+        );
     }
     assert!(errors[0] < 0.02, "{errors:?}");
     assert!(

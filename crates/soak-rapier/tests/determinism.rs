@@ -66,6 +66,7 @@ fn a_thousand_steps_are_bit_identical_across_runs_and_thread_counts() {
         "scenes/buoy_on_waves.toml",
         "scenes/sinking_boat.toml",
         "scenes/wet_crate.toml",
+        "scenes/spectral_sea.toml",
     ] {
         let s = scene(name);
         let hashes: Vec<u64> = [1, 2, 2, 4]
@@ -82,6 +83,7 @@ fn a_run_saved_at_step_500_and_resumed_equals_the_uninterrupted_run() {
         "scenes/sinking_boat.toml",
         "scenes/three_boxes.toml",
         "scenes/wet_crate.toml",
+        "scenes/spectral_sea.toml",
     ] {
         let s = scene(name);
         let mut straight = Simulation::from_scene(&s).unwrap();

@@ -77,6 +77,90 @@ fn a_scene_can_run_forever_and_says_so() {
 }
 
 #[test]
+fn bodies_ride_a_spectral_sea() {
+    // `data/scenes/spectral_sea.toml`: a buoy, a crate and a boat on a
+    // JONSWAP sea of significant height 1 m, 30 s.
+    let scene = LoadedScene::from_file(&data("scenes/spectral_sea.toml")).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    let water = sim.soak.water();
+    let (lo, hi) = water.surface.height_bounds(0.0).unwrap();
+    assert!(hi - lo > 1.0 && hi - lo < 4.0, "the sea's bounds {lo}..{hi}");
+    sim.record(true);
+    sim.run(|_| {}).unwrap();
+    for (i, report) in sim.report().iter().enumerate() {
+        let ys: Vec<f64> = sim
+            .samples()
+            .iter()
+            .filter(|s| s.body == i && s.t > 5.0)
+            .map(|s| s.position[1])
+            .collect();
+        let (lo, hi) = ys
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(a, b), &y| (a.min(y), b.max(y)));
+        // Each heaves with the sea and stays afloat (no pump: each has drag).
+        assert!(
+            hi - lo > 0.2 && hi - lo < 2.5,
+            "{}: heave range {lo}..{hi}",
+            report.name
+        );
+        assert!(lo > -2.0, "{}: {lo}", report.name);
+        assert!(!report.non_finite, "{}", report.name);
+    }
+}
+
+#[test]
+fn a_spectral_sea_is_checked_key_by_key() {
+    let sea = "[water]\nkind = \"spectrum\"\n";
+    let cases = [
+        ("peak_period = 6.0\n", "a spectral sea needs `significant_height`"),
+        ("significant_height = 1.0\n", "a spectral sea needs `peak_period`"),
+        (
+            "significant_height = -1.0\npeak_period = 6.0\n",
+            "water.significant_height",
+        ),
+        (
+            "significant_height = 1.0\npeak_period = 6.0\ncells = 100\n",
+            "water.cells",
+        ),
+        (
+            "significant_height = 1.0\npeak_period = 6.0\ngamma = 0.5\n",
+            "water.gamma",
+        ),
+        (
+            "significant_height = 1.0\npeak_period = 6.0\nspreading = -2.0\n",
+            "water.spreading",
+        ),
+        (
+            "significant_height = 1.0\npeak_period = 6.0\nchoppiness = -1.0\n",
+            "water.choppiness",
+        ),
+        (
+            "significant_height = 1.0\npeak_period = 6.0\ntile = 0.0\n",
+            "water.tile",
+        ),
+        (
+            "significant_height = 1.0\npeak_period = 6.0\nspectrum = \"pierson_moskowitz\"\ngamma = 2.0\n",
+            "water.gamma",
+        ),
+    ];
+    for (keys, expected) in cases {
+        let e = LoadedScene::from_str(&format!("{sea}{keys}"), std::path::Path::new(".")).unwrap_err();
+        assert!(e.to_string().contains(expected), "{keys}: {e}");
+    }
+    // The spectral keys mean nothing on a Gerstner sea.
+    let gerstner = "[water]\nkind = \"gerstner\"\nwaves = [{ amplitude = 0.3, wavelength = 8.0, direction_deg = 0.0, steepness = 0.5 }]\nseed = 3\n";
+    let e = LoadedScene::from_str(gerstner, std::path::Path::new(".")).unwrap_err();
+    assert!(e.to_string().contains("water.seed"), "{e}");
+    // The defaults: JONSWAP, eight peak wavelengths, 128 cells.
+    let ok = format!("{sea}significant_height = 2.0\npeak_period = 8.0\n");
+    let scene = LoadedScene::from_str(&ok, std::path::Path::new(".")).unwrap();
+    let g = 9.81;
+    let realised = scene.scene.water.spectral_sea(g).unwrap();
+    assert_eq!(realised.cells, 128);
+    assert!((realised.size - 8.0 * g * 64.0 / std::f64::consts::TAU).abs() < 1e-9);
+}
+
+#[test]
 fn keys_that_do_not_apply_are_refused() {
     let (e, msg) = error("bad/scene_waves_on_a_plane.toml");
     assert!(matches!(e, SceneError::Invalid { line: 3, .. }), "{msg}");

@@ -118,8 +118,9 @@ impl SceneRenderer {
                 ),
                 None,
             ),
-            // A height field is drawn as its mean level; air has no surface.
-            WaterKind::HeightField => (None, w.level.or(Some(0.0))),
+            // A height field and a spectral sea are drawn as their mean
+            // level; air has no surface.
+            WaterKind::HeightField | WaterKind::Spectrum => (None, w.level.or(Some(0.0))),
             WaterKind::Air => (None, None),
         };
         Self::assemble((device, queue), meshes, albedos, (sea, level), options, adapter)

@@ -29,9 +29,6 @@ pub struct SpectralSurface {
     sea: SpectralSea,
     /// The energy-weighted mean wavenumber, rad/m.
     mean_wavenumber: f64,
-    /// The largest slope of a mode, `Σ |A| k`: a bound of the interpolant's
-    /// rise over half a cell.
-    slope_bound: f64,
     fields: RwLock<Option<Arc<SeaFields>>>,
 }
 
@@ -52,16 +49,13 @@ impl std::fmt::Debug for SpectralSurface {
 impl SpectralSurface {
     /// The surface of `sea`.
     pub fn new(sea: SpectralSea) -> Self {
-        let (mut energy, mut weighted, mut slope) = (0.0, 0.0, 0.0);
+        let (mut energy, mut weighted) = (0.0, 0.0);
         for (k, _, a2) in sea.modes() {
-            let kk = k[0].hypot(k[1]);
             energy += a2;
-            weighted += a2 * kk;
-            slope += a2.sqrt() * kk;
+            weighted += a2 * k[0].hypot(k[1]);
         }
         Self {
             mean_wavenumber: if energy > 0.0 { weighted / energy } else { 0.0 },
-            slope_bound: slope,
             sea,
             fields: RwLock::new(None),
         }
@@ -162,7 +156,10 @@ impl Surface for SpectralSurface {
     }
 
     /// The nodes' lowest and highest elevation, widened by the most the
-    /// interpolant can rise over half a cell.
+    /// bicubic interpolant can rise above its corners: within a cell of
+    /// side `Δ` a cubic Hermite piece exceeds its ends by at most
+    /// `4/27 Δ` times its end slopes, twice over in two dimensions, plus
+    /// `(4/27)² Δ²` times the twists.
     fn height_bounds(&self, t: f64) -> Option<(f64, f64)> {
         let f = self.fields(t);
         let (lo, hi) = f
@@ -171,7 +168,11 @@ impl Surface for SpectralSurface {
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &h| {
                 (lo.min(h), hi.max(h))
             });
-        let pad = 0.5 * self.slope_bound * f.size / f.cells as f64;
+        let largest = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let d = f.size / f.cells as f64;
+        let c = 4.0 / 27.0;
+        let pad = 2.0 * c * d * (largest(&f.height_gradient[0]) + largest(&f.height_gradient[1]))
+            + 4.0 * c * c * d * d * largest(&f.twist[0]);
         Some((f.level + lo - pad, f.level + hi + pad))
     }
 

@@ -281,11 +281,62 @@ impl LoadedScene {
         only(
             "level",
             w.level.is_some(),
-            &[WaterKind::Plane, WaterKind::Gerstner],
+            &[WaterKind::Plane, WaterKind::Gerstner, WaterKind::Spectrum],
         )?;
         only("waves", w.waves.is_some(), &[WaterKind::Gerstner])?;
-        only("sampling", w.sampling.is_some(), &[WaterKind::Gerstner])?;
-        only("velocity", w.velocity.is_some(), &[WaterKind::Gerstner])?;
+        only(
+            "sampling",
+            w.sampling.is_some(),
+            &[WaterKind::Gerstner, WaterKind::Spectrum],
+        )?;
+        only(
+            "velocity",
+            w.velocity.is_some(),
+            &[WaterKind::Gerstner, WaterKind::Spectrum],
+        )?;
+        for (key, present) in [
+            ("spectrum", w.spectrum.is_some()),
+            ("significant_height", w.significant_height.is_some()),
+            ("peak_period", w.peak_period.is_some()),
+            ("gamma", w.gamma.is_some()),
+            ("direction_deg", w.direction_deg.is_some()),
+            ("spreading", w.spreading.is_some()),
+            ("seed", w.seed.is_some()),
+            ("tile", w.tile.is_some()),
+            ("cells", w.cells.is_some()),
+            ("choppiness", w.choppiness.is_some()),
+        ] {
+            only(key, present, &[WaterKind::Spectrum])?;
+        }
+        if w.gamma.is_some() && w.spectrum == Some(crate::scene::SpectrumName::PiersonMoskowitz) {
+            return Err(self.invalid("water.gamma", "applies to `spectrum = \"jonswap\"` only"));
+        }
+        if kind == WaterKind::Spectrum {
+            for (key, present) in [
+                ("significant_height", w.significant_height.is_some()),
+                ("peak_period", w.peak_period.is_some()),
+            ] {
+                if !present {
+                    return Err(self.invalid("water", format!("a spectral sea needs `{key}`")));
+                }
+            }
+            let g = nalgebra::Vector3::from(s.gravity).norm().max(1e-9);
+            match w.spectral_sea(g) {
+                Ok(_) => {}
+                Err(soak_hydro::WaterError::Parameter { name, value }) => {
+                    let why = match name {
+                        "cells" => format!(
+                            "{value} is not a power of two within {}..={}",
+                            soak_hydro::SEA_CELLS.start(),
+                            soak_hydro::SEA_CELLS.end()
+                        ),
+                        _ => format!("{value} is out of range"),
+                    };
+                    return Err(self.invalid(&format!("water.{name}"), why));
+                }
+                Err(e) => return Err(self.invalid("water", e.to_string())),
+            }
+        }
         if let Some(soak_hydro::SeaSampling::PerWavelength(n)) = w.sampling {
             positive("water.sampling.per_wavelength", n)?;
         }

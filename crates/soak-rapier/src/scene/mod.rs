@@ -68,7 +68,7 @@ pub use self::bodies::{Auto, BodySpec, ColliderSpec, DEFAULT_TOLERANCE, MassSpec
 pub use self::key_path::line_of;
 pub use self::liquid_graph::{AutoGraphSpec, CavitySpec, GraphSpec, HoleSpec};
 pub use self::loaded::LoadedScene;
-pub use self::water::{WaterKind, WaterSpec};
+pub use self::water::{SpectrumName, WaterKind, WaterSpec};
 pub use self::wetting::{
     EnvironmentKeySpec, EnvironmentSpec, InitialLiquid, LiquidParams, LiquidSpec, MaterialParams,
     MaterialSpec, SplashSpec, WettingSpec,

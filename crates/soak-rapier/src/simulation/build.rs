@@ -8,7 +8,9 @@ use std::sync::Arc;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions};
-use soak_hydro::{AddedMass, DragTexels, Gerstner, HeightField, MassModel, Plane, Unbounded, Water};
+use soak_hydro::{
+    AddedMass, DragTexels, Gerstner, HeightField, MassModel, Plane, SpectralSurface, Unbounded, Water,
+};
 
 use super::{SimBody, Simulation};
 use crate::convert;
@@ -50,6 +52,12 @@ pub fn water_of(loaded: &LoadedScene) -> Result<Water, SceneError> {
             )
             .map_err(|e| loaded.invalid("water.waves", e.to_string()))?;
             Water::new(sea)
+        }
+        WaterKind::Spectrum => {
+            let sea = w
+                .spectral_sea(g.max(1e-9))
+                .map_err(|e| loaded.invalid("water", e.to_string()))?;
+            Water::new(SpectralSurface::new(sea))
         }
         WaterKind::HeightField => {
             let file = w.file.as_deref().unwrap_or_default();
