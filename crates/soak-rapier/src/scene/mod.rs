@@ -6,12 +6,23 @@
 //! gravity = [0.0, -9.81, 0.0]
 //!
 //! [water]
-//! kind = "gerstner"       # plane | gerstner | height_field | air
+//! kind = "gerstner"       # plane | gerstner | spectrum | height_field | air
 //! level = 0.0             # m
 //! density = 1000.0        # kg/m³
 //! waves = [{ amplitude = 0.3, wavelength = 8.0, direction_deg = 0.0, steepness = 0.5 }]
 //! sampling = { per_wavelength = 16 }  # the default; or "exact" (every texel inverts the sea)
 //! velocity = "per_tile"              # drag reads the sea's velocity once per tile (default); or "per_texel"
+//! # Or a spectral sea (`kind = "spectrum"`, see `WaterSpec::spectral_sea`):
+//! #   spectrum = "jonswap"  # or "pierson_moskowitz"
+//! #   significant_height = 2.0   # m (required)
+//! #   peak_period = 8.0          # s (required)
+//! #   gamma = 3.3                # JONSWAP's peak enhancement
+//! #   direction_deg = 0.0        # mean direction of travel
+//! #   spreading = 10.0           # the cos-2s exponent s
+//! #   seed = 0                   # the same seed, the same sea
+//! #   tile = 800.0               # m, default eight peak wavelengths
+//! #   cells = 128                # a power of two
+//! #   choppiness = 1.0           # horizontal displacement, 0 to 1
 //!
 //! [[bodies]]
 //! name = "buoy"
