@@ -29,9 +29,9 @@ fn bench_prints_its_measurements_and_writes_its_plot() {
         )
     });
     let measurements = report["measurements"].as_array().expect("measurements");
-    // Rapier alone and six generator columns (buoyancy, + drag,
-    // + radiation on each water), for 1 and 2 bodies.
-    assert_eq!(measurements.len(), 14);
+    // Rapier alone and nine generator columns (buoyancy, + drag,
+    // + radiation on each of three waters), for 1 and 2 bodies.
+    assert_eq!(measurements.len(), 20);
     assert!(
         measurements
             .iter()

@@ -29,7 +29,8 @@ pub struct SpectralSurface {
     sea: SpectralSea,
     /// The energy-weighted mean wavenumber, rad/m.
     mean_wavenumber: f64,
-    fields: RwLock<Option<Arc<SeaFields>>>,
+    /// The fields of the last times read, oldest first.
+    fields: RwLock<Vec<Arc<SeaFields>>>,
 }
 
 impl Clone for SpectralSurface {
@@ -57,7 +58,7 @@ impl SpectralSurface {
         Self {
             mean_wavenumber: if energy > 0.0 { weighted / energy } else { 0.0 },
             sea,
-            fields: RwLock::new(None),
+            fields: RwLock::new(Vec::new()),
         }
     }
 
@@ -67,23 +68,28 @@ impl SpectralSurface {
     }
 
     /// The tile's fields at time `t` (s): evaluated on the first read at
-    /// `t`, shared by every read at `t` until one at another time.
+    /// `t` and shared by every later read at `t`, the last
+    /// [`SpectralSurface::KEPT`] times kept (a step reads its own time, and
+    /// a time-centred derivative two more).
     pub fn fields(&self, t: f64) -> Arc<SeaFields> {
-        if let Some(f) = self.fields.read().unwrap_or_else(|e| e.into_inner()).as_ref()
-            && f.time == t
-        {
-            return Arc::clone(f);
+        let find = |kept: &[Arc<SeaFields>]| kept.iter().find(|f| f.time == t).map(Arc::clone);
+        if let Some(f) = find(&self.fields.read().unwrap_or_else(|e| e.into_inner())) {
+            return f;
         }
-        let mut slot = self.fields.write().unwrap_or_else(|e| e.into_inner());
-        if let Some(f) = slot.as_ref()
-            && f.time == t
-        {
-            return Arc::clone(f);
+        let mut kept = self.fields.write().unwrap_or_else(|e| e.into_inner());
+        if let Some(f) = find(&kept) {
+            return f;
         }
         let f = Arc::new(self.sea.fields(t));
-        *slot = Some(Arc::clone(&f));
+        if kept.len() >= Self::KEPT {
+            kept.remove(0);
+        }
+        kept.push(Arc::clone(&f));
         f
     }
+
+    /// How many times' fields are kept.
+    pub const KEPT: usize = 4;
 
     fn velocity_at(&self, f: &SeaFields, rest: [f64; 2], y: f64) -> Vector3<f64> {
         let [vx, vy, vz] = &f.velocity;

@@ -30,6 +30,9 @@ pub enum ScalingError {
     /// The swell could not be made.
     #[error(transparent)]
     Accuracy(#[from] crate::accuracy::AccuracyError),
+    /// The spectral sea could not be realised.
+    #[error(transparent)]
+    Sea(#[from] soak_hydro::WaterError),
     /// Registering or stepping a body.
     #[error(transparent)]
     Soak(#[from] SoakError),

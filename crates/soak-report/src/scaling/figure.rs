@@ -28,6 +28,9 @@ fn look(c: &Column) -> (usize, Line, Marker) {
         (Variant::BuoyancyDrag, Some(WaterKind::Swell)) => 3,
         (Variant::BuoyancyRadiation, Some(WaterKind::Calm)) => 5,
         (Variant::BuoyancyRadiation, Some(WaterKind::Swell)) => 6,
+        (Variant::Buoyancy, Some(WaterKind::Jonswap)) => 8,
+        (Variant::BuoyancyDrag, Some(WaterKind::Jonswap)) => 9,
+        (Variant::BuoyancyRadiation, Some(WaterKind::Jonswap)) => 4,
         _ => 4,
     };
     let marker = match c.variant {

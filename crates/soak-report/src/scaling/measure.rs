@@ -150,6 +150,7 @@ fn water(kind: WaterKind) -> Result<Water, ScalingError> {
     Ok(match kind {
         WaterKind::Calm => Water::calm(0.0),
         WaterKind::Swell => crate::accuracy::swell()?,
+        WaterKind::Jonswap => super::jonswap()?,
     })
 }
 

@@ -81,6 +81,30 @@ pub enum WaterKind {
     /// The two-wave swell of `data/scenes/buoy_on_waves.toml`
     /// ([`crate::accuracy::swell`]).
     Swell,
+    /// A JONSWAP sea of significant height 2 m and peak period 8 s
+    /// (`γ` 3.3, spreading 10, seed 0) on its default tile (800 m, 128
+    /// cells): [`jonswap`].
+    Jonswap,
+}
+
+/// The bench's spectral sea: JONSWAP, `H_s` 2 m, `T_p` 8 s, on its
+/// default tile.
+///
+/// # Errors
+/// None in practice (the parameters are valid); a [`ScalingError`] if the
+/// realisation refused them.
+pub fn jonswap() -> Result<soak_hydro::Water, ScalingError> {
+    let g = soak_hydro::STANDARD_GRAVITY;
+    let spectrum = soak_hydro::SeaSpectrum::jonswap(2.0, 8.0);
+    let sea = soak_hydro::SpectralSea::realize(
+        &spectrum,
+        0.0,
+        spectrum.default_tile(g),
+        soak_hydro::DEFAULT_SEA_CELLS,
+        0,
+        g,
+    )?;
+    Ok(soak_hydro::Water::new(soak_hydro::SpectralSurface::new(sea)))
 }
 
 impl WaterKind {
@@ -89,6 +113,7 @@ impl WaterKind {
         match self {
             WaterKind::Calm => "calm",
             WaterKind::Swell => "swell",
+            WaterKind::Jonswap => "jonswap",
         }
     }
 }
@@ -133,8 +158,9 @@ impl Column {
     }
 
     /// The columns measured, in table order: Rapier alone, then per
-    /// water buoyancy, buoyancy + drag and buoyancy + radiation on the
-    /// CPU, then (with `gpu`) the first two on the GPU.
+    /// water (calm, swell, JONSWAP) buoyancy, buoyancy + drag and buoyancy
+    /// + radiation on the CPU, then (with `gpu`) the first two on the GPU
+    /// for calm water and the swell.
     pub fn all(gpu: bool) -> Vec<Column> {
         let mut v = vec![Column::RAPIER];
         let devices: &[Device] = if gpu {
@@ -143,7 +169,12 @@ impl Column {
             &[Device::Cpu]
         };
         for &device in devices {
-            for water in [WaterKind::Calm, WaterKind::Swell] {
+            for water in [WaterKind::Calm, WaterKind::Swell, WaterKind::Jonswap] {
+                // The GPU backend reads planes, Gerstner seas and height
+                // fields, not a spectral sea yet.
+                if device == Device::Gpu && water == WaterKind::Jonswap {
+                    continue;
+                }
                 for variant in [Variant::Buoyancy, Variant::BuoyancyDrag] {
                     v.push(Column::soak(variant, water, device));
                 }
