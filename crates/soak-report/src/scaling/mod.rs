@@ -158,9 +158,9 @@ impl Column {
     }
 
     /// The columns measured, in table order: Rapier alone, then per
-    /// water (calm, swell, JONSWAP) buoyancy, buoyancy + drag and buoyancy
-    /// + radiation on the CPU, then (with `gpu`) the first two on the GPU
-    /// for calm water and the swell.
+    /// water (calm, swell, JONSWAP) buoyancy, buoyancy with drag and
+    /// buoyancy with radiation on the CPU, then (with `gpu`) the first two
+    /// on the GPU for calm water and the swell.
     pub fn all(gpu: bool) -> Vec<Column> {
         let mut v = vec![Column::RAPIER];
         let devices: &[Device] = if gpu {
