@@ -229,18 +229,13 @@ fn the_fields_are_the_derivatives_of_the_particles_position() {
     // turned by k·δ) against those at the nodes.
     let delta = 1e-4;
     let shifted = |dx: f64, dz: f64| {
+        let dk = std::f64::consts::TAU / size;
         let modes: Vec<SeaMode> = sea
-            .modes()
-            .map(|(k, _, _)| {
-                let dk = std::f64::consts::TAU / size;
-                let (n, l) = ((k[0] / dk).round() as i64, (k[1] / dk).round() as i64);
-                let a = sea.amplitude(n, l);
-                SeaMode {
-                    n: n as i32,
-                    l: l as i32,
-                    amplitude: a.norm(),
-                    phase: a.arg() + k[0] * dx + k[1] * dz,
-                }
+            .sea_modes()
+            .into_iter()
+            .map(|m| SeaMode {
+                phase: m.phase + dk * (m.n as f64 * dx + m.l as f64 * dz),
+                ..m
             })
             .collect();
         SpectralSea::from_modes(0.0, size, cells, &modes, G)
@@ -424,20 +419,7 @@ fn the_surface_inverts_the_choppy_map_as_the_exact_sums_do() {
     let spectrum = SeaSpectrum::jonswap(1.0, 5.0);
     let size = spectrum.default_tile(G);
     let coarse = SpectralSea::realize(&spectrum, 0.3, size, 64, 11, G).unwrap();
-    let dk = std::f64::consts::TAU / size;
-    let modes: Vec<SeaMode> = coarse
-        .modes()
-        .map(|(k, _, _)| {
-            let (n, l) = ((k[0] / dk).round() as i64, (k[1] / dk).round() as i64);
-            let a = coarse.amplitude(n, l);
-            SeaMode {
-                n: n as i32,
-                l: l as i32,
-                amplitude: a.norm(),
-                phase: a.arg(),
-            }
-        })
-        .collect();
+    let modes = coarse.sea_modes();
     let mut errors = Vec::new();
     for cells in [64, 128, 256] {
         let sea = SpectralSea::from_modes(0.3, size, cells, &modes, G)

@@ -176,6 +176,12 @@ impl SeaSpectrum {
     /// The spreading `D(θ)` (1/rad) at each direction of travel `thetas`
     /// (radians from +x towards +z): `∫_{−π}^{π} D dθ = 1`.
     pub fn spreading_densities(&self, thetas: &[f64]) -> Vec<f64> {
+        let spreading = self.spreading_function();
+        thetas.iter().map(|&t| spreading(t)).collect()
+    }
+
+    /// `D(θ)` as a function, its normalisation computed once.
+    fn spreading_function(&self) -> impl Fn(f64) -> f64 + use<> {
         let s = self.spreading;
         let norm = simpson(
             |a| (0.5 * a).cos().powf(2.0 * s),
@@ -184,13 +190,7 @@ impl SeaSpectrum {
             QUADRATURE,
         );
         let mean = self.direction_deg.to_radians();
-        thetas
-            .iter()
-            .map(|&t| {
-                let d = wrap_angle(t - mean);
-                (0.5 * d).cos().abs().powf(2.0 * s) / norm
-            })
-            .collect()
+        move |t| (0.5 * wrap_angle(t - mean)).cos().abs().powf(2.0 * s) / norm
     }
 }
 
@@ -434,14 +434,7 @@ impl SpectralSea {
         let n = cells;
         let dk = std::f64::consts::TAU / size;
         let (scale, wp) = (spectrum.scale(), spectrum.peak_frequency());
-        let s = spectrum.spreading;
-        let norm = simpson(
-            |a| (0.5 * a).cos().powf(2.0 * s),
-            -std::f64::consts::PI,
-            std::f64::consts::PI,
-            QUADRATURE,
-        );
-        let mean = spectrum.direction_deg.to_radians();
+        let spreading = spectrum.spreading_function();
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
         let mut amplitudes = vec![Complex::default(); n * n];
         for (i, a) in amplitudes.iter_mut().enumerate() {
@@ -459,25 +452,13 @@ impl SpectralSea {
             let kk = k.norm();
             let omega = (gravity * kk).sqrt();
             // S(kx, kz) = S(ω) D(θ) (dω/dk) / k, dω/dk = g / (2ω).
-            let d = (0.5 * wrap_angle(k.y.atan2(k.x) - mean))
-                .cos()
-                .abs()
-                .powf(2.0 * s)
-                / norm;
+            let d = spreading(k.y.atan2(k.x));
             let density = scale * spectrum.unscaled(omega / wp) * d * gravity / (2.0 * omega * kk);
             // E|A|² = 2 S Δk²: each of the two parts has variance S Δk².
             let sigma = (density * dk * dk).sqrt();
             *a = Complex::new(sigma * r * cs, sigma * r * sn);
         }
-        Ok(Self {
-            level,
-            size,
-            cells,
-            choppiness: 1.0,
-            gravity,
-            amplitudes,
-            fft: Fft2::new(n),
-        })
+        Ok(Self::of_amplitudes(level, size, cells, gravity, amplitudes))
     }
 
     /// A sea given mode by mode on a tile `size` m across of `cells` nodes
@@ -515,7 +496,18 @@ impl SpectralSea {
             let iz = m.l.rem_euclid(cells as i32) as usize;
             amplitudes[iz * cells + ix] += Complex::from_polar(m.amplitude, m.phase);
         }
-        Ok(Self {
+        Ok(Self::of_amplitudes(level, size, cells, gravity, amplitudes))
+    }
+
+    /// The sea of `amplitudes` (checked tile), choppiness 1.
+    fn of_amplitudes(
+        level: f64,
+        size: f64,
+        cells: usize,
+        gravity: f64,
+        amplitudes: Vec<Complex<f64>>,
+    ) -> Self {
+        Self {
             level,
             size,
             cells,
@@ -523,7 +515,7 @@ impl SpectralSea {
             gravity,
             amplitudes,
             fft: Fft2::new(cells),
-        })
+        }
     }
 
     /// The same sea with choppiness `lambda` (0 to 1 keeps most seas from
@@ -550,6 +542,24 @@ impl SpectralSea {
             return Complex::default();
         }
         self.amplitudes[(l.rem_euclid(c) * c + n.rem_euclid(c)) as usize]
+    }
+
+    /// Every mode with energy as a [`SeaMode`] (its indices, amplitude and
+    /// phase): [`SpectralSea::from_modes`] of them on a finer grid is the
+    /// same sea evaluated at more nodes.
+    pub fn sea_modes(&self) -> Vec<SeaMode> {
+        let n = self.cells;
+        self.amplitudes
+            .iter()
+            .enumerate()
+            .filter(|(_, a)| a.norm_sqr() > 0.0)
+            .map(|(i, a)| SeaMode {
+                n: signed(i % n, n) as i32,
+                l: signed(i / n, n) as i32,
+                amplitude: a.norm(),
+                phase: a.arg(),
+            })
+            .collect()
     }
 
     /// Every mode with energy: its wavenumber `(kx, kz)` (rad/m), its
