@@ -170,8 +170,8 @@ impl Column {
         };
         for &device in devices {
             for water in [WaterKind::Calm, WaterKind::Swell, WaterKind::Jonswap] {
-                // The GPU backend reads planes, Gerstner seas and height
-                // fields, not a spectral sea yet.
+                // On the GPU a spectral sea is read through each body's
+                // patch sampled on the CPU: not measured there yet.
                 if device == Device::Gpu && water == WaterKind::Jonswap {
                     continue;
                 }
