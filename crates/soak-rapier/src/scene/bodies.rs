@@ -131,8 +131,10 @@ pub struct BodySpec {
     /// three seconds per mesh and mass on two cores in a release build),
     /// shared by bodies of one mesh, mass and orientation.
     ///
-    /// When absent it is **on for a body that floats on a Gerstner sea**
-    /// (`[water] kind = "gerstner"` without interactive `[waves]`): a
+    /// When absent it is **on for a body that floats on a Gerstner or a
+    /// spectral sea** (`[water] kind = "gerstner"` or `"spectrum"`, without
+    /// interactive `[waves]`; on a spectral sea the waves' excitation is
+    /// the relative-motion approximation of other moving water): a
     /// dynamic body with buoyancy and a closed mesh, without `added_mass`,
     /// `graph`, `open` or impact holes, that the panel method can float
     /// (a body too heavy to float goes without). Buoyancy alone on waves

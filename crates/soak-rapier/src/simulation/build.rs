@@ -174,7 +174,8 @@ impl Simulation {
         type RadiationKey = (String, bool, u64, [u64; 3]);
         // Bodies floating on a sea of known waves radiate unless told not
         // to; where bodies make their own waves, they make them there.
-        let on_sea = matches!(scene.water.kind, WaterKind::Gerstner) && scene.waves.is_none();
+        let on_sea =
+            matches!(scene.water.kind, WaterKind::Gerstner | WaterKind::Spectrum) && scene.waves.is_none();
         let mut radiation_bakes: HashMap<RadiationKey, Arc<soak_seakeeping::RadiationModel>> = HashMap::new();
         for (i, b) in scene.bodies.iter().enumerate() {
             let body_err = |message: String| SceneError::Body {
