@@ -13,6 +13,8 @@
 //!   scaling bench;
 //! - `soak simulate SCENE.toml`, `soak render SCENE.toml`, `soak view
 //!   SCENE.toml`: scene files run headless, rendered, and shown live;
+//! - `soak sea SCENE.toml`: a scene's spectral sea against the spectrum it
+//!   asks for;
 //! - `soak segment MESH`, `soak sweep`: a hull's liquid graph, and the wet
 //!   shading's material sweep.
 //!
@@ -27,6 +29,7 @@ mod hydro;
 mod interrupt;
 mod progress;
 mod render;
+mod sea;
 mod seakeeping;
 mod segment;
 mod simulate;
@@ -61,6 +64,8 @@ enum Command {
     Segment(segment::Args),
     /// Step time of a Rapier world against the number of floating bodies: a table and a log–log plot.
     Bench(bench::Args),
+    /// A scene's spectral sea as realised against its target spectrum: Hs, peak period, the spectrum (a table and a plot), a still.
+    Sea(sea::Args),
     /// A mesh floating at rest: radiation coefficients, RAOs and free decay against frequency (a table and plots).
     Seakeeping(seakeeping::Args),
     /// Stability matrix: meshes × densities × time steps × scales × waters × effects; non-zero exit on a failing cell.
@@ -112,6 +117,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Simulate(args) => simulate::run(&args),
         Command::Accuracy(args) => accuracy::run(&args),
         Command::Segment(args) => segment::run(&args),
+        Command::Sea(args) => sea::run(&args),
         Command::Seakeeping(args) => seakeeping::run(&args),
         Command::Stress(args) => stress::run(&args),
         Command::Bench(args) => bench::run(&args),

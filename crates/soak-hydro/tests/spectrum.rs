@@ -90,30 +90,40 @@ fn spreading_is_normalised_and_cos_squared_at_s_one() {
 /// the target.
 fn recovered(spectrum: &SeaSpectrum, size: f64, cells: usize) -> (f64, f64, f64) {
     let wp = spectrum.peak_frequency();
-    // The tile's frequency resolution at the peak: dω/dk · Δk.
-    let bin = G / (2.0 * wp) * std::f64::consts::TAU / size;
-    let bins = (4.0 * wp / bin) as usize;
-    let mut energy = vec![0.0; bins];
-    let mut hs2 = 0.0;
+    let mut density = Vec::new();
+    let (mut hs2, mut bin) = (0.0, 0.0);
     let seeds = 16;
     for seed in 0..seeds {
         let sea = SpectralSea::realize(spectrum, 0.0, size, cells, seed, G).unwrap();
         let fields = sea.fields(0.0);
         hs2 += fields.significant_height().powi(2);
-        for (_, omega, a2) in sea.modes() {
-            let b = (omega / bin) as usize;
-            if b < bins {
-                energy[b] += a2;
-            }
+        // Bins as wide as the tile's frequency resolution at the peak.
+        bin = sea.frequency_resolution(wp);
+        let realised = sea.frequency_spectrum(bin, (4.0 * wp / bin) as usize);
+        density.resize(realised.len(), 0.0);
+        for (d, r) in density.iter_mut().zip(realised) {
+            *d += r / seeds as f64;
         }
     }
     let hs = (hs2 / seeds as f64).sqrt();
-    let peak = energy
+    let peak = density
         .iter()
         .enumerate()
         .max_by(|a, b| a.1.total_cmp(b.1))
         .map(|(b, _)| (b as f64 + 0.5) * bin)
         .unwrap();
+    // The binned density holds the spectrum's variance below 4 ωp.
+    let variance: f64 = density.iter().sum::<f64>() * bin;
+    let (omegas, dw): (Vec<f64>, f64) = {
+        let n = 4000;
+        let dw = 4.0 * wp / n as f64;
+        ((0..n).map(|i| (i as f64 + 0.5) * dw).collect(), dw)
+    };
+    let target: f64 = spectrum.densities(&omegas).iter().sum::<f64>() * dw;
+    assert!(
+        (variance / target - 1.0).abs() < 0.06,
+        "binned variance {variance} against the target's {target} below 4 ωp"
+    );
     (hs, peak, bin)
 }
 

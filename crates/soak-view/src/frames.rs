@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use nalgebra::{Isometry3, Point3, Vector3};
 use soak_bake::Mesh;
-use soak_hydro::Gerstner;
+use soak_hydro::{Gerstner, SpectralSurface};
 use soak_rapier::scene::{LoadedScene, WaterKind};
 use soak_rapier::{Simulation, convert};
 use soak_shade::render::{
@@ -57,6 +57,33 @@ pub struct FrameOptions {
     pub target: Option<Point3<f64>>,
 }
 
+/// A sea that moves, drawn as it is at each frame's time.
+enum Sea {
+    /// A sum of Gerstner waves.
+    Gerstner(Gerstner),
+    /// A spectral sea, its tile evaluated at each frame's time (the last
+    /// few times kept, as the simulation keeps them).
+    Spectral(Arc<SpectralSurface>),
+}
+
+impl Sea {
+    /// The mean level, m.
+    fn level(&self) -> f64 {
+        match self {
+            Self::Gerstner(sea) => sea.level,
+            Self::Spectral(surface) => surface.sea().level,
+        }
+    }
+
+    /// The water drawn at time `t` (s).
+    fn water(&self, t: f64) -> RenderWater {
+        match self {
+            Self::Gerstner(sea) => RenderWater::gerstner(sea.clone(), t),
+            Self::Spectral(surface) => RenderWater::spectral(surface.fields(t)),
+        }
+    }
+}
+
 /// Draws a [`Simulation`] built from a scene file: every body's mesh at its
 /// pose with its liquid texture (when the body is wet), the water surface,
 /// the sun and the sky; the debug views and force arrows of [`FrameOptions`].
@@ -64,7 +91,7 @@ pub struct SceneRenderer {
     renderer: Renderer,
     meshes: Vec<Arc<Mesh>>,
     albedos: Vec<Albedo>,
-    sea: Option<Gerstner>,
+    sea: Option<Sea>,
     level: Option<f64>,
     options: FrameOptions,
     radius: Vec<f64>,
@@ -112,15 +139,20 @@ impl SceneRenderer {
         let (sea, level) = match w.kind {
             WaterKind::Plane => (None, Some(w.level.unwrap_or(0.0))),
             WaterKind::Gerstner => (
-                Some(
+                Some(Sea::Gerstner(
                     Gerstner::new(w.level.unwrap_or(0.0), w.waves.clone().unwrap_or_default(), g)
                         .map_err(soak_hydro::HydroError::from)?,
-                ),
+                )),
                 None,
             ),
-            // A height field and a spectral sea are drawn as their mean
-            // level; air has no surface.
-            WaterKind::HeightField | WaterKind::Spectrum => (None, w.level.or(Some(0.0))),
+            WaterKind::Spectrum => (
+                Some(Sea::Spectral(Arc::new(SpectralSurface::new(
+                    w.spectral_sea(g).map_err(soak_hydro::HydroError::from)?,
+                )))),
+                None,
+            ),
+            // A height field is drawn as its mean level; air has no surface.
+            WaterKind::HeightField => (None, w.level.or(Some(0.0))),
             WaterKind::Air => (None, None),
         };
         Self::assemble((device, queue), meshes, albedos, (sea, level), options, adapter)
@@ -129,7 +161,7 @@ impl SceneRenderer {
     /// Frames of a world of your own ([`Simulation::from_parts`]): `meshes`
     /// holds the mesh of each of `sim.bodies` (its local frame, the frame
     /// its atlas was baked in), the water drawn is the generator's (a
-    /// plane at its level, a Gerstner sea as it moves; other surfaces as a
+    /// plane at its level, a Gerstner or spectral sea as it moves; other surfaces as a
     /// plane at their level at the origin at time 0), on a device of the
     /// caller's.
     ///
@@ -157,11 +189,14 @@ impl SceneRenderer {
             .map(|(i, b)| albedo_for(&b.name, "", i, b.id.is_none()))
             .collect();
         let water = sim.soak.water();
-        let sea = water
-            .surface
-            .as_any()
+        let any = water.surface.as_any();
+        let sea = any
             .and_then(|a| a.downcast_ref::<Gerstner>())
-            .cloned();
+            .map(|sea| Sea::Gerstner(sea.clone()))
+            .or_else(|| {
+                any.and_then(|a| a.downcast_ref::<SpectralSurface>())
+                    .map(|surface| Sea::Spectral(Arc::new(SpectralSurface::new(surface.sea().clone()))))
+            });
         let level = match (&sea, water.surface.kind(0.0)) {
             (Some(_), _) | (None, soak_hydro::SurfaceKind::Unbounded) => None,
             (None, soak_hydro::SurfaceKind::Plane { normal, offset }) => Some(offset / normal.y.max(1e-9)),
@@ -176,7 +211,7 @@ impl SceneRenderer {
         (device, queue): (&wgpu::Device, &wgpu::Queue),
         meshes: Vec<Arc<Mesh>>,
         albedos: Vec<Albedo>,
-        (sea, level): (Option<Gerstner>, Option<f64>),
+        (sea, level): (Option<Sea>, Option<f64>),
         options: FrameOptions,
         adapter: String,
     ) -> Result<Self, ViewError> {
@@ -373,7 +408,7 @@ impl SceneRenderer {
         let eye = self.options.eye.unwrap_or_else(|| {
             let mut eye = target + Vector3::new(0.62, 0.34, 1.0).normalize() * (0.9 * size + 0.5);
             // Keep the eye above the water: a sunken body is seen through it.
-            if let Some(level) = self.level.or(self.sea.as_ref().map(|s| s.level)) {
+            if let Some(level) = self.level.or(self.sea.as_ref().map(Sea::level)) {
                 eye.y = eye.y.max(level + 0.3 * size + 0.5);
             }
             eye
@@ -381,7 +416,7 @@ impl SceneRenderer {
         let mut scene = RenderScene::new(Camera::perspective(eye, target, 40.0));
         scene.light = DirectionalLight::from_angles(38.0, 60.0, [2.7, 2.5, 2.3]);
         scene.water = match (&self.sea, self.level) {
-            (Some(sea), _) => Some(RenderWater::gerstner(sea.clone(), t)),
+            (Some(sea), _) => Some(sea.water(t)),
             (None, Some(level)) => Some(RenderWater::plane(level)),
             (None, None) => None,
         };

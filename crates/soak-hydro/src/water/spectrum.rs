@@ -562,6 +562,29 @@ impl SpectralSea {
             .collect()
     }
 
+    /// The tile's frequency resolution at `omega` (rad/s): how far apart
+    /// in frequency its neighbouring wavenumbers are there, `dω/dk · Δk =
+    /// g/(2ω) · 2π/size` (deep water).
+    pub fn frequency_resolution(&self, omega: f64) -> f64 {
+        self.gravity / (2.0 * omega) * std::f64::consts::TAU / self.size
+    }
+
+    /// The realised sea's frequency spectrum, m²·s/rad (as
+    /// [`SeaSpectrum::density`]): its modes' variance `|A|²/2` summed in
+    /// `bins` bins `bin` rad/s wide from ω = 0, over the bin's width.
+    /// Averaged over seeds it is the target's density averaged over each
+    /// bin (with one seed, a periodogram: each bin scattered about it).
+    pub fn frequency_spectrum(&self, bin: f64, bins: usize) -> Vec<f64> {
+        let mut density = vec![0.0; bins];
+        for (_, omega, a2) in self.modes() {
+            let b = (omega / bin) as usize;
+            if b < bins {
+                density[b] += 0.5 * a2 / bin;
+            }
+        }
+        density
+    }
+
     /// Every mode with energy: its wavenumber `(kx, kz)` (rad/m), its
     /// angular frequency (rad/s) and `|A|²` (m²).
     pub fn modes(&self) -> impl Iterator<Item = ([f64; 2], f64, f64)> + '_ {

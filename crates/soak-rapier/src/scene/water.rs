@@ -92,14 +92,15 @@ pub struct WaterSpec {
 }
 
 impl WaterSpec {
-    /// The spectral sea of `kind = "spectrum"` under `gravity` (m/s²),
-    /// realised: its spectrum, tile and seed with their defaults filled in.
+    /// The target spectrum of `kind = "spectrum"`: its shape, significant
+    /// height, peak period, direction and spreading with their defaults
+    /// filled in (`gamma` 3.3, direction 0°, spreading 10).
     ///
     /// # Errors
     /// [`WaterError::Parameter`] naming the key (`significant_height`,
-    /// `peak_period`, `gamma`, `spreading`, `tile`, `cells`, `choppiness`,
-    /// …) that is missing or out of range.
-    pub fn spectral_sea(&self, gravity: f64) -> Result<SpectralSea, WaterError> {
+    /// `peak_period`, `gamma`, `spreading`, …) that is missing or out of
+    /// range.
+    pub fn sea_spectrum(&self) -> Result<SeaSpectrum, WaterError> {
         let missing = |name| WaterError::Parameter {
             name,
             value: f64::NAN,
@@ -118,6 +119,19 @@ impl WaterSpec {
             spreading: self.spreading.unwrap_or(10.0),
         };
         spectrum.validate()?;
+        Ok(spectrum)
+    }
+
+    /// The spectral sea of `kind = "spectrum"` under `gravity` (m/s²),
+    /// realised: its spectrum ([`WaterSpec::sea_spectrum`]), tile and seed
+    /// with their defaults filled in.
+    ///
+    /// # Errors
+    /// [`WaterError::Parameter`] naming the key (`significant_height`,
+    /// `peak_period`, `gamma`, `spreading`, `tile`, `cells`, `choppiness`,
+    /// …) that is missing or out of range.
+    pub fn spectral_sea(&self, gravity: f64) -> Result<SpectralSea, WaterError> {
+        let spectrum = self.sea_spectrum()?;
         let tile = self.tile.unwrap_or_else(|| spectrum.default_tile(gravity));
         SpectralSea::realize(
             &spectrum,

@@ -219,11 +219,13 @@ fn upload_objects(
 }
 
 /// Where the surface point resting over `(x, z)` (m) is: a plane's, a
-/// Gerstner particle's, raised by interactive waves where it has gone.
+/// Gerstner or spectral sea's particle, raised by interactive waves where
+/// it has gone.
 fn surface_point(shape: &WaterShape, x: f64, z: f64) -> Point3<f64> {
     match shape {
         WaterShape::Plane { level } => Point3::new(x, *level, z),
         WaterShape::Gerstner { sea, time } => sea.particle(x, z, *time),
+        WaterShape::Spectral { fields } => Point3::from(fields.particle_at(x, z).0),
         WaterShape::Interactive { base, waves } => {
             let p = surface_point(base, x, z);
             Point3::new(p.x, p.y + waves.height(p.x, p.z), p.z)
@@ -433,5 +435,46 @@ mod tests {
         let q = surface_point(&on_sea, 1.0, 0.5);
         assert_eq!((q.x, q.z), (particle.x, particle.z));
         assert!((q.y - particle.y - 0.25).abs() < 1e-12);
+    }
+
+    /// A spectral sea is drawn through its particles: one mode's tile
+    /// drawn anywhere, repeated, is the Gerstner wave of that mode (the
+    /// same amplitude, length and phase; steepness `k a`), within the
+    /// tile's interpolation error.
+    #[test]
+    fn a_spectral_sea_is_drawn_through_its_particles() {
+        let (size, g) = (40.0, 9.81);
+        let sea = soak_hydro::SpectralSea::from_modes(
+            1.5,
+            size,
+            64,
+            &[soak_hydro::SeaMode {
+                n: 2,
+                l: 0,
+                amplitude: 0.3,
+                phase: 0.4,
+            }],
+            g,
+        )
+        .unwrap();
+        let wave = soak_hydro::Gerstner::new(
+            1.5,
+            vec![soak_hydro::GerstnerWave {
+                amplitude: 0.3,
+                wavelength: size / 2.0,
+                direction_deg: 0.0,
+                steepness: 0.3 * std::f64::consts::TAU / (size / 2.0),
+                phase: 0.4,
+            }],
+            g,
+        )
+        .unwrap();
+        let shape = WaterShape::Spectral {
+            fields: std::sync::Arc::new(sea.fields(2.5)),
+        };
+        for (x, z) in [(0.0, 0.0), (3.3, -7.1), (-123.4, 56.7)] {
+            let (p, q) = (surface_point(&shape, x, z), wave.particle(x, z, 2.5));
+            assert!((p - q).norm() < 1e-3, "at ({x}, {z}): {p} against {q}");
+        }
     }
 }

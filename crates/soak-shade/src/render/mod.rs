@@ -14,8 +14,8 @@
 //! - **Light**: a directional sun with a shadow map (3×3 PCF) and a
 //!   sky/ground environment that lights, is reflected, and is the
 //!   background.
-//! - **Water**: a plane or a Gerstner sea ([`soak_hydro::Gerstner`]) as a
-//!   displaced grid, Fresnel-shaded and semi-transparent, fading into a
+//! - **Water**: a plane, a Gerstner sea ([`soak_hydro::Gerstner`]) or a
+//!   spectral sea's tile ([`soak_hydro::SeaFields`]) as a displaced grid, Fresnel-shaded and semi-transparent, fading into a
 //!   distant sea at the horizon.
 //! - **Subsurface** (off by default): the texture-space sum-of-Gaussians
 //!   irradiance blur of d'Eon et al. (2007), weighted by texel area

@@ -222,6 +222,14 @@ pub enum WaterShape {
         /// Time, s.
         time: f64,
     },
+    /// A spectral sea's tile evaluated at one time, drawn as a displaced
+    /// grid repeating the tile ([`soak_hydro::SeaFields::particle_at`]:
+    /// each vertex the surface particle at rest under it, choppy
+    /// displacement and all).
+    Spectral {
+        /// The tile's fields (their time is the drawing's).
+        fields: std::sync::Arc<soak_hydro::SeaFields>,
+    },
     /// Interactive waves (the waves bodies make,
     /// [`soak_hydro::InteractiveWaves::snapshot`]) on `base`, a plane or a
     /// sea: the base's grid raised by the waves' elevation, drawn at least
@@ -256,7 +264,7 @@ pub struct RenderWater {
     pub roughness: f64,
     /// Half side of the square of water drawn around the camera target, m.
     pub extent: f64,
-    /// Grid vertices per side (Gerstner), spaced finer near the centre.
+    /// Grid vertices per side (a moving sea), spaced finer near the centre.
     pub resolution: u32,
 }
 
@@ -269,6 +277,12 @@ impl RenderWater {
     /// A Gerstner sea at time `time` (s) with the default look.
     pub fn gerstner(sea: soak_hydro::Gerstner, time: f64) -> Self {
         Self::with_shape(WaterShape::Gerstner { sea, time })
+    }
+
+    /// A spectral sea's tile evaluated at one time
+    /// ([`soak_hydro::SpectralSea::fields`]) with the default look.
+    pub fn spectral(fields: std::sync::Arc<soak_hydro::SeaFields>) -> Self {
+        Self::with_shape(WaterShape::Spectral { fields })
     }
 
     /// The same water with interactive waves on it (see

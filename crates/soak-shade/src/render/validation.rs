@@ -75,6 +75,28 @@ impl RenderScene {
                 WaterShape::Gerstner { time, .. } if !time.is_finite() => {
                     return Err(bad(format!("time {time} is not finite")));
                 }
+                WaterShape::Spectral { fields } => {
+                    let n = fields.cells;
+                    let arrays = [&fields.height, &fields.displacement[0], &fields.displacement[1]]
+                        .into_iter()
+                        .chain(&fields.height_gradient)
+                        .chain(&fields.displacement_gradient)
+                        .chain(&fields.twist);
+                    for a in arrays {
+                        if n == 0 || a.len() != n * n {
+                            return Err(bad(format!("spectral sea: a field not of {n}×{n} nodes")));
+                        }
+                        if let Some(v) = a.iter().find(|v| !v.is_finite()) {
+                            return Err(bad(format!("spectral sea: a field's value {v} is not finite")));
+                        }
+                    }
+                    if !(fields.size > 0.0 && fields.size.is_finite() && fields.level.is_finite()) {
+                        return Err(bad(format!(
+                            "spectral sea: tile {} m at level {} m",
+                            fields.size, fields.level
+                        )));
+                    }
+                }
                 WaterShape::Interactive { waves, .. } => {
                     let n = waves.region.cells;
                     if waves.heights.len() != n * n {
