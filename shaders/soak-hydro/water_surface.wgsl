@@ -232,9 +232,11 @@ fn surface_slope(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec2<f32> {
     }
 }
 
-// Fluid velocity at r (m/s): the orbital velocity of the Gerstner particle
-// above it, decaying below the mean level, the patch's sampled velocity,
-// or the uniform current.
+// Fluid velocity at r (m/s), the CPU's `Surface::velocity`: for Gerstner
+// waves linear theory's, a w e^(k (y - level)) along each wave (upward a
+// quarter period ahead) at the point's own phase, continued linearly above
+// the mean level up to the surface and the surface's above it; the
+// patch's sampled velocity; or the uniform current.
 fn fluid_velocity(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec3<f32> {
     if (b.info.x == SURFACE_PATCH) {
         return patch_velocity(b, r);
@@ -242,16 +244,22 @@ fn fluid_velocity(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec3<f32> {
     if (b.info.x != SURFACE_GERSTNER) {
         return b.current.xyz;
     }
+    let y = min(r.y, r.y + sp.depth) - b.surface.x;
     var v = vec3<f32>(0.0);
     for (var i = b.info.y; i < b.info.y + b.info.z; i++) {
         let w = waves[i];
-        let th = w.a.z * dot(w.a.xy, sp.rest) + w.b.z;
+        let th = w.a.z * dot(w.a.xy, r.xz) + w.b.z;
         let s = sin(th);
         let c = cos(th);
-        let decay = exp(w.a.z * min(r.y - b.surface.x, 0.0));
-        v.x += w.b.x * w.a.x * w.a.w * c * decay;
-        v.z += w.b.x * w.a.y * w.a.w * c * decay;
-        v.y += w.b.y * w.a.w * s * decay;
+        let z = w.a.z * y;
+        var decay = 1.0 + z;
+        if (z <= 0.0) {
+            decay = exp(z);
+        }
+        let speed = w.b.y * w.a.w * decay;
+        v.x += speed * c * w.a.x;
+        v.z += speed * c * w.a.y;
+        v.y += speed * s;
     }
     return v;
 }

@@ -54,9 +54,9 @@ fn a_frame_sequence_of_the_wet_crate_shows_wet_and_dry_planks() {
         "--every",
         "60",
         "--width",
-        "160",
+        "320",
         "--height",
-        "90",
+        "180",
         "--view",
         "liquid",
         "--out",
@@ -70,15 +70,17 @@ fn a_frame_sequence_of_the_wet_crate_shows_wet_and_dry_planks() {
         let image = image::open(&path)
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
             .to_rgb8();
-        assert_eq!(image.dimensions(), (160, 90), "{}", path.display());
+        assert_eq!(image.dimensions(), (320, 180), "{}", path.display());
     }
     // After 2 s the crate has plunged: its lower planks are saturated (red
-    // in the pseudo-colour), its top is still dry (blue).
+    // in the pseudo-colour: the band above the waterline, 66 to 92
+    // pixels as the crate drifts one way or another), its top is still dry
+    // (blue, 4,500 pixels and more).
     let last = image::open(dir.join("frame_000120.png")).unwrap().to_rgb8();
     let red = last.pixels().filter(|p| p[0] > 150 && p[2] < 90).count();
     let blue = last.pixels().filter(|p| p[2] > 150 && p[0] < 90).count();
-    assert!(red >= 20, "{red} wet (red) pixels");
-    assert!(blue >= 20, "{blue} dry (blue) pixels");
+    assert!(red >= 40, "{red} wet (red) pixels");
+    assert!(blue >= 1000, "{blue} dry (blue) pixels");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -76,6 +76,16 @@ fn a_scene_can_run_forever_and_says_so() {
     assert!(matches!(e, SceneError::Invalid { line: 2, .. }), "{e}");
 }
 
+/// The lowest and highest height of body `i` in the recorded samples after
+/// `from` seconds, m.
+fn heave_range(sim: &Simulation, i: usize, from: f64) -> (f64, f64) {
+    sim.samples()
+        .iter()
+        .filter(|s| s.body == i && s.t > from)
+        .map(|s| s.position[1])
+        .fold((f64::MAX, f64::MIN), |(a, b), y| (a.min(y), b.max(y)))
+}
+
 #[test]
 fn bodies_ride_a_spectral_sea() {
     // `data/scenes/spectral_sea.toml`: a buoy, a crate and a boat on a
@@ -88,15 +98,7 @@ fn bodies_ride_a_spectral_sea() {
     sim.record(true);
     sim.run(|_| {}).unwrap();
     for (i, report) in sim.report().iter().enumerate() {
-        let ys: Vec<f64> = sim
-            .samples()
-            .iter()
-            .filter(|s| s.body == i && s.t > 5.0)
-            .map(|s| s.position[1])
-            .collect();
-        let (lo, hi) = ys
-            .iter()
-            .fold((f64::MAX, f64::MIN), |(a, b), &y| (a.min(y), b.max(y)));
+        let (lo, hi) = heave_range(&sim, i, 5.0);
         // Each heaves with the sea and stays afloat (no pump: each has drag).
         assert!(
             hi - lo > 0.2 && hi - lo < 2.5,
@@ -147,15 +149,7 @@ position = [4.0, 0.0, 0.0]
     sim.record(true);
     sim.run(|_| {}).unwrap();
     for (i, report) in sim.report().iter().enumerate() {
-        let ys: Vec<f64> = sim
-            .samples()
-            .iter()
-            .filter(|s| s.body == i && s.t > 10.0)
-            .map(|s| s.position[1])
-            .collect();
-        let (lo, hi) = ys
-            .iter()
-            .fold((f64::MAX, f64::MIN), |(a, b), &y| (a.min(y), b.max(y)));
+        let (lo, hi) = heave_range(&sim, i, 10.0);
         assert!(lo > -0.8 && hi < 0.8, "{}: heave {lo}..{hi}", report.name);
         assert!(!report.non_finite, "{}", report.name);
     }

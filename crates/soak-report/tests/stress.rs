@@ -132,7 +132,8 @@ fn a_stiff_step_never_creates_energy() {
 /// A hull that fills in the sea until it is heavier than water sinks, but
 /// a run shorter than the wave's period can end with it above where it
 /// started, on the crest that lifted the water around it: in the sea the
-/// check asks that it went down over the last half of its run.
+/// check asks that it went down through the water (its velocity relative
+/// to the water's at its centre of mass) over the last half of its run.
 #[test]
 fn in_the_sea_a_filling_hull_is_judged_on_going_down() {
     assert_cells_pass(&["sliver/1e3m/0.9/1/240/sea/+ingress"]);

@@ -260,7 +260,7 @@ impl Surface for Gerstner {
         *hint = [p.x - x0, p.z - z0];
         let height = self.particle(x0, z0, t).y;
         let v = if with_velocity {
-            self.velocity_at_rest(x0, z0, p.y, t)
+            self.velocity_below(p.x, p.z, p.y.min(height), t)
         } else {
             Vector3::zeros()
         };
@@ -289,24 +289,64 @@ impl Surface for Gerstner {
         [(jzz * gx - jxz * gz) / det, (jxx * gz - jxz * gx) / det]
     }
 
-    /// Orbital velocity of the surface particle above `p`, decaying as
-    /// `e^{k·(y − level)}` below the mean level (Airy theory).
+    /// The water's velocity at `p`, m/s: linear (Airy) theory's for each
+    /// wave, `a ω e^{k (y − level)}` along the wave's direction in phase
+    /// with its height and the same upward a quarter period ahead, at the
+    /// Eulerian phase `k d·x − ω t` of `p` itself; continued linearly above
+    /// the mean level up to the surface (`a ω (1 + k (y − level))`, as
+    /// offshore practice extrapolates it: the exponential grows too fast
+    /// to the crests of steep waves), and above the surface the surface's.
+    ///
+    /// Its mean at any point below the troughs is zero (no current), and a
+    /// particle carried by it drifts forward at the Stokes drift
+    /// ([`Gerstner::stokes_drift`], `Σ a² ω k e^{2k z}`): the water moves
+    /// faster forward under the crests than back under the troughs, and
+    /// forward where it has already moved forward. So a small body with
+    /// drag drifts along with the waves, as flotsam does. (The Gerstner
+    /// surface particle's own velocity, read where it is, was a closed
+    /// orbit carrying nothing forward, and read at a fixed place a return
+    /// current of about the drift's size against the waves.) The surface
+    /// is the Gerstner one, sharpened by the steepness; the water under it
+    /// moves as linear theory says of a wave of its amplitude and length,
+    /// whatever the steepness.
     fn velocity(&self, p: &Point3<f64>, t: f64) -> Vector3<f64> {
-        let (x0, z0) = self.rest_position(p.x, p.z, t);
-        self.velocity_at_rest(x0, z0, p.y, t)
+        let surface = self.height(p.x, p.z, t);
+        self.velocity_below(p.x, p.z, p.y.min(surface), t)
     }
 }
 
 impl Gerstner {
-    fn velocity_at_rest(&self, x0: f64, z0: f64, y: f64, t: f64) -> Vector3<f64> {
+    /// Linear theory's velocity at `(x, y, z)` (m/s), under the surface.
+    fn velocity_below(&self, x: f64, z: f64, y: f64, t: f64) -> Vector3<f64> {
         let mut v = Vector3::zeros();
         for w in &self.cache {
-            let th = w.k * (w.dir.x * x0 + w.dir.y * z0) - w.omega * t + w.phase;
+            let th = w.k * (w.dir.x * x + w.dir.y * z) - w.omega * t + w.phase;
             let (s, c) = th.sin_cos();
-            let decay = (w.k * (y - self.level).min(0.0)).exp();
-            v.x += w.qa * w.dir.x * w.omega * c * decay;
-            v.z += w.qa * w.dir.y * w.omega * c * decay;
-            v.y += w.a * w.omega * s * decay;
+            // Above the mean level, continued linearly: the exponential's
+            // growth to the crests of steep waves is not linear theory's.
+            let z = w.k * (y - self.level);
+            let decay = if z > 0.0 { 1.0 + z } else { z.exp() };
+            let speed = w.a * w.omega * decay;
+            v.x += speed * c * w.dir.x;
+            v.z += speed * c * w.dir.y;
+            v.y += speed * s;
+        }
+        v
+    }
+
+    /// The Stokes drift at mean height `y` (m), m/s: the mean velocity at
+    /// which the waves carry the water's particles forward, `Σ a² ω k
+    /// e^{2k·(y − level)}` along each wave's direction (deep water, second
+    /// order in the steepness; at the mean level and above, `Σ a² ω k`).
+    /// The mean velocity of a particle carried by [`Surface::velocity`]:
+    /// what a small body with drag drifts at.
+    pub fn stokes_drift(&self, y: f64) -> Vector3<f64> {
+        let mut v = Vector3::zeros();
+        for w in &self.cache {
+            let decay = (2.0 * w.k * (y - self.level).min(0.0)).exp();
+            let speed = w.a * w.a * w.omega * w.k * decay;
+            v.x += speed * w.dir.x;
+            v.z += speed * w.dir.y;
         }
         v
     }

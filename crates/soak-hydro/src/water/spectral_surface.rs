@@ -19,12 +19,17 @@ use super::{SeaFields, SpectralSea, Surface};
 /// node spacing against a wavelength, and is measured against the exact
 /// sum over the modes in the tests.
 ///
-/// The fluid's velocity at a point is the orbital velocity of the surface
-/// particle above it, decaying below the mean level as `e^{k̄ (y − level)}`
-/// with `k̄` the sea's energy-weighted mean wavenumber (each mode decays
-/// with its own `k` in linear theory: this is the one-wavenumber
-/// approximation of that sum); above the mean level it is the surface
-/// particle's.
+/// The fluid's velocity at a point is linear theory's, as on a Gerstner
+/// sea: the sum over the modes at the point's own (Eulerian) phase — the
+/// tile's velocity field read at the point itself, not at the rest
+/// position of the particle above it — decaying below the mean level as
+/// `e^{k̄ (y − level)}` with `k̄` the sea's energy-weighted mean wavenumber
+/// (each mode decays with its own `k` in linear theory: this is the
+/// one-wavenumber approximation of that sum), continued linearly above the
+/// mean level up to the surface (`1 + k̄ (y − level)`), and above the
+/// surface the surface's. Its mean at a point below the troughs is zero,
+/// and what it carries drifts forward at about the sea's Stokes drift
+/// ([`SpectralSurface::stokes_drift`]).
 pub struct SpectralSurface {
     sea: SpectralSea,
     /// The energy-weighted mean wavenumber, rad/m.
@@ -91,14 +96,31 @@ impl SpectralSurface {
     /// How many times' fields are kept.
     pub const KEPT: usize = 4;
 
-    fn velocity_at(&self, f: &SeaFields, rest: [f64; 2], y: f64) -> Vector3<f64> {
+    /// The sea's Stokes drift at mean height `y` (m), m/s: `Σ a² ω k
+    /// e^{2k (y − level)}` along each mode's direction, over its modes
+    /// (deep water; at the mean level and above, `Σ a² ω k`).
+    pub fn stokes_drift(&self, y: f64) -> Vector3<f64> {
+        let below = (y - self.sea.level).min(0.0);
+        let mut v = Vector3::zeros();
+        for (k, omega, a2) in self.sea.modes() {
+            let kk = k[0].hypot(k[1]);
+            let speed = a2 * omega * (2.0 * kk * below).exp();
+            v.x += speed * k[0];
+            v.z += speed * k[1];
+        }
+        v
+    }
+
+    /// The water's velocity at `(point, y)`, `point` its horizontal
+    /// position (m) and `y` its height, taken at most the surface's.
+    fn velocity_at(&self, f: &SeaFields, point: [f64; 2], y: f64) -> Vector3<f64> {
         let [vx, vy, vz] = &f.velocity;
         let n = f.cells;
         let d = f.size / n as f64;
         // Bilinear between the nodes.
         let (gx, gz) = (
-            (rest[0] / d).rem_euclid(n as f64),
-            (rest[1] / d).rem_euclid(n as f64),
+            (point[0] / d).rem_euclid(n as f64),
+            (point[1] / d).rem_euclid(n as f64),
         );
         let (ix, iz) = ((gx.floor() as usize).min(n - 1), (gz.floor() as usize).min(n - 1));
         let (u, v) = (gx - ix as f64, gz - iz as f64);
@@ -107,7 +129,8 @@ impl SpectralSurface {
             (1.0 - v) * ((1.0 - u) * c[i(0, 0)] + u * c[i(1, 0)])
                 + v * ((1.0 - u) * c[i(0, 1)] + u * c[i(1, 1)])
         };
-        let decay = (self.mean_wavenumber * (y - f.level).min(0.0)).exp();
+        let z = self.mean_wavenumber * (y - f.level);
+        let decay = if z > 0.0 { 1.0 + z } else { z.exp() };
         Vector3::new(at(vx), at(vy), at(vz)) * decay
     }
 }
@@ -131,7 +154,7 @@ impl Surface for SpectralSurface {
         *hint = [p.x - rest[0], p.z - rest[1]];
         let height = f.particle_at(rest[0], rest[1]).0[1];
         let v = if with_velocity {
-            self.velocity_at(&f, rest, p.y)
+            self.velocity_at(&f, [p.x, p.z], p.y.min(height))
         } else {
             Vector3::zeros()
         };
@@ -141,7 +164,8 @@ impl Surface for SpectralSurface {
     fn velocity(&self, p: &Point3<f64>, t: f64) -> Vector3<f64> {
         let f = self.fields(t);
         let rest = f.rest_position(p.x, p.z, [0.0, 0.0]);
-        self.velocity_at(&f, rest, p.y)
+        let height = f.particle_at(rest[0], rest[1]).0[1];
+        self.velocity_at(&f, [p.x, p.z], p.y.min(height))
     }
 
     /// `(∂f/∂x, ∂f/∂z) = J⁻ᵀ ∇₀η`: the elevation's gradient over the rest

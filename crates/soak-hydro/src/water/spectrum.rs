@@ -295,7 +295,10 @@ pub struct SeaFields {
     /// The cross derivatives `∂²/∂x₀∂z₀` of the elevation and of the
     /// displacement along x and z (the twists bicubic interpolation needs).
     pub twist: [Vec<f64>; 3],
-    /// The particle's velocity `(x, y, z)`, m/s.
+    /// Linear theory's water velocity `(x, y, z)` at the node, m/s: on the
+    /// mean level at the node's rest position as a fixed point, and the
+    /// velocity of the particle resting there at choppiness 1 (its
+    /// horizontal part does not scale with the choppiness).
     pub velocity: [Vec<f64>; 3],
 }
 
@@ -663,9 +666,9 @@ impl SpectralSea {
         let (dx_xz, dz_xz) = pair(&|m| -i * lambda * m.unit[0] * m.k[0] * m.k[1] * m.a, &|m| {
             -i * lambda * m.unit[1] * m.k[0] * m.k[1] * m.a
         });
-        let (vx, vz) = pair(&|m| lambda * m.omega * m.unit[0] * m.a, &|m| {
-            lambda * m.omega * m.unit[1] * m.a
-        });
+        // Linear theory's water velocity at the node as a fixed point (the
+        // particle's at choppiness 1), whatever the choppiness.
+        let (vx, vz) = pair(&|m| m.omega * m.unit[0] * m.a, &|m| m.omega * m.unit[1] * m.a);
         SeaFields {
             time: t,
             level: self.level,

@@ -46,7 +46,7 @@ pub(crate) fn allowance(size: f64, waves: f64, periods: f64, rho: f64) -> f64 {
 /// (one for static surfaces).
 pub(crate) fn periods(water: WaterKind, time: f64, period: f64) -> f64 {
     match water {
-        WaterKind::Sea => (time / period).ceil(),
+        WaterKind::Sea | WaterKind::Ocean => (time / period).ceil(),
         _ => 1.0,
     }
 }

@@ -4,7 +4,9 @@
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, builtin};
-use soak_hydro::{Gerstner, GerstnerWave, HeightField, Water, WaterError};
+use soak_hydro::{
+    Gerstner, GerstnerWave, HeightField, SeaSpectrum, SpectralSea, SpectralSurface, Water, WaterError,
+};
 
 use super::error::StressError;
 use super::matrix::{Shape, WaterKind};
@@ -86,6 +88,17 @@ pub(crate) fn water(kind: WaterKind, r: f64) -> Result<Water, WaterError> {
                 vec![wave(8.0 * r, 0.0, 0.0), wave(5.0 * r, 40.0, 1.0)],
                 G,
             )?)
+        }
+        WaterKind::Ocean => {
+            // JONSWAP whose peak wave is the sea's longer wave, 8 r, and
+            // whose significant height is 0.6 r (a steep storm sea, Hs
+            // over the peak wavelength 0.075), on a tile of four peak
+            // wavelengths with 32 cells a side (waves down to r long).
+            let spectrum = SeaSpectrum::jonswap(0.6 * r, wave_period(r));
+            let tile = 32.0 * r;
+            Water::new(SpectralSurface::new(SpectralSea::realize(
+                &spectrum, 0.0, tile, 32, 1, G,
+            )?))
         }
         WaterKind::Cliff => {
             // 0.3 r above the mean level for x < 0, 0.3 r below it for

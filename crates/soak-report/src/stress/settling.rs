@@ -127,7 +127,7 @@ pub(crate) fn settle(m: &Motion) -> (bool, String, f64) {
             // and not above its floating level (it started 5 % of its size
             // below it).
             let slow = level >= Level::AddedMass && dy < 0.05;
-            let ok = vy < 0.0 && (dy < 0.0 || slow || water == WaterKind::Sea);
+            let ok = vy < 0.0 && (dy < 0.0 || slow || water.moves());
             (
                 ok,
                 format!("{vy_label} {vy:.3} √(g·size), {dy:.3} sizes from the start"),
