@@ -1,5 +1,6 @@
 //! `soak render` end to end: a frame sequence of the wet crate, the liquid
-//! view showing both wet and dry planks, and bad arguments refused.
+//! view showing both wet and dry planks, and bad arguments refused; and
+//! `soak sea`'s still of a spectral sea, wavy where a calm one is smooth.
 //!
 //! Rendering needs a GPU adapter (Mesa's software ones will do): without
 //! one the test says so and skips, except under `CI=true`, where it fails.
@@ -265,4 +266,71 @@ fn a_video_of_the_frames_is_encoded_where_ffmpeg_is_installed() {
     // An MP4 starts with its `ftyp` box.
     assert_eq!(&bytes[4..8], b"ftyp");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// How much the brightness varies along the rows of the image's lower half
+/// (the water near the camera): the variance of each row about its mean,
+/// averaged over the rows. A flat sea is shaded alike along a row.
+fn roughness(path: &std::path::Path) -> f64 {
+    let image = image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_luma8();
+    let (w, h) = image.dimensions();
+    let rows: Vec<f64> = (h / 2..h)
+        .map(|y| {
+            let values: Vec<f64> = (0..w).map(|x| f64::from(image.get_pixel(x, y)[0])).collect();
+            let mean = values.iter().sum::<f64>() / f64::from(w);
+            values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / f64::from(w)
+        })
+        .collect();
+    rows.iter().sum::<f64>() / rows.len() as f64
+}
+
+#[test]
+fn a_still_of_the_sea_is_wavy_where_a_calm_seas_is_smooth() {
+    let dir = out_dir("sea_still");
+    std::fs::create_dir_all(&dir).unwrap();
+    let spectral = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../data/scenes/spectral_sea.toml");
+    let text = std::fs::read_to_string(&spectral).unwrap();
+    let calm_scene = dir.join("calm.toml");
+    let calm_text = text.replace("significant_height = 1.0", "significant_height = 0.001");
+    assert_ne!(calm_text, text, "the scene names its significant height");
+    std::fs::write(&calm_scene, calm_text).unwrap();
+    let mut stills = Vec::new();
+    for (name, scene) in [("wavy", spectral.clone()), ("calm", calm_scene)] {
+        let still = dir.join(format!("{name}.png"));
+        let plot = dir.join(format!("{name}_plot.png"));
+        let Some(out) = soak(
+            "sea",
+            &[
+                scene.to_str().unwrap(),
+                "--seeds",
+                "1",
+                "--still",
+                still.to_str().unwrap(),
+                "--plot",
+                plot.to_str().unwrap(),
+                "--width",
+                "320",
+                "--height",
+                "180",
+            ],
+        ) else {
+            return;
+        };
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(plot.is_file());
+        assert_eq!(image::image_dimensions(&still).unwrap(), (320, 180));
+        stills.push(roughness(&still));
+    }
+    println!(
+        "brightness variance along rows: wavy {:.2}, calm {:.2}",
+        stills[0], stills[1]
+    );
+    assert!(
+        stills[0] > 2.5 * stills[1],
+        "wavy {} against calm {}",
+        stills[0],
+        stills[1]
+    );
 }
