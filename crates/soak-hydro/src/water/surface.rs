@@ -33,8 +33,9 @@ pub enum SurfaceKind {
 /// A fluid's free surface and velocity field, world frame, y up: the
 /// surface is `y = f(x, z, t)`.
 ///
-/// Four surfaces are provided: a [`Plane`] (horizontal or tilted), a sum of
-/// [`Gerstner`](super::Gerstner) waves, a bilinear
+/// Five surfaces are provided: a [`Plane`] (horizontal or tilted), a sum of
+/// [`Gerstner`](super::Gerstner) waves, a spectral sea
+/// ([`SpectralSurface`](super::SpectralSurface)), a bilinear
 /// [`HeightField`](super::HeightField), and an [`Unbounded`] medium (a
 /// balloon in air: everything is immersed). Implement [`Surface`] for your
 /// own.
