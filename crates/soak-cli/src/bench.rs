@@ -38,6 +38,16 @@ pub struct Args {
     /// Largest body count run on the GPU.
     #[arg(long, default_value_t = 1_000)]
     pub gpu_max_bodies: usize,
+    /// The waters measured, of `calm`, `swell` and `jonswap` (e.g.
+    /// `--water calm,jonswap`) [default: all three].
+    #[arg(long, value_delimiter = ',', value_parser = parse_water)]
+    pub water: Option<Vec<scaling::WaterKind>>,
+}
+
+/// A water of the bench by its label.
+fn parse_water(label: &str) -> Result<scaling::WaterKind, String> {
+    scaling::WaterKind::from_label(label)
+        .ok_or_else(|| format!("no water `{label}` in the bench (calm, swell or jonswap)"))
 }
 
 /// Runs `soak bench`.
@@ -56,6 +66,9 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     }
     if let Some(b) = args.budget {
         options.budget_s = b;
+    }
+    if let Some(waters) = &args.water {
+        options.waters = waters.clone();
     }
     options.gpu = args.gpu;
     options.gpu_max_bodies = args.gpu_max_bodies;

@@ -78,3 +78,21 @@ fn no_body_counts_is_an_error() {
     };
     assert!(run(&options, |_| {}).is_err());
 }
+
+#[test]
+fn the_waters_asked_for_are_the_ones_measured() {
+    let options = ScalingOptions {
+        sizes: vec![1],
+        waters: vec![WaterKind::Jonswap],
+        ..tiny()
+    };
+    let report = run(&options, |_| {}).expect("the bench runs");
+    let waters: Vec<_> = report.columns.iter().map(|c| c.water).collect();
+    assert_eq!(
+        waters,
+        [None, Some(WaterKind::Jonswap), Some(WaterKind::Jonswap), Some(WaterKind::Jonswap)]
+    );
+    assert_eq!(report.measurements.len(), 4);
+    assert_eq!(WaterKind::from_label("swell"), Some(WaterKind::Swell));
+    assert_eq!(WaterKind::from_label("lake"), None);
+}

@@ -116,14 +116,8 @@ impl SpectralSurface {
     fn velocity_at(&self, f: &SeaFields, point: [f64; 2], y: f64) -> Vector3<f64> {
         let [vx, vy, vz] = &f.velocity;
         let n = f.cells;
-        let d = f.size / n as f64;
         // Bilinear between the nodes.
-        let (gx, gz) = (
-            (point[0] / d).rem_euclid(n as f64),
-            (point[1] / d).rem_euclid(n as f64),
-        );
-        let (ix, iz) = ((gx.floor() as usize).min(n - 1), (gz.floor() as usize).min(n - 1));
-        let (u, v) = (gx - ix as f64, gz - iz as f64);
+        let ([ix, iz], [u, v]) = f.cell(point[0], point[1]);
         let at = |c: &[f64]| {
             let i = |a: usize, b: usize| ((iz + b) % n) * n + (ix + a) % n;
             (1.0 - v) * ((1.0 - u) * c[i(0, 0)] + u * c[i(1, 0)])
@@ -138,8 +132,7 @@ impl SpectralSurface {
 impl Surface for SpectralSurface {
     fn height(&self, x: f64, z: f64, t: f64) -> f64 {
         let f = self.fields(t);
-        let rest = f.rest_position(x, z, [0.0, 0.0]);
-        f.particle_at(rest[0], rest[1]).0[1]
+        f.invert(x, z, [0.0, 0.0]).1.0[1]
     }
 
     fn probe(
@@ -150,9 +143,9 @@ impl Surface for SpectralSurface {
         hint: &mut [f64; 2],
     ) -> (f64, Vector3<f64>) {
         let f = self.fields(t);
-        let rest = f.rest_position(p.x, p.z, *hint);
+        let (rest, particle) = f.invert(p.x, p.z, *hint);
         *hint = [p.x - rest[0], p.z - rest[1]];
-        let height = f.particle_at(rest[0], rest[1]).0[1];
+        let height = particle.0[1];
         let v = if with_velocity {
             self.velocity_at(&f, [p.x, p.z], p.y.min(height))
         } else {
@@ -163,8 +156,7 @@ impl Surface for SpectralSurface {
 
     fn velocity(&self, p: &Point3<f64>, t: f64) -> Vector3<f64> {
         let f = self.fields(t);
-        let rest = f.rest_position(p.x, p.z, [0.0, 0.0]);
-        let height = f.particle_at(rest[0], rest[1]).0[1];
+        let height = f.invert(p.x, p.z, [0.0, 0.0]).1.0[1];
         self.velocity_at(&f, [p.x, p.z], p.y.min(height))
     }
 
@@ -172,8 +164,10 @@ impl Surface for SpectralSurface {
     /// position through the choppy map's Jacobian.
     fn slope(&self, x: f64, z: f64, t: f64, hint: &[f64; 2]) -> [f64; 2] {
         let f = self.fields(t);
-        let rest = f.rest_position(x, z, *hint);
-        let (_, j, g) = f.particle_at(rest[0], rest[1]);
+        // After a probe at the same point the hint holds the particle's
+        // displacement: its first guess is the rest position, and the
+        // inversion's first evaluation there gives the Jacobian.
+        let (_, (_, j, g)) = f.invert(x, z, *hint);
         let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
         if det.abs() < 1e-12 {
             return [0.0, 0.0];

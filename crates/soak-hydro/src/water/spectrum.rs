@@ -302,6 +302,11 @@ pub struct SeaFields {
     pub velocity: [Vec<f64>; 3],
 }
 
+/// A surface particle as [`SeaFields::particle_at`] gives it: its
+/// position (m), the Jacobian of its horizontal position over its rest
+/// position, and its elevation's gradient over its rest position.
+pub type ParticleJet = ([f64; 3], [[f64; 2]; 2], [f64; 2]);
+
 impl SeaFields {
     /// The surface particle resting on node `(ix, iz)`: its position, m.
     pub fn particle(&self, ix: usize, iz: usize) -> [f64; 3] {
@@ -314,15 +319,36 @@ impl SeaFields {
         ]
     }
 
-    /// The bicubic Hermite interpolant of one field (its values, gradient
-    /// and twist at the nodes) at rest position `(x0, z0)` (m, taken into
-    /// the tile): its value and its gradient over the rest position.
-    fn hermite(&self, f: &[f64], fx: &[f64], fz: &[f64], fxz: &[f64], x0: f64, z0: f64) -> (f64, [f64; 2]) {
+    /// The cell of the tile rest position `(x0, z0)` (m, taken into the
+    /// tile) lies in, `(ix, iz)`, and the fractions `(u, v)` across it.
+    pub(crate) fn cell(&self, x0: f64, z0: f64) -> ([usize; 2], [f64; 2]) {
         let n = self.cells;
         let d = self.size / n as f64;
-        let (gx, gz) = ((x0 / d).rem_euclid(n as f64), (z0 / d).rem_euclid(n as f64));
-        let (ix, iz) = ((gx.floor() as usize).min(n - 1), (gz.floor() as usize).min(n - 1));
-        let (u, v) = (gx - ix as f64, gz - iz as f64);
+        // The cell and fraction along one axis: the fraction exact
+        // (`g − ⌊g⌋`), the index wrapped into the tile.
+        let axis = |g: f64| {
+            let f = g.floor();
+            let i = if f.abs() < 9.0e15 {
+                (f as i64).rem_euclid(n as i64) as usize
+            } else {
+                0
+            };
+            (i.min(n - 1), (g - f).clamp(0.0, 1.0))
+        };
+        let (ix, u) = axis(x0 / d);
+        let (iz, v) = axis(z0 / d);
+        ([ix, iz], [u, v])
+    }
+
+    /// The bicubic Hermite interpolants of the elevation and of the
+    /// displacement along x and z (their values, gradients and twists at
+    /// the nodes) at rest position `(x0, z0)` (m, taken into the tile):
+    /// per field its value and its gradient over the rest position, the
+    /// cell and its basis found once for the three.
+    fn hermite3(&self, x0: f64, z0: f64) -> [(f64, [f64; 2]); 3] {
+        let n = self.cells;
+        let d = self.size / n as f64;
+        let ([ix, iz], [u, v]) = self.cell(x0, z0);
         // Cubic Hermite basis on [0, 1]: value at 0, value at 1, slope at
         // 0, slope at 1; and their derivatives.
         let basis = |t: f64| {
@@ -343,25 +369,46 @@ impl SeaFields {
             )
         };
         let ((bu, du), (bv, dv)) = (basis(u), basis(v));
-        let (mut value, mut ddu, mut ddv) = (0.0, 0.0, 0.0);
+        let [hx, hz] = &self.height_gradient;
+        let [dxx, dxz, dzz] = &self.displacement_gradient;
+        let [txz, tdx, tdz] = &self.twist;
+        let fields: [[&[f64]; 4]; 3] = [
+            [&self.height, hx, hz, txz],
+            [&self.displacement[0], dxx, dxz, tdx],
+            [&self.displacement[1], dxz, dzz, tdz],
+        ];
+        let mut out = [(0.0, [0.0; 2]); 3];
         for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
             let i = ((iz + b) % n) * n + (ix + a) % n;
-            // Derivatives over the rest position, in cells.
-            let (c0, cu, cv, cuv) = (f[i], fx[i] * d, fz[i] * d, fxz[i] * d * d);
-            value += c0 * bu[a] * bv[b]
-                + cu * bu[a + 2] * bv[b]
-                + cv * bu[a] * bv[b + 2]
-                + cuv * bu[a + 2] * bv[b + 2];
-            ddu += c0 * du[a] * bv[b]
-                + cu * du[a + 2] * bv[b]
-                + cv * du[a] * bv[b + 2]
-                + cuv * du[a + 2] * bv[b + 2];
-            ddv += c0 * bu[a] * dv[b]
-                + cu * bu[a + 2] * dv[b]
-                + cv * bu[a] * dv[b + 2]
-                + cuv * bu[a + 2] * dv[b + 2];
+            // The corner's four basis products, and their u- and
+            // v-derivatives.
+            let w = [
+                bu[a] * bv[b],
+                bu[a + 2] * bv[b],
+                bu[a] * bv[b + 2],
+                bu[a + 2] * bv[b + 2],
+            ];
+            let wu = [
+                du[a] * bv[b],
+                du[a + 2] * bv[b],
+                du[a] * bv[b + 2],
+                du[a + 2] * bv[b + 2],
+            ];
+            let wv = [
+                bu[a] * dv[b],
+                bu[a + 2] * dv[b],
+                bu[a] * dv[b + 2],
+                bu[a + 2] * dv[b + 2],
+            ];
+            for ([f, fx, fz, fxz], (value, [ddu, ddv])) in fields.iter().zip(out.iter_mut()) {
+                // Derivatives over the rest position, in cells.
+                let c = [f[i], fx[i] * d, fz[i] * d, fxz[i] * d * d];
+                *value += c[0] * w[0] + c[1] * w[1] + c[2] * w[2] + c[3] * w[3];
+                *ddu += c[0] * wu[0] + c[1] * wu[1] + c[2] * wu[2] + c[3] * wu[3];
+                *ddv += c[0] * wv[0] + c[1] * wv[1] + c[2] * wv[2] + c[3] * wv[3];
+            }
         }
-        (value, [ddu / d, ddv / d])
+        out.map(|(value, [ddu, ddv])| (value, [ddu / d, ddv / d]))
     }
 
     /// The surface particle at rest at any `(x0, z0)` (m; the fields'
@@ -369,13 +416,8 @@ impl SeaFields {
     /// the Jacobian `[[∂x/∂x₀, ∂x/∂z₀], [∂z/∂x₀, ∂z/∂z₀]]` of its
     /// horizontal position over its rest position, and the gradient of its
     /// elevation over its rest position.
-    pub fn particle_at(&self, x0: f64, z0: f64) -> ([f64; 3], [[f64; 2]; 2], [f64; 2]) {
-        let [hx, hz] = &self.height_gradient;
-        let [dxx, dxz, dzz] = &self.displacement_gradient;
-        let [txz, tdx, tdz] = &self.twist;
-        let (h, gh) = self.hermite(&self.height, hx, hz, txz, x0, z0);
-        let (dx, gdx) = self.hermite(&self.displacement[0], dxx, dxz, tdx, x0, z0);
-        let (dz, gdz) = self.hermite(&self.displacement[1], dxz, dzz, tdz, x0, z0);
+    pub fn particle_at(&self, x0: f64, z0: f64) -> ParticleJet {
+        let [(h, gh), (dx, gdx), (dz, gdz)] = self.hermite3(x0, z0);
         (
             [x0 + dx, self.level + h, z0 + dz],
             [[1.0 + gdx[0], gdx[1]], [gdz[0], 1.0 + gdz[1]]],
@@ -387,12 +429,19 @@ impl SeaFields {
     /// by Newton's method on the interpolated displacement from the guess
     /// that the particle is displaced by `shift` (m).
     pub fn rest_position(&self, x: f64, z: f64, shift: [f64; 2]) -> [f64; 2] {
+        self.invert(x, z, shift).0
+    }
+
+    /// [`SeaFields::rest_position`] with the particle there
+    /// ([`SeaFields::particle_at`]'s answer at the rest position found).
+    pub fn invert(&self, x: f64, z: f64, shift: [f64; 2]) -> ([f64; 2], ParticleJet) {
         let (mut x0, mut z0) = (x - shift[0], z - shift[1]);
         for _ in 0..16 {
-            let (p, j, _) = self.particle_at(x0, z0);
+            let jet = self.particle_at(x0, z0);
+            let (p, j) = (jet.0, jet.1);
             let (rx, rz) = (p[0] - x, p[2] - z);
             if rx.abs() + rz.abs() < 1e-12 * (1.0 + x.abs() + z.abs()) {
-                break;
+                return ([x0, z0], jet);
             }
             let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
             let (dx, dz) = if det > 1e-3 {
@@ -406,7 +455,7 @@ impl SeaFields {
             x0 -= dx;
             z0 -= dz;
         }
-        [x0, z0]
+        ([x0, z0], self.particle_at(x0, z0))
     }
 
     /// The realised significant height `4 √⟨η²⟩` over the tile's nodes, m.

@@ -377,7 +377,7 @@ pub fn run(
             options.gpu_max_bodies
         ));
     }
-    let columns = Column::all(run_gpu);
+    let columns = Column::on(run_gpu, &options.waters);
     let mut measurements = Vec::new();
     for &n in &options.sizes {
         for column in &columns {

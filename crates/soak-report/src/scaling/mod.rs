@@ -108,6 +108,14 @@ pub fn jonswap() -> Result<soak_hydro::Water, ScalingError> {
 }
 
 impl WaterKind {
+    /// Every water, in table order.
+    pub const ALL: [WaterKind; 3] = [WaterKind::Calm, WaterKind::Swell, WaterKind::Jonswap];
+
+    /// The water of a label ([`WaterKind::label`]).
+    pub fn from_label(label: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|w| w.label() == label)
+    }
+
     /// A short label.
     pub fn label(self) -> &'static str {
         match self {
@@ -162,6 +170,12 @@ impl Column {
     /// buoyancy with radiation on the CPU, then (with `gpu`) the first two
     /// on the GPU for calm water and the swell.
     pub fn all(gpu: bool) -> Vec<Column> {
+        Self::on(gpu, &WaterKind::ALL)
+    }
+
+    /// The columns of [`Column::all`] whose water is one of `waters`
+    /// (Rapier alone always).
+    pub fn on(gpu: bool, waters: &[WaterKind]) -> Vec<Column> {
         let mut v = vec![Column::RAPIER];
         let devices: &[Device] = if gpu {
             &[Device::Cpu, Device::Gpu]
@@ -169,7 +183,7 @@ impl Column {
             &[Device::Cpu]
         };
         for &device in devices {
-            for water in [WaterKind::Calm, WaterKind::Swell, WaterKind::Jonswap] {
+            for water in WaterKind::ALL.into_iter().filter(|w| waters.contains(w)) {
                 // On the GPU a spectral sea is read through each body's
                 // patch sampled on the CPU: not measured there yet.
                 if device == Device::Gpu && water == WaterKind::Jonswap {
@@ -231,6 +245,9 @@ pub struct ScalingOptions {
     pub gpu: bool,
     /// Largest body count run on the GPU (each body's atlas is uploaded).
     pub gpu_max_bodies: usize,
+    /// The waters measured (all three by default; Rapier alone is
+    /// always measured).
+    pub waters: Vec<WaterKind>,
 }
 
 impl ScalingOptions {
@@ -247,6 +264,7 @@ impl ScalingOptions {
             budget_s: 2.0,
             gpu: false,
             gpu_max_bodies: 1_000,
+            waters: WaterKind::ALL.to_vec(),
         }
     }
 
