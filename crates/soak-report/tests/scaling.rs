@@ -90,7 +90,12 @@ fn the_waters_asked_for_are_the_ones_measured() {
     let waters: Vec<_> = report.columns.iter().map(|c| c.water).collect();
     assert_eq!(
         waters,
-        [None, Some(WaterKind::Jonswap), Some(WaterKind::Jonswap), Some(WaterKind::Jonswap)]
+        [
+            None,
+            Some(WaterKind::Jonswap),
+            Some(WaterKind::Jonswap),
+            Some(WaterKind::Jonswap)
+        ]
     );
     assert_eq!(report.measurements.len(), 4);
     assert_eq!(WaterKind::from_label("swell"), Some(WaterKind::Swell));

@@ -267,6 +267,11 @@ impl Surface for Gerstner {
         (height - p.y, v)
     }
 
+    /// The velocity needs no inversion: read where it is.
+    fn velocity_under(&self, p: &Point3<f64>, t: f64, height: f64, _hint: &[f64; 2]) -> Vector3<f64> {
+        self.velocity_below(p.x, p.z, p.y.min(height), t)
+    }
+
     /// `(∂f/∂x, ∂f/∂z) = J⁻¹ ∇y` at the particle's rest position, with `J`
     /// the Jacobian of its horizontal position and `∇y` the gradient of its
     /// height, both over the rest position.

@@ -13,7 +13,7 @@
 
 use nalgebra::{Matrix3, Point3, Vector3};
 
-use super::Surface;
+use super::{Surface, SurfaceNode};
 use crate::error::WaterError;
 
 /// Most nodes along one side of a patch's grid; a region that would need
@@ -271,25 +271,17 @@ impl SurfacePatch {
         let cells = extent.map(|e| ((e / spacing).ceil() as usize).max(1));
         let nodes = [cells[0] + 1, cells[1] + 1];
         let origin = min;
-        let at = |i: usize, j: usize| (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
 
-        // Heights and slopes at the nodes, each probe warm-starting the next.
+        // Heights and slopes at the nodes, each with its probe's hint:
+        // where the velocities are sampled above and below it, the surface
+        // starts from there.
         let n = nodes[0] * nodes[1];
-        let (mut h, mut sx, mut sz) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        // Each node's hint after its probe: where the velocities are
-        // sampled above and below it, the surface starts from there.
-        let mut hints = vec![[0.0; 2]; n];
-        let mut hint = [0.0; 2];
-        for j in 0..nodes[1] {
-            for i in 0..nodes[0] {
-                let (x, z) = at(i, j);
-                let k = j * nodes[0] + i;
-                let (depth, _) = surface.probe(&Point3::new(x, 0.0, z), t, false, &mut hint);
-                let [gx, gz] = surface.slope(x, z, t, &hint);
-                (h[k], sx[k], sz[k]) = (depth, gx, gz);
-                hints[k] = hint;
-            }
-        }
+        let mut sampled = vec![SurfaceNode::default(); n];
+        surface.sample_nodes(t, origin, spacing, nodes, &mut sampled);
+        let h: Vec<f64> = sampled.iter().map(|s| s.height).collect();
+        let sx: Vec<f64> = sampled.iter().map(|s| s.slope[0]).collect();
+        let sz: Vec<f64> = sampled.iter().map(|s| s.slope[1]).collect();
+        let hints: Vec<[f64; 2]> = sampled.iter().map(|s| s.hint).collect();
         // Twists `∂²f/∂x∂z`: central differences of the slopes (one-sided
         // at the edges), the mean of the two mixed derivatives.
         let diff = |f: &[f64], k: usize, i: usize, count: usize, stride: usize| -> f64 {
@@ -411,8 +403,7 @@ impl SurfacePatch {
                     }
                     let (x, z) = (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
                     let y = y.min(heights[column]);
-                    let mut hint = hints[column];
-                    let (_, v) = surface.probe(&Point3::new(x, y, z), t, true, &mut hint);
+                    let v = surface.velocity_under(&Point3::new(x, y, z), t, heights[column], &hints[column]);
                     if let Some(c) = v.iter().find(|c| !c.is_finite()) {
                         return Err(WaterError::Parameter {
                             name: "patch velocity",

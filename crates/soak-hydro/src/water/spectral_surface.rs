@@ -5,7 +5,7 @@ use std::sync::{Arc, RwLock};
 
 use nalgebra::{Point3, Vector3};
 
-use super::{SeaFields, SpectralSea, Surface};
+use super::{SeaFields, SpectralSea, Surface, SurfaceNode};
 
 /// A spectral sea as a [`Surface`], repeating with its tile's period.
 ///
@@ -154,6 +154,36 @@ impl Surface for SpectralSurface {
         (height - p.y, v)
     }
 
+    /// The tile looked up once for every node; each node's inversion
+    /// starts from the displacement of the one before it, and gives the
+    /// slope with the height.
+    fn sample_nodes(
+        &self,
+        t: f64,
+        origin: [f64; 2],
+        spacing: f64,
+        nodes: [usize; 2],
+        out: &mut [SurfaceNode],
+    ) {
+        let f = self.fields(t);
+        let mut hint = [0.0; 2];
+        for (k, node) in out.iter_mut().enumerate().take(nodes[0] * nodes[1]) {
+            let (i, j) = (k % nodes[0], k / nodes[0]);
+            let (x, z) = (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
+            let (rest, (p, jac, g)) = f.invert(x, z, hint);
+            hint = [x - rest[0], z - rest[1]];
+            *node = SurfaceNode {
+                height: p[1],
+                slope: slope_through(&jac, &g),
+                hint,
+            };
+        }
+    }
+
+    fn velocity_under(&self, p: &Point3<f64>, t: f64, height: f64, _hint: &[f64; 2]) -> Vector3<f64> {
+        self.velocity_at(&self.fields(t), [p.x, p.z], p.y.min(height))
+    }
+
     fn velocity(&self, p: &Point3<f64>, t: f64) -> Vector3<f64> {
         let f = self.fields(t);
         let height = f.invert(p.x, p.z, [0.0, 0.0]).1.0[1];
@@ -168,15 +198,7 @@ impl Surface for SpectralSurface {
         // displacement: its first guess is the rest position, and the
         // inversion's first evaluation there gives the Jacobian.
         let (_, (_, j, g)) = f.invert(x, z, *hint);
-        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-        if det.abs() < 1e-12 {
-            return [0.0, 0.0];
-        }
-        // Solve Jᵀ s = g.
-        [
-            (j[1][1] * g[0] - j[1][0] * g[1]) / det,
-            (j[0][0] * g[1] - j[0][1] * g[0]) / det,
-        ]
+        slope_through(&j, &g)
     }
 
     /// The nodes' lowest and highest elevation, widened by the most the
@@ -208,4 +230,19 @@ impl Surface for SpectralSurface {
     fn as_any(&self) -> Option<&dyn std::any::Any> {
         Some(self)
     }
+}
+
+/// The surface's slope `s = J⁻ᵀ g` from the choppy map's Jacobian `j` and
+/// the elevation's gradient `g` over the rest position (flat where the map
+/// folds).
+fn slope_through(j: &[[f64; 2]; 2], g: &[f64; 2]) -> [f64; 2] {
+    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+    if det.abs() < 1e-12 {
+        return [0.0, 0.0];
+    }
+    // Solve Jᵀ s = g.
+    [
+        (j[1][1] * g[0] - j[1][0] * g[1]) / det,
+        (j[0][0] * g[1] - j[0][1] * g[0]) / det,
+    ]
 }

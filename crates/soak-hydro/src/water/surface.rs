@@ -13,6 +13,17 @@ pub const AIR_DENSITY: f64 = 1.2;
 /// Standard gravity, m/s².
 pub const STANDARD_GRAVITY: f64 = 9.80665;
 
+/// The surface at one node of a grid ([`Surface::sample_nodes`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SurfaceNode {
+    /// The surface's height above the node, m.
+    pub height: f64,
+    /// Its slope `(∂f/∂x, ∂f/∂z)`, dimensionless.
+    pub slope: [f64; 2],
+    /// The hint a [`Surface::probe`] at the node leaves.
+    pub hint: [f64; 2],
+}
+
 /// How the hydrostatics may treat a surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SurfaceKind {
@@ -110,6 +121,44 @@ pub trait Surface: Send + Sync {
             (self.height(x + h, z, t) - self.height(x - h, z, t)) / (2.0 * h),
             (self.height(x, z + h, t) - self.height(x, z - h, t)) / (2.0 * h),
         ]
+    }
+
+    /// Heights and slopes at the nodes of a square grid at time `t` (s):
+    /// node `(i, j)` at `(origin[0] + i spacing, origin[1] + j spacing)`
+    /// (m), stored at `j nodes[0] + i` of `out` (its length
+    /// `nodes[0] nodes[1]`), each with the hint a [`Surface::probe`] there
+    /// leaves. The default probes and takes the slope node by node, each
+    /// probe warm-starting the next; a surface that can share work across
+    /// the nodes (a spectral sea looks its tile up once) overrides it.
+    fn sample_nodes(
+        &self,
+        t: f64,
+        origin: [f64; 2],
+        spacing: f64,
+        nodes: [usize; 2],
+        out: &mut [SurfaceNode],
+    ) {
+        let mut hint = [0.0; 2];
+        for (k, node) in out.iter_mut().enumerate().take(nodes[0] * nodes[1]) {
+            let (i, j) = (k % nodes[0], k / nodes[0]);
+            let (x, z) = (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
+            let (height, _) = self.probe(&Point3::new(x, 0.0, z), t, false, &mut hint);
+            *node = SurfaceNode {
+                height,
+                slope: self.slope(x, z, t, &hint),
+                hint,
+            };
+        }
+    }
+
+    /// The fluid's velocity at `p` (m) and time `t` (s), m/s, where the
+    /// surface above `p` is known to be at `height` (m) and `hint` is a
+    /// probe's there. The default probes again; surfaces whose velocity
+    /// needs no inversion of the surface override it.
+    fn velocity_under(&self, p: &Point3<f64>, t: f64, height: f64, hint: &[f64; 2]) -> Vector3<f64> {
+        let _ = height;
+        let mut hint = *hint;
+        self.probe(p, t, true, &mut hint).1
     }
 
     /// Depth of `p` below the surface, m (positive under water, measured vertically).
