@@ -42,5 +42,5 @@ pub use error::AccuracyError;
 pub use figures::{cost_figure, sphere_figure, write_figures};
 pub use measure::compute;
 pub use report::{Curve, Report, Row, Speedup, Sweep};
-pub use sea::{SeaRow, swell};
+pub use sea::{SeaRow, short_sea, swell};
 pub use table::{markdown, text_table};

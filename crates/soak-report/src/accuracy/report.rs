@@ -125,6 +125,9 @@ pub struct Report {
     pub sweeps: Vec<Sweep>,
     /// The sampled sea against the exact inversion, per sampling setting.
     pub sea: Vec<super::sea::SeaRow>,
+    /// The same on a short, steep spectral sea ([`super::short_sea`]):
+    /// the sampled read against the exact inversion of its choppy map.
+    pub spectral: Vec<super::sea::SeaRow>,
     /// The drag over coarser bakes against the drag over the body's own
     /// texels, per drag resolution.
     pub drag_texels: Vec<super::drag_texels::DragTexelRow>,

@@ -114,11 +114,40 @@ fn poses() -> Vec<(BodyState, f64)> {
         .collect()
 }
 
+/// A short, steep spectral sea for the spectral rows: JONSWAP of
+/// significant height 0.5 m and peak period 3 s (its peak wave 14 m long),
+/// `γ` 3.3, spreading 10, seed 1, on its default tile (112 m, 128 cells:
+/// its shortest wave 1.75 m, shorter than the boat).
+pub fn short_sea() -> Result<Water, AccuracyError> {
+    let g = soak_hydro::STANDARD_GRAVITY;
+    let spectrum = soak_hydro::SeaSpectrum::jonswap(0.5, 3.0);
+    let sea = soak_hydro::SpectralSea::realize(
+        &spectrum,
+        0.0,
+        spectrum.default_tile(g),
+        soak_hydro::DEFAULT_SEA_CELLS,
+        1,
+        g,
+    )
+    .map_err(soak_hydro::HydroError::from)?;
+    Ok(Water::new(soak_hydro::SpectralSurface::new(sea)))
+}
+
 /// The sea rows for the sphere, the box and the boat at `resolution`, at
 /// 4, 8, 16 (the default) and 32 nodes per shortest wavelength; `runs`
 /// timed samples per path.
 pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, AccuracyError> {
-    let water = swell()?;
+    rows_on(&swell()?, resolution, runs)
+}
+
+/// The same rows on the spectral sea of [`short_sea`]: the sampled read
+/// against the exact inversion of its choppy map at every texel.
+pub(super) fn spectral_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, AccuracyError> {
+    rows_on(&short_sea()?, resolution, runs)
+}
+
+/// The sea rows on `water`.
+fn rows_on(water: &Water, resolution: u32, runs: usize) -> Result<Vec<SeaRow>, AccuracyError> {
     let calm = Water::calm(0.0);
     let meshes: [(&str, Mesh); 3] = [
         ("sphere 64×32", builtin::sphere(0.5, 64, 32)),
@@ -139,7 +168,7 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
         };
         let reference = poses()
             .into_iter()
-            .map(|(s, t)| evaluate(&atlas, &water, &s, &mass, t, &exact))
+            .map(|(s, t)| evaluate(&atlas, water, &s, &mass, t, &exact))
             .collect::<Result<Vec<_>, _>>()?;
         let drag_exact = HydroOptions {
             drag: Some(DRAG),
@@ -147,7 +176,7 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
         };
         let drag_reference = moving()
             .into_iter()
-            .map(|(s, t)| evaluate(&atlas, &water, &s, &mass, t, &drag_exact))
+            .map(|(s, t)| evaluate(&atlas, water, &s, &mass, t, &drag_exact))
             .collect::<Result<Vec<_>, _>>()?;
         for per in [4.0, 8.0, 16.0, 32.0] {
             let options = HydroOptions {
@@ -164,10 +193,10 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
             for ((state, t), e) in poses().into_iter().zip(&reference) {
                 worst(
                     &mut errors,
-                    &evaluate(&atlas, &water, &state, &mass, t, &options)?,
+                    &evaluate(&atlas, water, &state, &mass, t, &options)?,
                     e,
                 );
-                let s = tiled.evaluate(&atlas, &water, &state, &mass, t, &options)?;
+                let s = tiled.evaluate(&atlas, water, &state, &mass, t, &options)?;
                 worst(&mut tiled_errors, &s, e);
             }
             let radius = 0.5 * diameter;
@@ -181,14 +210,14 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
             };
             let mut drag_errors = [0.0f64; 3];
             for ((state, t), e) in moving().into_iter().zip(&drag_reference) {
-                let texels = evaluate(&atlas, &water, &state, &mass, t, &per_texel)?;
-                let tiles = tiled.evaluate(&atlas, &water, &state, &mass, t, &per_tile)?;
+                let texels = evaluate(&atlas, water, &state, &mass, t, &per_texel)?;
+                let tiles = tiled.evaluate(&atlas, water, &state, &mass, t, &per_tile)?;
                 drag_errors[0] = drag_errors[0].max(drag_difference(&texels, e, radius));
                 drag_errors[1] = drag_errors[1].max(drag_difference(&tiles, e, radius));
                 drag_errors[2] = drag_errors[2].max(drag_difference(&tiles, &texels, radius));
             }
             let (state, t) = poses()[0];
-            let patch = sampled_water(&atlas, &water, &state, t, &options)?;
+            let patch = sampled_water(&atlas, water, &state, t, &options)?;
             let patch = patch
                 .as_ref()
                 .and_then(|w| w.surface.as_any())
@@ -206,13 +235,13 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
                 runs,
                 [
                     &mut || {
-                        black_box(evaluate(&atlas, &water, &state, &mass, t, &options).ok());
+                        black_box(evaluate(&atlas, water, &state, &mass, t, &options).ok());
                     },
                     &mut || {
-                        black_box(tiled.evaluate(&atlas, &water, &state, &mass, t, &options).ok());
+                        black_box(tiled.evaluate(&atlas, water, &state, &mass, t, &options).ok());
                     },
                     &mut || {
-                        black_box(evaluate(&atlas, &water, &state, &mass, t, &exact).ok());
+                        black_box(evaluate(&atlas, water, &state, &mass, t, &exact).ok());
                     },
                     &mut || {
                         black_box(evaluate(&atlas, &calm, &state, &mass, t, &options).ok());
@@ -220,14 +249,14 @@ pub(super) fn sea_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>, Accu
                     &mut || {
                         black_box(
                             tiled
-                                .evaluate(&atlas, &water, &moving_state, &mass, t, &per_tile)
+                                .evaluate(&atlas, water, &moving_state, &mass, t, &per_tile)
                                 .ok(),
                         );
                     },
                     &mut || {
                         black_box(
                             tiled
-                                .evaluate(&atlas, &water, &moving_state, &mass, t, &per_texel)
+                                .evaluate(&atlas, water, &moving_state, &mass, t, &per_texel)
                                 .ok(),
                         );
                     },

@@ -119,6 +119,10 @@ pub fn text_table(report: &Report) -> String {
     if !report.sea.is_empty() {
         s.push_str(&sea_text(report));
     }
+    if !report.spectral.is_empty() {
+        s.push_str("\non a short JONSWAP sea (Hs 0.5 m, Tp 3 s): sampled read against the exact inversion (worst of six poses)\n");
+        s.push_str(&aligned(&sea_cells(&report.spectral), false));
+    }
     if !report.drag_texels.is_empty() {
         s.push_str("\ndrag over a coarser bake of the mesh against the drag over the body's own texels (worst of six moving poses)\n");
         s.push_str(&aligned(&drag_texel_cells(&report.drag_texels), true));
@@ -142,6 +146,15 @@ of its drag (force, and torque over the bounding radius) from the exact inversio
 velocity read from the sampled sea at every texel (`SeaVelocity::PerTexel`) and by the tiled path \
 once per tile (`SeaVelocity::PerTile`, the default), and between the two; and the tiled path's \
 time with drag, per tile and per texel.\n\n";
+
+/// What the spectral rows are, before their table.
+const SPECTRAL_INTRO: &str = "## On a spectral sea\n\n\
+The same rows on a short, steep spectral sea: JONSWAP of significant height 0.5 m and peak period \
+3 s (its peak wave 14 m long; γ 3.3, spreading 10, seed 1) on its default tile (112 m, 128 cells: \
+its shortest wave 1.75 m, shorter than the boat), the same six poses. The reference is the exact \
+inversion of the sea's choppy map at every texel (`SeaSampling::Exact`: Newton's method on the \
+tile's interpolated fields); the sampled read samples that surface over the body's footprint at the \
+given nodes per shortest wavelength (1.75 m), as on the swell.\n\n";
 
 /// What the drag-texel rows are, before their table.
 const DRAG_TEXELS_INTRO: &str = "## Drag over a coarser bake\n\n\
@@ -264,6 +277,11 @@ pub fn markdown(report: &Report, path: &Path) -> String {
     if !report.sea.is_empty() {
         s.push_str(SEA_INTRO);
         s.push_str(&markdown_rows(&sea_cells(&report.sea), 2));
+        s.push('\n');
+    }
+    if !report.spectral.is_empty() {
+        s.push_str(SPECTRAL_INTRO);
+        s.push_str(&markdown_rows(&sea_cells(&report.spectral), 2));
         s.push('\n');
     }
     if !report.drag_texels.is_empty() {
