@@ -32,9 +32,32 @@ impl Fft2 {
     /// otherwise `Σ X e^{+i k·x}`, not divided by `n²`); `scratch` holds
     /// `n²` values.
     pub(crate) fn process(&self, data: &mut [Complex<f64>], forward: bool, scratch: &mut [Complex<f64>]) {
+        self.run(data, forward, scratch, true);
+    }
+
+    /// [`Fft2::process`] on the calling thread alone (for callers that run
+    /// several transforms in parallel).
+    pub(crate) fn process_serial(
+        &self,
+        data: &mut [Complex<f64>],
+        forward: bool,
+        scratch: &mut [Complex<f64>],
+    ) {
+        self.run(data, forward, scratch, false);
+    }
+
+    /// The rows, then the columns as rows of the transpose; the rows in
+    /// parallel where `parallel`.
+    fn run(&self, data: &mut [Complex<f64>], forward: bool, scratch: &mut [Complex<f64>], parallel: bool) {
         let n = self.n;
         let fft = if forward { &self.forward } else { &self.inverse };
-        let rows = |data: &mut [Complex<f64>]| data.par_chunks_mut(n * 8).for_each(|c| fft.process(c));
+        let rows = |data: &mut [Complex<f64>]| {
+            if parallel {
+                data.par_chunks_mut(n * 8).for_each(|c| fft.process(c));
+            } else {
+                data.chunks_mut(n * 8).for_each(|c| fft.process(c));
+            }
+        };
         rows(data);
         transpose(data, scratch, n);
         rows(scratch);

@@ -19,7 +19,8 @@ use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuError, GpuHydro, GpuHydroError, GpuOptions, adapter_label};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HeightField, HydroForces, HydroOptions, MassModel,
-    MassProperties, Plane, SeaSampling, SeaVelocity, Surface, SurfacePatch, Unbounded, Water, evaluate,
+    MassProperties, Plane, SeaSampling, SeaSpectrum, SeaVelocity, SpectralSea, SpectralSurface, Surface,
+    SurfacePatch, Unbounded, Water, evaluate,
 };
 
 const MESHES: [&str; 7] = [
@@ -209,6 +210,14 @@ fn swell() -> Water {
 
 fn swell_waves() -> Vec<GerstnerWave> {
     GerstnerWave::SWELL.to_vec()
+}
+
+/// A short JONSWAP sea (significant height 0.5 m, peak period 3 s: its
+/// peak wave 14 m long) on its default tile of 64 cells.
+fn spectral() -> Water {
+    let spectrum = SeaSpectrum::jonswap(0.5, 3.0);
+    let sea = SpectralSea::realize(&spectrum, 0.1, spectrum.default_tile(9.80665), 64, 5, 9.80665).unwrap();
+    Water::new(SpectralSurface::new(sea))
 }
 
 fn height_field() -> Water {
@@ -588,6 +597,23 @@ fn sampled_swell_parity_256() {
 fn sampled_swell_drag_parity() {
     let sampled = HydroOptions::default().sea;
     run_parity_read(256, swell, 20, Some(DRAG), 13, "drag, swell, sampled", sampled);
+}
+
+/// A spectral sea, read through each body's patch sampled on the CPU as
+/// the Gerstner sea is, agrees alike.
+#[test]
+fn sampled_spectral_parity_256() {
+    let sampled = HydroOptions::default().sea;
+    run_parity_read(256, spectral, 20, None, 15, "JONSWAP sea, sampled", sampled);
+    run_parity_read(
+        256,
+        spectral,
+        10,
+        Some(DRAG),
+        16,
+        "drag, JONSWAP sea, sampled",
+        sampled,
+    );
 }
 
 /// The exact read of the swell, for the sampled tests beside it.

@@ -169,11 +169,22 @@ fn quick_report_holds_its_promises() {
                 .unwrap_or_else(|| panic!("{mesh} at {per} per wavelength"))
         };
         let (coarse, default) = (at(4.0), at(16.0));
-        for e in [default.volume_error, default.cob_error, default.tiled_errors[0], default.tiled_errors[1]] {
+        for e in [
+            default.volume_error,
+            default.cob_error,
+            default.tiled_errors[0],
+            default.tiled_errors[1],
+        ] {
             assert!(e.is_finite() && e < 1e-5, "{mesh}: {default:?}");
         }
-        assert!(default.drag_errors[0] < 2e-2 && default.drag_errors[1] < 2e-2, "{mesh}: {default:?}");
-        assert!(default.volume_error < coarse.volume_error, "{mesh}: {default:?} against {coarse:?}");
+        assert!(
+            default.drag_errors[0] < 2e-2 && default.drag_errors[1] < 2e-2,
+            "{mesh}: {default:?}"
+        );
+        assert!(
+            default.volume_error < coarse.volume_error,
+            "{mesh}: {default:?} against {coarse:?}"
+        );
     }
     assert!(table.contains("## On a spectral sea"));
 

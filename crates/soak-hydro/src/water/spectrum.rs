@@ -19,6 +19,7 @@
 
 use nalgebra::Vector2;
 use rand::{Rng, SeedableRng};
+use rayon::prelude::*;
 use rustfft::num_complex::Complex;
 use serde::{Deserialize, Serialize};
 
@@ -660,64 +661,84 @@ impl SpectralSea {
         let n = self.cells;
         let dk = std::f64::consts::TAU / self.size;
         let lambda = self.choppiness;
-        // Per mode: A e^{−iωt}, k and k̂, ω.
-        let turned: Vec<Turned> = self
-            .amplitudes
-            .iter()
-            .enumerate()
-            .map(|(i, a)| {
-                let k = [signed(i % n, n) as f64 * dk, signed(i / n, n) as f64 * dk];
+        // Per mode: A e^{−iωt}, k and k̂, ω; the rows in parallel, each
+        // mode without a division.
+        let mut turned = vec![Turned::default(); n * n];
+        turned.par_chunks_mut(n).enumerate().for_each(|(lz, row)| {
+            let kz = signed(lz, n) as f64 * dk;
+            for (lx, m) in row.iter_mut().enumerate() {
+                let a = self.amplitudes[lz * n + lx];
+                let k = [signed(lx, n) as f64 * dk, kz];
                 let kk = k[0].hypot(k[1]);
                 if kk == 0.0 || a.norm_sqr() == 0.0 {
-                    return Turned::default();
+                    continue;
                 }
                 let omega = (self.gravity * kk).sqrt();
-                Turned {
+                *m = Turned {
                     a: a * Complex::from_polar(1.0, -omega * t),
                     k,
                     unit: [k[0] / kk, k[1] / kk],
                     omega,
-                }
-            })
-            .collect();
-        let mut scratch = vec![Complex::default(); n * n];
+                };
+            }
+        });
         let i = Complex::i();
-        // Two real fields per transform: `F = Re Σ c_k e^{ik·x}` has the
-        // Hermitian coefficients `½ (c_k + conj(c_{−k}))`, so `F + i G`
-        // is the transform of `F̂ + i Ĝ` (no energy on the Nyquist row and
-        // column, so `−k` of every mode is on the grid).
-        let opposite = |j: usize| ((n - j / n) % n) * n + (n - j % n) % n;
-        let mut pair = |f: &dyn Fn(&Turned) -> Complex<f64>, g: &dyn Fn(&Turned) -> Complex<f64>| {
-            let cf: Vec<Complex<f64>> = turned.iter().map(f).collect();
-            let cg: Vec<Complex<f64>> = turned.iter().map(g).collect();
-            let mut data: Vec<Complex<f64>> = (0..n * n)
-                .map(|j| {
-                    let o = opposite(j);
-                    0.5 * (cf[j] + cf[o].conj()) + i * 0.5 * (cg[j] + cg[o].conj())
-                })
-                .collect();
-            self.fft.process(&mut data, false, &mut scratch);
+        let turned = &turned[..];
+        // The seven transforms, two real fields each, in parallel: each
+        // on one thread, so that the result does not depend on how many.
+        let transform = |which: usize| {
+            let mut data = match which {
+                0 => hermitian_pair(turned, n, |m| m.a, |m| -i * m.omega * m.a),
+                1 => hermitian_pair(
+                    turned,
+                    n,
+                    |m| i * lambda * m.unit[0] * m.a,
+                    |m| i * lambda * m.unit[1] * m.a,
+                ),
+                2 => hermitian_pair(turned, n, |m| i * m.k[0] * m.a, |m| i * m.k[1] * m.a),
+                3 => hermitian_pair(
+                    turned,
+                    n,
+                    |m| -lambda * m.unit[0] * m.k[0] * m.a,
+                    |m| -lambda * m.unit[1] * m.k[1] * m.a,
+                ),
+                4 => hermitian_pair(
+                    turned,
+                    n,
+                    |m| -lambda * m.unit[0] * m.k[1] * m.a,
+                    |m| -m.k[0] * m.k[1] * m.a,
+                ),
+                5 => hermitian_pair(
+                    turned,
+                    n,
+                    |m| -i * lambda * m.unit[0] * m.k[0] * m.k[1] * m.a,
+                    |m| -i * lambda * m.unit[1] * m.k[0] * m.k[1] * m.a,
+                ),
+                // Linear theory's water velocity at the node as a fixed
+                // point (the particle's at choppiness 1), whatever the
+                // choppiness.
+                _ => hermitian_pair(
+                    turned,
+                    n,
+                    |m| m.omega * m.unit[0] * m.a,
+                    |m| m.omega * m.unit[1] * m.a,
+                ),
+            };
+            let mut scratch = vec![Complex::default(); n * n];
+            self.fft.process_serial(&mut data, false, &mut scratch);
             data.into_iter()
                 .map(|c| (c.re, c.im))
                 .unzip::<f64, f64, Vec<f64>, Vec<f64>>()
         };
-        let (height, vy) = pair(&|m| m.a, &|m| -i * m.omega * m.a);
-        let (dx, dz) = pair(&|m| i * lambda * m.unit[0] * m.a, &|m| {
-            i * lambda * m.unit[1] * m.a
-        });
-        let (hx, hz) = pair(&|m| i * m.k[0] * m.a, &|m| i * m.k[1] * m.a);
-        let (dxx, dzz) = pair(&|m| -lambda * m.unit[0] * m.k[0] * m.a, &|m| {
-            -lambda * m.unit[1] * m.k[1] * m.a
-        });
-        let (dxz, hxz) = pair(&|m| -lambda * m.unit[0] * m.k[1] * m.a, &|m| {
-            -m.k[0] * m.k[1] * m.a
-        });
-        let (dx_xz, dz_xz) = pair(&|m| -i * lambda * m.unit[0] * m.k[0] * m.k[1] * m.a, &|m| {
-            -i * lambda * m.unit[1] * m.k[0] * m.k[1] * m.a
-        });
-        // Linear theory's water velocity at the node as a fixed point (the
-        // particle's at choppiness 1), whatever the choppiness.
-        let (vx, vz) = pair(&|m| m.omega * m.unit[0] * m.a, &|m| m.omega * m.unit[1] * m.a);
+        let mut out: Vec<(Vec<f64>, Vec<f64>)> = (0..7).into_par_iter().map(transform).collect();
+        let mut next = || out.remove(0);
+        let (height, vy) = next();
+        let (dx, dz) = next();
+        let (hx, hz) = next();
+        let (dxx, dzz) = next();
+        let (dxz, hxz) = next();
+        let (dx_xz, dz_xz) = next();
+        let (vx, vz) = next();
         SeaFields {
             time: t,
             level: self.level,
@@ -741,6 +762,32 @@ struct Turned {
     k: [f64; 2],
     unit: [f64; 2],
     omega: f64,
+}
+
+/// The coefficients whose transform is `F + i G`, `F` and `G` the real
+/// fields of the modes' coefficients `f` and `g`: `F = Re Σ c_k e^{ik·x}`
+/// has the Hermitian coefficients `½ (c_k + conj(c_{−k}))`, so `F + i G`
+/// is the transform of `F̂ + i Ĝ` (no energy on the Nyquist row and
+/// column, so `−k` of every mode is on the grid). Row by row: the mode
+/// opposite `(lx, lz)` is `(−lx, −lz)` taken into the tile, found without
+/// a division.
+fn hermitian_pair<F, G>(turned: &[Turned], n: usize, f: F, g: G) -> Vec<Complex<f64>>
+where
+    F: Fn(&Turned) -> Complex<f64>,
+    G: Fn(&Turned) -> Complex<f64>,
+{
+    let i = Complex::i();
+    let mut data = Vec::with_capacity(n * n);
+    for lz in 0..n {
+        let row = lz * n;
+        let opposite_row = ((n - lz) % n) * n;
+        for lx in 0..n {
+            let opposite = if lx == 0 { 0 } else { n - lx };
+            let (m, o) = (&turned[row + lx], &turned[opposite_row + opposite]);
+            data.push(0.5 * (f(m) + f(o).conj()) + i * 0.5 * (g(m) + g(o).conj()));
+        }
+    }
+    data
 }
 
 /// Transform index `i` of `n` as a signed wavenumber index.

@@ -168,7 +168,8 @@ impl Column {
     /// The columns measured, in table order: Rapier alone, then per
     /// water (calm, swell, JONSWAP) buoyancy, buoyancy with drag and
     /// buoyancy with radiation on the CPU, then (with `gpu`) the first two
-    /// on the GPU for calm water and the swell.
+    /// on the GPU for each water (a spectral sea read there through each
+    /// body's patch, sampled on the CPU).
     pub fn all(gpu: bool) -> Vec<Column> {
         Self::on(gpu, &WaterKind::ALL)
     }
@@ -184,11 +185,6 @@ impl Column {
         };
         for &device in devices {
             for water in WaterKind::ALL.into_iter().filter(|w| waters.contains(w)) {
-                // On the GPU a spectral sea is read through each body's
-                // patch sampled on the CPU: not measured there yet.
-                if device == Device::Gpu && water == WaterKind::Jonswap {
-                    continue;
-                }
                 for variant in [Variant::Buoyancy, Variant::BuoyancyDrag] {
                     v.push(Column::soak(variant, water, device));
                 }
