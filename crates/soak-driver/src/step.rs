@@ -186,6 +186,12 @@ impl<H: Handle> Driver<H> {
         // the waves does not depend on the waves), and floats on the water
         // with the waves on it less that depression, sampled on the waves'
         // cells.
+        // A surface that evaluates something for every reader at `t` (a
+        // spectral sea's tile) does it once, with every thread, before the
+        // bodies read it in parallel.
+        if !work.is_empty() {
+            self.water.surface.prepare(t);
+        }
         let (seas, pressed): (Vec<Option<Water>>, Vec<Option<Pressed>>) = {
             let (bodies, water, waves) = (&self.bodies, &self.water, self.waves.as_deref());
             work.par_iter()

@@ -180,6 +180,11 @@ impl Surface for SpectralSurface {
         }
     }
 
+    /// Evaluates the tile at `t` (its seven transforms in parallel).
+    fn prepare(&self, t: f64) {
+        let _ = self.fields(t);
+    }
+
     fn velocity_under(&self, p: &Point3<f64>, t: f64, height: f64, _hint: &[f64; 2]) -> Vector3<f64> {
         self.velocity_at(&self.fields(t), [p.x, p.z], p.y.min(height))
     }

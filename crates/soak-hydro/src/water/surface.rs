@@ -123,6 +123,15 @@ pub trait Surface: Send + Sync {
         ]
     }
 
+    /// Readies the surface for reads at time `t` (s) from many threads at
+    /// once: a surface that evaluates something for every reader at a
+    /// time (a spectral sea's tile) does it here, with every thread,
+    /// rather than in the first read while the others wait for it. The
+    /// default does nothing; reads are correct without it.
+    fn prepare(&self, t: f64) {
+        let _ = t;
+    }
+
     /// Heights and slopes at the nodes of a square grid at time `t` (s):
     /// node `(i, j)` at `(origin[0] + i spacing, origin[1] + j spacing)`
     /// (m), stored at `j nodes[0] + i` of `out` (its length
