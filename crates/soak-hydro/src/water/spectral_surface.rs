@@ -5,6 +5,7 @@ use std::sync::{Arc, RwLock};
 
 use nalgebra::{Point3, Vector3};
 
+use super::surface::fill_nodes;
 use super::{SeaFields, SpectralSea, Surface, SurfaceNode};
 
 /// A spectral sea as a [`Surface`], repeating with its tile's period.
@@ -166,18 +167,15 @@ impl Surface for SpectralSurface {
         out: &mut [SurfaceNode],
     ) {
         let f = self.fields(t);
-        let mut hint = [0.0; 2];
-        for (k, node) in out.iter_mut().enumerate().take(nodes[0] * nodes[1]) {
-            let (i, j) = (k % nodes[0], k / nodes[0]);
-            let (x, z) = (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
-            let (rest, (p, jac, g)) = f.invert(x, z, hint);
-            hint = [x - rest[0], z - rest[1]];
-            *node = SurfaceNode {
+        fill_nodes(origin, spacing, nodes, out, |x, z, hint| {
+            let (rest, (p, jac, g)) = f.invert(x, z, *hint);
+            *hint = [x - rest[0], z - rest[1]];
+            SurfaceNode {
                 height: p[1],
                 slope: slope_through(&jac, &g),
-                hint,
-            };
-        }
+                hint: *hint,
+            }
+        });
     }
 
     /// Evaluates the tile at `t` (its seven transforms in parallel).

@@ -13,6 +13,27 @@ pub const AIR_DENSITY: f64 = 1.2;
 /// Standard gravity, m/s².
 pub const STANDARD_GRAVITY: f64 = 9.80665;
 
+/// Fills `out` with `node(x, z, hint)` at the nodes of the grid of
+/// [`Surface::sample_nodes`], row by row, `hint` (zeroed at the start)
+/// carried from each node to the next.
+pub(crate) fn fill_nodes(
+    origin: [f64; 2],
+    spacing: f64,
+    nodes: [usize; 2],
+    out: &mut [SurfaceNode],
+    mut node: impl FnMut(f64, f64, &mut [f64; 2]) -> SurfaceNode,
+) {
+    let mut hint = [0.0; 2];
+    for (k, slot) in out.iter_mut().enumerate().take(nodes[0] * nodes[1]) {
+        let (i, j) = (k % nodes[0], k / nodes[0]);
+        *slot = node(
+            origin[0] + i as f64 * spacing,
+            origin[1] + j as f64 * spacing,
+            &mut hint,
+        );
+    }
+}
+
 /// The surface at one node of a grid ([`Surface::sample_nodes`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SurfaceNode {
@@ -147,17 +168,14 @@ pub trait Surface: Send + Sync {
         nodes: [usize; 2],
         out: &mut [SurfaceNode],
     ) {
-        let mut hint = [0.0; 2];
-        for (k, node) in out.iter_mut().enumerate().take(nodes[0] * nodes[1]) {
-            let (i, j) = (k % nodes[0], k / nodes[0]);
-            let (x, z) = (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
-            let (height, _) = self.probe(&Point3::new(x, 0.0, z), t, false, &mut hint);
-            *node = SurfaceNode {
+        fill_nodes(origin, spacing, nodes, out, |x, z, hint| {
+            let (height, _) = self.probe(&Point3::new(x, 0.0, z), t, false, hint);
+            SurfaceNode {
                 height,
-                slope: self.slope(x, z, t, &hint),
-                hint,
-            };
-        }
+                slope: self.slope(x, z, t, hint),
+                hint: *hint,
+            }
+        });
     }
 
     /// The fluid's velocity at `p` (m) and time `t` (s), m/s, where the
