@@ -9,7 +9,8 @@
 //! (tiled, the fluid's velocity read once per tile and at every texel;
 //! and with the drag over a 64² bake of the same mesh),
 //! at 1024² and 128²; the boat at 1024², per texel and tiled; the sphere
-//! at 2048², beyond the cache; a step of the interactive wave surface.
+//! at 2048², beyond the cache; a step of the interactive wave surface; a
+//! spectral sea's tile evaluated at one time.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
@@ -17,8 +18,8 @@ use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::reference::{self, ClipPlane};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, DragTexels, Gerstner, GerstnerWave, HydroOptions, InteractiveWaves,
-    MassModel, MassProperties, SeaSampling, SeaVelocity, TiledAtlas, Water, WaveRegion, evaluate,
-    streaming_read,
+    MassModel, MassProperties, SeaSampling, SeaSpectrum, SeaVelocity, SpectralSea, TiledAtlas, Water,
+    WaveRegion, evaluate, streaming_read,
 };
 
 /// `mesh` baked at `n`², and the mass properties of a solid of half the
@@ -311,5 +312,26 @@ fn waves(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, hydro, small, boat, beyond_the_cache, waves);
+/// A spectral sea's whole tile at one time (`SpectralSea::fields`: seven
+/// inverse FFTs, fourteen real fields), the `soak bench` JONSWAP sea (Hs
+/// 2 m, Tp 8 s, its default 800 m tile) at 128² and 256² cells: the fixed
+/// cost of a step on it, whatever the number of bodies.
+fn spectral(c: &mut Criterion) {
+    let g = soak_hydro::STANDARD_GRAVITY;
+    let spectrum = SeaSpectrum::jonswap(2.0, 8.0);
+    let mut group = c.benchmark_group("spectral_tile");
+    for cells in [128, 256] {
+        let sea = SpectralSea::realize(&spectrum, 0.0, spectrum.default_tile(g), cells, 0, g).unwrap();
+        let mut t = 0.0;
+        group.bench_function(format!("fields_{cells}"), |b| {
+            b.iter(|| {
+                t += 1.0 / 60.0;
+                sea.fields(t)
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, hydro, small, boat, beyond_the_cache, waves, spectral);
 criterion_main!(benches);
