@@ -776,15 +776,26 @@ where
     F: Fn(&Turned) -> Complex<f64>,
     G: Fn(&Turned) -> Complex<f64>,
 {
-    let i = Complex::i();
-    let mut data = Vec::with_capacity(n * n);
+    let i = Complex::<f64>::i();
+    let mut data = vec![Complex::new(0.0, 0.0); n * n];
     for lz in 0..n {
         let row = lz * n;
         let opposite_row = ((n - lz) % n) * n;
         for lx in 0..n {
             let opposite = if lx == 0 { 0 } else { n - lx };
-            let (m, o) = (&turned[row + lx], &turned[opposite_row + opposite]);
-            data.push(0.5 * (f(m) + f(o).conj()) + i * 0.5 * (g(m) + g(o).conj()));
+            let (k, ko) = (row + lx, opposite_row + opposite);
+            // The opposite mode's coefficients are the conjugates of this
+            // one's: each pair is evaluated once, from its first mode.
+            if ko < k {
+                continue;
+            }
+            let (m, o) = (&turned[k], &turned[ko]);
+            let (fm, fo, gm, go) = (f(m), f(o), g(m), g(o));
+            let (a, b) = (0.5 * (fm + fo.conj()), 0.5 * (gm + go.conj()));
+            data[k] = a + i * b;
+            if ko != k {
+                data[ko] = a.conj() + i * b.conj();
+            }
         }
     }
     data
