@@ -281,7 +281,6 @@ impl SurfacePatch {
         let h: Vec<f64> = sampled.iter().map(|s| s.height).collect();
         let sx: Vec<f64> = sampled.iter().map(|s| s.slope[0]).collect();
         let sz: Vec<f64> = sampled.iter().map(|s| s.slope[1]).collect();
-        let hints: Vec<[f64; 2]> = sampled.iter().map(|s| s.hint).collect();
         // Twists `∂²f/∂x∂z`: central differences of the slopes (one-sided
         // at the edges), the mean of the two mixed derivatives.
         let diff = |f: &[f64], k: usize, i: usize, count: usize, stride: usize| -> f64 {
@@ -354,7 +353,7 @@ impl SurfacePatch {
         let velocity = match velocity {
             None => None,
             Some((y_min, y_max)) => Some(Self::sample_velocity(
-                surface, t, origin, spacing, nodes, &h, &hints, y_min, y_max,
+                surface, t, origin, spacing, nodes, &sampled, y_min, y_max,
             )?),
         };
         Ok(Self {
@@ -375,8 +374,7 @@ impl SurfacePatch {
         origin: [f64; 2],
         spacing: f64,
         nodes: [usize; 2],
-        heights: &[f64],
-        hints: &[[f64; 2]],
+        columns: &[SurfaceNode],
         y_min: f64,
         y_max: f64,
     ) -> Result<VelocityGrid, WaterError> {
@@ -387,37 +385,16 @@ impl SurfacePatch {
         }
         let dy = spacing;
         let ny = (((y_max - y_min).max(0.0) / dy).ceil() as usize + 1).min(MAX_PATCH_NODES);
-        let mut values = Vec::with_capacity(nodes[0] * nodes[1] * ny);
-        // Above the surface the velocity is the surface's own: read once
-        // per column, for every node of the column above it.
-        let mut at_surface: Vec<Option<[f64; 3]>> = vec![None; nodes[0] * nodes[1]];
-        for l in 0..ny {
-            let y = y_min + l as f64 * dy;
-            for j in 0..nodes[1] {
-                for i in 0..nodes[0] {
-                    let column = j * nodes[0] + i;
-                    let above = y >= heights[column];
-                    if above && let Some(v) = at_surface[column] {
-                        values.push(v);
-                        continue;
-                    }
-                    let (x, z) = (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
-                    let y = y.min(heights[column]);
-                    let v = surface.velocity_under(&Point3::new(x, y, z), t, heights[column], &hints[column]);
-                    if let Some(c) = v.iter().find(|c| !c.is_finite()) {
-                        return Err(WaterError::Parameter {
-                            name: "patch velocity",
-                            value: *c,
-                        });
-                    }
-                    let v = [v.x, v.y, v.z];
-                    if above {
-                        at_surface[column] = Some(v);
-                    }
-                    values.push(v);
-                }
-            }
+        let ys: Vec<f64> = (0..ny).map(|l| y_min + l as f64 * dy).collect();
+        let mut sampled = vec![Vector3::zeros(); nodes[0] * nodes[1] * ny];
+        surface.sample_velocities(t, origin, spacing, nodes, columns, &ys, &mut sampled);
+        if let Some(c) = sampled.iter().flat_map(|v| v.iter()).find(|c| !c.is_finite()) {
+            return Err(WaterError::Parameter {
+                name: "patch velocity",
+                value: *c,
+            });
         }
+        let values: Vec<[f64; 3]> = sampled.iter().map(|v| [v.x, v.y, v.z]).collect();
         Ok(VelocityGrid::new(y_min, dy, [nodes[0], ny, nodes[1]], &values))
     }
 

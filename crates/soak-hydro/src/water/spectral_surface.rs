@@ -115,18 +115,27 @@ impl SpectralSurface {
     /// The water's velocity at `(point, y)`, `point` its horizontal
     /// position (m) and `y` its height, taken at most the surface's.
     fn velocity_at(&self, f: &SeaFields, point: [f64; 2], y: f64) -> Vector3<f64> {
+        Self::orbital(f, point) * self.decay(f, y)
+    }
+
+    /// The velocity at the mean level under `point`, bilinear between the
+    /// tile's nodes.
+    fn orbital(f: &SeaFields, point: [f64; 2]) -> Vector3<f64> {
         let [vx, vy, vz] = &f.velocity;
         let n = f.cells;
-        // Bilinear between the nodes.
         let ([ix, iz], [u, v]) = f.cell(point[0], point[1]);
         let at = |c: &[f64]| {
             let i = |a: usize, b: usize| ((iz + b) % n) * n + (ix + a) % n;
             (1.0 - v) * ((1.0 - u) * c[i(0, 0)] + u * c[i(1, 0)])
                 + v * ((1.0 - u) * c[i(0, 1)] + u * c[i(1, 1)])
         };
+        Vector3::new(at(vx), at(vy), at(vz))
+    }
+
+    /// The velocity's factor at height `y` (m) against the mean level's.
+    fn decay(&self, f: &SeaFields, y: f64) -> f64 {
         let z = self.mean_wavenumber * (y - f.level);
-        let decay = if z > 0.0 { 1.0 + z } else { z.exp() };
-        Vector3::new(at(vx), at(vy), at(vz)) * decay
+        if z > 0.0 { 1.0 + z } else { z.exp() }
     }
 }
 
@@ -185,6 +194,32 @@ impl Surface for SpectralSurface {
 
     fn velocity_under(&self, p: &Point3<f64>, t: f64, height: f64, _hint: &[f64; 2]) -> Vector3<f64> {
         self.velocity_at(&self.fields(t), [p.x, p.z], p.y.min(height))
+    }
+
+    /// The tile looked up once for the grid, each column's velocity at the
+    /// mean level interpolated once.
+    fn sample_velocities(
+        &self,
+        t: f64,
+        origin: [f64; 2],
+        spacing: f64,
+        nodes: [usize; 2],
+        columns: &[SurfaceNode],
+        ys: &[f64],
+        out: &mut [Vector3<f64>],
+    ) {
+        let f = self.fields(t);
+        let n = nodes[0] * nodes[1];
+        for (k, column) in columns.iter().enumerate().take(n) {
+            let (i, j) = (k % nodes[0], k / nodes[0]);
+            let orbital = Self::orbital(
+                &f,
+                [origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing],
+            );
+            for (l, &y) in ys.iter().enumerate() {
+                out[l * n + k] = orbital * self.decay(&f, y.min(column.height));
+            }
+        }
     }
 
     fn velocity(&self, p: &Point3<f64>, t: f64) -> Vector3<f64> {

@@ -3,7 +3,7 @@
 
 use nalgebra::{Point3, Vector3};
 
-use super::{Plane, Unbounded};
+use super::{DEFAULT_SEA_CELLS, Plane, SeaSpectrum, SpectralSea, SpectralSurface, Unbounded};
 use crate::error::WaterError;
 
 /// Density of fresh water, kg/m³.
@@ -178,6 +178,54 @@ pub trait Surface: Send + Sync {
         });
     }
 
+    /// The fluid's velocity at time `t` (s) at the nodes of a box grid,
+    /// m/s: the columns of [`Surface::sample_nodes`]' grid (`origin`,
+    /// `spacing`, `nodes`) whose surface `columns` holds as `sample_nodes`
+    /// filled it, at the heights `ys` (m); the velocity at height `ys[l]`
+    /// of column `(i, j)` is stored at `(l nodes[1] + j) nodes[0] + i` of
+    /// `out` (its length `ys.len() nodes[0] nodes[1]`). Above a column's
+    /// surface the velocity is the surface's own. The default reads
+    /// [`Surface::velocity_under`] at each node under its column's surface
+    /// and once for all of a column's nodes above it; a surface that can
+    /// share work across the grid (a spectral sea looks its tile up once
+    /// and interpolates each column once) overrides it.
+    #[allow(clippy::too_many_arguments)]
+    fn sample_velocities(
+        &self,
+        t: f64,
+        origin: [f64; 2],
+        spacing: f64,
+        nodes: [usize; 2],
+        columns: &[SurfaceNode],
+        ys: &[f64],
+        out: &mut [Vector3<f64>],
+    ) {
+        let n = nodes[0] * nodes[1];
+        let mut at_surface: Vec<Option<Vector3<f64>>> = vec![None; n];
+        for (l, &y) in ys.iter().enumerate() {
+            for (k, column) in columns.iter().enumerate().take(n) {
+                let above = y >= column.height;
+                let v = match at_surface[k] {
+                    Some(v) if above => v,
+                    _ => {
+                        let (i, j) = (k % nodes[0], k / nodes[0]);
+                        let p = Point3::new(
+                            origin[0] + i as f64 * spacing,
+                            y.min(column.height),
+                            origin[1] + j as f64 * spacing,
+                        );
+                        let v = self.velocity_under(&p, t, column.height, &column.hint);
+                        if above {
+                            at_surface[k] = Some(v);
+                        }
+                        v
+                    }
+                };
+                out[l * n + k] = v;
+            }
+        }
+    }
+
     /// The fluid's velocity at `p` (m) and time `t` (s), m/s, where the
     /// surface above `p` is known to be at `height` (m) and `hint` is a
     /// probe's there. The default probes again; surfaces whose velocity
@@ -217,6 +265,35 @@ impl Water {
             density: WATER_DENSITY,
             gravity: STANDARD_GRAVITY,
         }
+    }
+
+    /// Fresh water (1000 kg/m³, standard gravity) whose surface is the sea
+    /// `spectrum` realised from `seed` at mean level 0 on the spectrum's
+    /// default tile ([`SeaSpectrum::default_tile`]: eight peak wavelengths
+    /// across) of [`DEFAULT_SEA_CELLS`] nodes a side, choppiness 1. For
+    /// another tile, level or choppiness, realise a [`SpectralSea`] and hand
+    /// it to [`Water::new`] through a [`SpectralSurface`].
+    ///
+    /// ```
+    /// use soak_hydro::{SeaSpectrum, Water};
+    /// // A JONSWAP sea of significant height 2 m and peak period 8 s.
+    /// let water = Water::spectral(&SeaSpectrum::jonswap(2.0, 8.0), 7)?;
+    /// assert!(water.surface.height(0.0, 0.0, 0.0).abs() < 5.0);
+    /// # Ok::<(), soak_hydro::WaterError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`WaterError::Parameter`] naming what is invalid in `spectrum`.
+    pub fn spectral(spectrum: &SeaSpectrum, seed: u64) -> Result<Self, WaterError> {
+        let sea = SpectralSea::realize(
+            spectrum,
+            0.0,
+            spectrum.default_tile(STANDARD_GRAVITY),
+            DEFAULT_SEA_CELLS,
+            seed,
+            STANDARD_GRAVITY,
+        )?;
+        Ok(Self::new(SpectralSurface::new(sea)))
     }
 
     /// Air (1.2 kg/m³) everywhere: no free surface.

@@ -119,18 +119,8 @@ fn poses() -> Vec<(BodyState, f64)> {
 /// `γ` 3.3, spreading 10, seed 1, on its default tile (112 m, 128 cells:
 /// its shortest wave 1.75 m, shorter than the boat).
 pub fn short_sea() -> Result<Water, AccuracyError> {
-    let g = soak_hydro::STANDARD_GRAVITY;
-    let spectrum = soak_hydro::SeaSpectrum::jonswap(0.5, 3.0);
-    let sea = soak_hydro::SpectralSea::realize(
-        &spectrum,
-        0.0,
-        spectrum.default_tile(g),
-        soak_hydro::DEFAULT_SEA_CELLS,
-        1,
-        g,
-    )
-    .map_err(soak_hydro::HydroError::from)?;
-    Ok(Water::new(soak_hydro::SpectralSurface::new(sea)))
+    Water::spectral(&soak_hydro::SeaSpectrum::jonswap(0.5, 3.0), 1)
+        .map_err(|e| soak_hydro::HydroError::from(e).into())
 }
 
 /// The sea rows for the sphere, the box and the boat at `resolution`, at

@@ -94,17 +94,10 @@ pub enum WaterKind {
 /// None in practice (the parameters are valid); a [`ScalingError`] if the
 /// realisation refused them.
 pub fn jonswap() -> Result<soak_hydro::Water, ScalingError> {
-    let g = soak_hydro::STANDARD_GRAVITY;
-    let spectrum = soak_hydro::SeaSpectrum::jonswap(2.0, 8.0);
-    let sea = soak_hydro::SpectralSea::realize(
-        &spectrum,
-        0.0,
-        spectrum.default_tile(g),
-        soak_hydro::DEFAULT_SEA_CELLS,
+    Ok(soak_hydro::Water::spectral(
+        &soak_hydro::SeaSpectrum::jonswap(2.0, 8.0),
         0,
-        g,
-    )?;
-    Ok(soak_hydro::Water::new(soak_hydro::SpectralSurface::new(sea)))
+    )?)
 }
 
 impl WaterKind {
