@@ -208,3 +208,54 @@ fn the_region_follows_without_moving_the_waves() {
         assert!((waves.height(x, z) - before[k]).abs() < 1e-12, "at ({x}, {z})");
     }
 }
+
+/// A body on the waves over a sea floats on the sum of the two: at every
+/// node of the patch it reads (the cells' centres), the height is the
+/// sea's (found by inverting its choppy map, for the spectral sea) plus
+/// the waves', on a Gerstner sea and on a spectral one alike.
+#[test]
+fn the_waves_ride_on_a_gerstner_and_a_spectral_sea() {
+    use nalgebra::Isometry3;
+    use soak_bake::{Atlas, BakeOptions, builtin};
+    use soak_hydro::{BodyState, Gerstner, GerstnerWave, SeaSpectrum, SpectralSea, SpectralSurface, Water};
+
+    let mut waves = InteractiveWaves::new(region(16.0, 64), G, 1000.0, 0).unwrap();
+    waves.add_gaussian(1.0, -0.5, 0.8, 0.1);
+    for _ in 0..15 {
+        waves.step(1.0 / 30.0).unwrap();
+    }
+    let sphere = Atlas::bake(&builtin::sphere(0.5, 24, 12), BakeOptions::square(64)).unwrap();
+    let state = BodyState::at_rest(Isometry3::translation(0.6, 0.0, -0.2));
+    let spectrum = SeaSpectrum::jonswap(0.5, 3.0);
+    let seas = [
+        (
+            "gerstner",
+            Water::new(Gerstner::new(0.0, GerstnerWave::SWELL.to_vec(), G).unwrap()),
+        ),
+        (
+            "spectral",
+            Water::new(SpectralSurface::new(
+                SpectralSea::realize(&spectrum, 0.0, 56.0, 64, 4, G).unwrap(),
+            )),
+        ),
+    ];
+    let t = 1.3;
+    for (name, sea) in &seas {
+        let water = waves.water_for(sea, &sphere, &state, &[], t, false).unwrap().unwrap();
+        let mut checked = 0;
+        for iz in 0..64 {
+            for ix in 0..64 {
+                let [x, z] = waves.cell_centre(ix, iz);
+                if (x - 0.6).hypot(z + 0.2) > 0.9 {
+                    continue;
+                }
+                let expected = sea.surface.height(x, z, t) + waves.height(x, z);
+                let read = water.surface.height(x, z, t);
+                assert!((read - expected).abs() < 1e-9, "{name} at ({x}, {z}): {read} vs {expected}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 30, "{name}: {checked} nodes");
+        println!("{name}: {checked} nodes of the patch are the sea's height plus the waves'");
+    }
+}

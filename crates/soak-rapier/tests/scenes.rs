@@ -510,3 +510,69 @@ fn a_passing_boat_rocks_the_buoy_and_a_save_keeps_the_waves() {
     assert_eq!(straight.soak.state(), resumed.soak.state());
     assert!(resumed.soak.state().waves.is_some());
 }
+
+/// The interactive waves ride on a spectral sea as on calm water: the
+/// passing boat of `data/scenes/passing_boat.toml` on a JONSWAP sea (Hs
+/// 0.3 m, Tp 3 s), with its `[waves]`. The buoy, rocked by the sea alone
+/// in a run without the boat, moves as in that run until the boat's wake
+/// reaches it, then it does not: the wake rides the sea to it. Saved half
+/// way and resumed, the run equals the straight one bit for bit.
+#[test]
+fn on_a_spectral_sea_the_waves_bodies_make_ride_the_sea() {
+    let path = data("scenes/passing_boat.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let sea = "kind = \"spectrum\"\nsignificant_height = 0.3\npeak_period = 3.0\nseed = 2\n";
+    let with_boat = text.replace("kind = \"plane\"\nlevel = 0.0\n", sea);
+    assert_ne!(with_boat, text);
+    // The buoy alone: the boat's table (the first body) left out.
+    let start = with_boat.find("[[bodies]]\nname = \"boat\"").unwrap();
+    let end = with_boat.find("[[bodies]]\nname = \"buoy\"").unwrap();
+    let alone = format!("{}{}", &with_boat[..start], &with_boat[end..]);
+    let scene = LoadedScene::from_str(&with_boat, &path).unwrap();
+    let buoy_alone = LoadedScene::from_str(&alone, &path).unwrap();
+    let steps = 720;
+    let ups = |scene: &LoadedScene, buoy: usize| {
+        let mut sim = Simulation::from_scene(scene).unwrap();
+        let mut ups = Vec::with_capacity(steps);
+        for _ in 0..steps {
+            sim.step().unwrap();
+            ups.push(
+                soak_rapier::convert::rotation(*sim.world.bodies[sim.bodies[buoy].handle].rotation())
+                    * nalgebra::Vector3::y(),
+            );
+        }
+        (ups, sim)
+    };
+    let (passed, straight) = ups(&scene, 1);
+    let (rocked, _) = ups(&buoy_alone, 0);
+    // The angle between the buoy's axes in the two runs, degrees.
+    let apart: Vec<f64> = passed
+        .iter()
+        .zip(&rocked)
+        .map(|(a, b)| a.dot(b).clamp(-1.0, 1.0).acos().to_degrees())
+        .collect();
+    let most = |range: std::ops::Range<usize>| apart[range].iter().fold(0.0f64, |m, &a| m.max(a));
+    let (early, late) = (most(0..60), most(60..steps));
+    let tilt = rocked.iter().map(|u| u.y.clamp(-1.0, 1.0).acos().to_degrees()).fold(0.0f64, f64::max);
+    println!(
+        "the buoy's axis with the boat against without it: within {early:.4}° over the first second, \
+         up to {late:.2}° after (the sea alone tilts it up to {tilt:.2}°)"
+    );
+    assert!(tilt > 1.0, "the sea does not rock the buoy: {tilt}°");
+    assert!(early < 0.05, "{early}°");
+    assert!(late > 3.0, "the wake never reached the buoy: {late}°");
+    assert!(!straight.report().iter().any(|r| r.non_finite));
+
+    let mut first = Simulation::from_scene(&scene).unwrap();
+    for _ in 0..steps / 2 {
+        first.step().unwrap();
+    }
+    let bytes = first.save(&scene).unwrap().to_bytes().unwrap();
+    drop(first);
+    let mut resumed = Simulation::resume(&SavedSimulation::from_bytes(&bytes).unwrap()).unwrap();
+    for _ in steps / 2..steps {
+        resumed.step().unwrap();
+    }
+    assert_eq!(straight.soak.state(), resumed.soak.state());
+    assert!(resumed.soak.state().waves.is_some());
+}

@@ -40,4 +40,37 @@ impl crate::Surface for OnWaves<'_> {
         let (_, s) = self.waves.field(x, z, |i, j| self.cell_value(i, j));
         [base[0] + s[0], base[1] + s[1]]
     }
+
+    /// The base's nodes as the base samples them (a spectral sea looks its
+    /// tile up once and warm-starts each inversion from the last), the
+    /// waves added at each.
+    fn sample_nodes(
+        &self,
+        t: f64,
+        origin: [f64; 2],
+        spacing: f64,
+        nodes: [usize; 2],
+        out: &mut [crate::water::SurfaceNode],
+    ) {
+        self.base.sample_nodes(t, origin, spacing, nodes, out);
+        for (k, node) in out.iter_mut().enumerate().take(nodes[0] * nodes[1]) {
+            let (i, j) = (k % nodes[0], k / nodes[0]);
+            let (x, z) = (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
+            let (h, s) = self.waves.field(x, z, |i, j| self.cell_value(i, j));
+            node.height += h;
+            node.slope = [node.slope[0] + s[0], node.slope[1] + s[1]];
+        }
+    }
+
+    /// The base's velocity (the waves' own orbital velocity is not in it),
+    /// without the depth a probe would find first.
+    fn velocity_under(
+        &self,
+        p: &nalgebra::Point3<f64>,
+        t: f64,
+        _height: f64,
+        _hint: &[f64; 2],
+    ) -> nalgebra::Vector3<f64> {
+        self.base.velocity(p, t)
+    }
 }
