@@ -241,7 +241,10 @@ fn the_waves_ride_on_a_gerstner_and_a_spectral_sea() {
     ];
     let t = 1.3;
     for (name, sea) in &seas {
-        let water = waves.water_for(sea, &sphere, &state, &[], t, false).unwrap().unwrap();
+        let water = waves
+            .water_for(sea, &sphere, &state, &[], t, false)
+            .unwrap()
+            .unwrap();
         let mut checked = 0;
         for iz in 0..64 {
             for ix in 0..64 {
@@ -251,7 +254,10 @@ fn the_waves_ride_on_a_gerstner_and_a_spectral_sea() {
                 }
                 let expected = sea.surface.height(x, z, t) + waves.height(x, z);
                 let read = water.surface.height(x, z, t);
-                assert!((read - expected).abs() < 1e-9, "{name} at ({x}, {z}): {read} vs {expected}");
+                assert!(
+                    (read - expected).abs() < 1e-9,
+                    "{name} at ({x}, {z}): {read} vs {expected}"
+                );
                 checked += 1;
             }
         }

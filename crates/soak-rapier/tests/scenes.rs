@@ -553,7 +553,10 @@ fn on_a_spectral_sea_the_waves_bodies_make_ride_the_sea() {
         .collect();
     let most = |range: std::ops::Range<usize>| apart[range].iter().fold(0.0f64, |m, &a| m.max(a));
     let (early, late) = (most(0..60), most(60..steps));
-    let tilt = rocked.iter().map(|u| u.y.clamp(-1.0, 1.0).acos().to_degrees()).fold(0.0f64, f64::max);
+    let tilt = rocked
+        .iter()
+        .map(|u| u.y.clamp(-1.0, 1.0).acos().to_degrees())
+        .fold(0.0f64, f64::max);
     println!(
         "the buoy's axis with the boat against without it: within {early:.4}° over the first second, \
          up to {late:.2}° after (the sea alone tilts it up to {tilt:.2}°)"

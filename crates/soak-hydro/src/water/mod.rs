@@ -38,6 +38,7 @@ pub use self::spectral_surface::SpectralSurface;
 pub use self::spectrum::{
     DEFAULT_SEA_CELLS, ParticleJet, SEA_CELLS, SeaFields, SeaMode, SeaSpectrum, SpectralSea, SpectrumShape,
 };
+pub(crate) use self::surface::node_at;
 pub use self::surface::{
     AIR_DENSITY, STANDARD_GRAVITY, Surface, SurfaceKind, SurfaceNode, WATER_DENSITY, Water,
 };

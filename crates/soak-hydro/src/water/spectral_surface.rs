@@ -5,7 +5,7 @@ use std::sync::{Arc, RwLock};
 
 use nalgebra::{Point3, Vector3};
 
-use super::surface::fill_nodes;
+use super::surface::{fill_nodes, node_at};
 use super::{SeaFields, SpectralSea, Surface, SurfaceNode};
 
 /// A spectral sea as a [`Surface`], repeating with its tile's period.
@@ -211,11 +211,7 @@ impl Surface for SpectralSurface {
         let f = self.fields(t);
         let n = nodes[0] * nodes[1];
         for (k, column) in columns.iter().enumerate().take(n) {
-            let (i, j) = (k % nodes[0], k / nodes[0]);
-            let orbital = Self::orbital(
-                &f,
-                [origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing],
-            );
+            let orbital = Self::orbital(&f, node_at(origin, spacing, nodes, k));
             for (l, &y) in ys.iter().enumerate() {
                 out[l * n + k] = orbital * self.decay(&f, y.min(column.height));
             }

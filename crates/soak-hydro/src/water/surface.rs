@@ -25,13 +25,16 @@ pub(crate) fn fill_nodes(
 ) {
     let mut hint = [0.0; 2];
     for (k, slot) in out.iter_mut().enumerate().take(nodes[0] * nodes[1]) {
-        let (i, j) = (k % nodes[0], k / nodes[0]);
-        *slot = node(
-            origin[0] + i as f64 * spacing,
-            origin[1] + j as f64 * spacing,
-            &mut hint,
-        );
+        let [x, z] = node_at(origin, spacing, nodes, k);
+        *slot = node(x, z, &mut hint);
     }
+}
+
+/// Where node `k` of the grid of [`Surface::sample_nodes`] is, `(x, z)`
+/// (m): node `(k mod nodes[0], k div nodes[0])`.
+pub(crate) fn node_at(origin: [f64; 2], spacing: f64, nodes: [usize; 2], k: usize) -> [f64; 2] {
+    let (i, j) = (k % nodes[0], k / nodes[0]);
+    [origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing]
 }
 
 /// The surface at one node of a grid ([`Surface::sample_nodes`]).
@@ -208,12 +211,8 @@ pub trait Surface: Send + Sync {
                 let v = match at_surface[k] {
                     Some(v) if above => v,
                     _ => {
-                        let (i, j) = (k % nodes[0], k / nodes[0]);
-                        let p = Point3::new(
-                            origin[0] + i as f64 * spacing,
-                            y.min(column.height),
-                            origin[1] + j as f64 * spacing,
-                        );
+                        let [x, z] = node_at(origin, spacing, nodes, k);
+                        let p = Point3::new(x, y.min(column.height), z);
                         let v = self.velocity_under(&p, t, column.height, &column.hint);
                         if above {
                             at_surface[k] = Some(v);

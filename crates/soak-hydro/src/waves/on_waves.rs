@@ -54,8 +54,7 @@ impl crate::Surface for OnWaves<'_> {
     ) {
         self.base.sample_nodes(t, origin, spacing, nodes, out);
         for (k, node) in out.iter_mut().enumerate().take(nodes[0] * nodes[1]) {
-            let (i, j) = (k % nodes[0], k / nodes[0]);
-            let (x, z) = (origin[0] + i as f64 * spacing, origin[1] + j as f64 * spacing);
+            let [x, z] = crate::water::node_at(origin, spacing, nodes, k);
             let (h, s) = self.waves.field(x, z, |i, j| self.cell_value(i, j));
             node.height += h;
             node.slope = [node.slope[0] + s[0], node.slope[1] + s[1]];
