@@ -44,6 +44,7 @@ mod memory;
 mod model;
 mod panels;
 mod radiation;
+pub mod references;
 mod special;
 
 pub use self::error::SeakeepingError;

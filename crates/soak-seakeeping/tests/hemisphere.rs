@@ -177,34 +177,6 @@ fn the_hemisphere_limits_match_spherical_harmonics() {
     }
 }
 
-/// Hulme (1982), J. Fluid Mech. 121, Table 2: the surging hemisphere,
-/// `Ka`, `A11/(ρ⅔πa³)`, `B11/(ρω⅔πa³)` (the damping as far as the
-/// transcription at hand gives it; NaN beyond). The added mass at
-/// Ka = 0.7, 0.6682, breaks the table's otherwise smooth curve, which its
-/// neighbours and the panel solution follow within 0.4 % (0.656 would be
-/// on it); it is kept as published, and met within the 3 %.
-const HULME_SURGE: [(f64, f64, f64); 19] = [
-    (0.1, 0.5223, 0.0010),
-    (0.2, 0.5515, 0.0082),
-    (0.3, 0.5848, 0.0255),
-    (0.4, 0.6175, 0.0557),
-    (0.5, 0.6439, 0.0987),
-    (0.6, 0.6586, 0.1516),
-    (0.7, 0.6682, 0.2092),
-    (0.8, 0.6421, 0.2653),
-    (0.9, 0.6127, 0.3145),
-    (1.0, 0.5740, 0.3535),
-    (1.2, 0.4860, 0.3978),
-    (1.4, 0.4038, 0.4060),
-    (1.6, 0.3371, f64::NAN),
-    (1.8, 0.2866, f64::NAN),
-    (2.0, 0.2493, f64::NAN),
-    (2.5, 0.1961, f64::NAN),
-    (3.0, 0.1720, f64::NAN),
-    (3.4, 0.1634, f64::NAN),
-    (4.0, 0.1620, f64::NAN),
-];
-
 /// Over Ka 0.1–4, through the hemisphere's irregular frequencies (heave
 /// near Ka 2.6, surge near 3.9: without the lid's equations the surge
 /// added mass at Ka 4 is 18 % off).
@@ -213,7 +185,9 @@ fn surge_matches_hulme() {
     // 576 panels.
     let problem = hemisphere(12, 48);
     let mut worst: f64 = 0.0;
-    for (ka, a_ref, b_ref) in HULME_SURGE {
+    // Hulme (1982), Table 2 (`references::HULME_SURGE`): its added mass at
+    // Ka 0.7 breaks the table's smooth curve; it is met within the 3 %.
+    for (ka, a_ref, b_ref) in soak_seakeeping::references::HULME_SURGE {
         let c = problem.solve(Surface::Wavenumber(ka)).unwrap();
         let a = c.added_mass[(0, 0)] / displaced();
         let b = c.damping[(0, 0)] / (c.omega * displaced());
