@@ -18,7 +18,8 @@ use crate::common;
 #[derive(clap::Args)]
 pub struct Args {
     /// A mesh file (.obj, .gltf, .glb) or a builtin name.
-    mesh: String,
+    #[arg(required_unless_present = "references")]
+    mesh: Option<String>,
     /// Solid body of this density, kg/m³ (the default, 500).
     #[arg(long, conflicts_with = "shell")]
     density: Option<f64>,
@@ -50,6 +51,11 @@ pub struct Args {
     /// Print one JSON object instead of the tables.
     #[arg(long)]
     json: bool,
+    /// Instead of a mesh: the panel method against the references of two
+    /// classical bodies (Hulme's surging hemisphere, the truncated
+    /// cylinder's heave by eigenfunction expansions), a table and this PNG.
+    #[arg(long, conflicts_with_all = ["mesh", "plot", "json"])]
+    references: Option<PathBuf>,
 }
 
 /// The modes' names, in the order of the 6×6 matrices.
@@ -106,7 +112,14 @@ struct Report {
 }
 
 pub fn run(args: &Args) -> anyhow::Result<()> {
-    let mesh = common::mesh(&args.mesh, false)?;
+    let Some(name) = &args.mesh else {
+        let path = args
+            .references
+            .as_ref()
+            .expect("clap asks for a mesh or --references");
+        return references(path);
+    };
+    let mesh = common::mesh(name, false)?;
     let (atlas, _) = common::bake(&mesh, args.resolution)?;
     let model = match args.shell {
         Some(areal_density) => MassModel::Shell { areal_density },
@@ -329,5 +342,121 @@ fn plot(r: &Report, curves: &[(&str, Vec<(f64, f64)>)], path: &std::path::Path) 
         .panel(decay)
         .write_png(path)
         .with_context(|| format!("writing {}", path.display()))?;
+    Ok(())
+}
+
+/// One reference curve against the panel method: `(Ka, reference,
+/// panels)` for the added mass and for the damping (NaN where the
+/// reference has none).
+struct Comparison {
+    title: &'static str,
+    /// For a panel's title.
+    short: &'static str,
+    panels: usize,
+    added: Vec<(f64, f64, f64)>,
+    damping: Vec<(f64, f64, f64)>,
+}
+
+/// `--references`: the hemisphere in surge (576 panels) against Hulme
+/// (1982) and the truncated cylinder in heave (1,152 panels) against the
+/// eigenfunction solution, as `cargo test -p soak-seakeeping` checks them.
+fn references(path: &std::path::Path) -> anyhow::Result<()> {
+    use soak_seakeeping::references::{
+        HULME_SURGE, TRUNCATED_CYLINDER_HEAVE, sphere_panels, truncated_cylinder_panels,
+    };
+    use soak_seakeeping::{Radiation, Surface};
+    use std::f64::consts::PI;
+    let (rho, g) = (1000.0, 9.81);
+    let compare = |(title, short): (&'static str, &'static str),
+                   panels: Vec<soak_seakeeping::Panel>,
+                   mode: usize,
+                   scale: f64,
+                   table: &[(f64, f64, f64)]|
+     -> anyhow::Result<Comparison> {
+        let count = panels.len();
+        let problem = Radiation::new(panels, nalgebra::Point3::origin(), rho, g)?;
+        let (mut added, mut damping) = (Vec::new(), Vec::new());
+        for &(ka, a_ref, b_ref) in table {
+            let c = problem.solve(Surface::Wavenumber(ka))?;
+            added.push((ka, a_ref, c.added_mass[(mode, mode)] / scale));
+            damping.push((ka, b_ref, c.damping[(mode, mode)] / (c.omega * scale)));
+        }
+        Ok(Comparison {
+            title,
+            short,
+            panels: count,
+            added,
+            damping,
+        })
+    };
+    let hemisphere = compare(
+        ("hemisphere, surge: Hulme (1982)", "hemisphere surge (Hulme)"),
+        sphere_panels(1.0, nalgebra::Point3::origin(), PI / 2.0, 12, 48),
+        0,
+        rho * 2.0 / 3.0 * PI,
+        &HULME_SURGE,
+    )?;
+    let cylinder = compare(
+        (
+            "truncated cylinder (draft = radius), heave: eigenfunctions",
+            "cylinder heave (eigenfunctions)",
+        ),
+        truncated_cylinder_panels(1.0, 1.0, 12, 12, 48),
+        1,
+        rho * PI,
+        &TRUNCATED_CYLINDER_HEAVE,
+    )?;
+    let mut figure =
+        Figure::new(1800, 450).title("soak's panel method against classical references (a = 1 m)");
+    for c in [&hemisphere, &cylinder] {
+        println!("{} ({} panels)", c.title, c.panels);
+        println!(
+            "{:>6} {:>10} {:>10} {:>8} {:>10} {:>10} {:>8}",
+            "Ka", "A ref", "A panels", "error", "B ref", "B panels", "error"
+        );
+        for ((ka, a_ref, a), (_, b_ref, b)) in c.added.iter().zip(&c.damping) {
+            let error = |ours: f64, theirs: f64| {
+                if theirs.is_finite() {
+                    format!("{:+.2} %", 100.0 * (ours / theirs - 1.0))
+                } else {
+                    "-".to_string()
+                }
+            };
+            println!(
+                "{ka:>6} {a_ref:>10.4} {a:>10.4} {:>8} {b_ref:>10.5} {b:>10.5} {:>8}",
+                error(*a, *a_ref),
+                error(*b, *b_ref)
+            );
+        }
+        println!();
+        for (name, points) in [("added mass", &c.added), ("damping", &c.damping)] {
+            let reference: Vec<(f64, f64)> = points
+                .iter()
+                .filter(|p| p.1.is_finite())
+                .map(|p| (p.0, p.1))
+                .collect();
+            let ours: Vec<(f64, f64)> = points.iter().map(|p| (p.0, p.2)).collect();
+            figure = figure.panel(
+                Chart::new(format!("{}: {name}", c.short))
+                    .x(Axis::linear("Ka"))
+                    .y(Axis::linear(if name == "added mass" {
+                        "A / (ρ V)"
+                    } else {
+                        "B / (ρ ω V)"
+                    }))
+                    .series(Series::new(format!("panels ({})", c.panels), ours).color(palette(0)))
+                    .series(
+                        Series::new("reference", reference)
+                            .color(palette(1))
+                            .line(Line::None)
+                            .marker(soak_report::chart::Marker::Circle),
+                    ),
+            );
+        }
+    }
+    figure
+        .write_png(path)
+        .with_context(|| format!("writing {}", path.display()))?;
+    println!("wrote {}", path.display());
     Ok(())
 }
