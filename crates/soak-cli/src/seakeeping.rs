@@ -391,7 +391,7 @@ fn references(path: &std::path::Path) -> anyhow::Result<()> {
     };
     let hemisphere = compare(
         ("hemisphere, surge: Hulme (1982)", "hemisphere surge (Hulme)"),
-        sphere_panels(1.0, nalgebra::Point3::origin(), PI / 2.0, 12, 48),
+        sphere_panels(1.0, nalgebra::Point3::origin(), PI / 2.0, 12, 48)?,
         0,
         rho * 2.0 / 3.0 * PI,
         &HULME_SURGE,
@@ -401,7 +401,7 @@ fn references(path: &std::path::Path) -> anyhow::Result<()> {
             "truncated cylinder (draft = radius), heave: eigenfunctions",
             "cylinder heave (eigenfunctions)",
         ),
-        truncated_cylinder_panels(1.0, 1.0, 12, 12, 48),
+        truncated_cylinder_panels(1.0, 1.0, 12, 12, 48)?,
         1,
         rho * PI,
         &TRUNCATED_CYLINDER_HEAVE,

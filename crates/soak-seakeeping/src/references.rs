@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 
 use nalgebra::{Point3, Vector3};
 
-use crate::Panel;
+use crate::{Panel, SeakeepingError};
 
 /// Hulme (1982), J. Fluid Mech. 121, Table 2: the floating hemisphere of
 /// radius `a` in surge, `(Ka, A11/(ρ⅔πa³), B11/(ρω⅔πa³))` with
@@ -65,15 +65,42 @@ pub const TRUNCATED_CYLINDER_HEAVE: [(f64, f64, f64); 15] = [
 ];
 
 /// A panel through `quad` (a corner repeated next to itself dropped), its
-/// normal turned along `outward`.
-fn oriented(mut quad: Vec<Point3<f64>>, outward: Vector3<f64>) -> Panel {
+/// normal turned along `outward`; `None` for a panel of no area.
+fn oriented(mut quad: Vec<Point3<f64>>, outward: Vector3<f64>) -> Option<Panel> {
     quad.dedup_by(|p, q| (*p - *q).norm() < 1e-12);
-    let panel = Panel::new(&quad).expect("a quadrilateral or triangle of positive area");
+    let panel = Panel::new(&quad)?;
     if panel.normal.dot(&outward) < 0.0 {
         quad.reverse();
-        return Panel::new(&quad).expect("the same panel reversed");
+        return Panel::new(&quad);
     }
-    panel
+    Some(panel)
+}
+
+/// Refuses a length that is not positive and finite, or a count of zero.
+fn check(lengths: &[(&'static str, f64)], counts: &[(&'static str, usize)]) -> Result<(), SeakeepingError> {
+    for &(name, value) in lengths {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(SeakeepingError::BadParameter { name, value });
+        }
+    }
+    for &(name, count) in counts {
+        if count == 0 {
+            return Err(SeakeepingError::BadParameter { name, value: 0.0 });
+        }
+    }
+    Ok(())
+}
+
+/// The panels built, or the parameter that left one without area.
+fn collect(
+    panels: Vec<Option<Panel>>,
+    name: &'static str,
+    value: f64,
+) -> Result<Vec<Panel>, SeakeepingError> {
+    panels
+        .into_iter()
+        .collect::<Option<Vec<Panel>>>()
+        .ok_or(SeakeepingError::BadParameter { name, value })
 }
 
 /// Quadrilateral panels on a sphere of radius `a` (m) centred at `centre`,
@@ -81,9 +108,27 @@ fn oriented(mut quad: Vec<Point3<f64>>, outward: Vector3<f64>) -> Panel {
 /// `centre.y`; π: the whole sphere), `rings` × `segments`, rings evenly
 /// spaced in angle, normals out of the sphere.
 ///
-/// # Panics
-/// For `a`, `rings` or `segments` zero.
-pub fn sphere_panels(a: f64, centre: Point3<f64>, top: f64, rings: usize, segments: usize) -> Vec<Panel> {
+/// # Errors
+/// [`SeakeepingError::BadParameter`] naming `a`, `top`, `rings` or
+/// `segments` where one is not positive (and finite), or the centre where
+/// it is not finite.
+pub fn sphere_panels(
+    a: f64,
+    centre: Point3<f64>,
+    top: f64,
+    rings: usize,
+    segments: usize,
+) -> Result<Vec<Panel>, SeakeepingError> {
+    check(
+        &[("sphere radius", a), ("sphere polar angle", top)],
+        &[("rings", rings), ("segments", segments)],
+    )?;
+    if let Some(c) = centre.iter().find(|c| !c.is_finite()) {
+        return Err(SeakeepingError::BadParameter {
+            name: "sphere centre",
+            value: *c,
+        });
+    }
     let point = |i: usize, j: usize| {
         let alpha = top * i as f64 / rings as f64;
         let phi = 2.0 * PI * j as f64 / segments as f64;
@@ -102,7 +147,7 @@ pub fn sphere_panels(a: f64, centre: Point3<f64>, top: f64, rings: usize, segmen
             panels.push(oriented(quad, mid - centre.coords));
         }
     }
-    panels
+    collect(panels, "sphere radius", a)
 }
 
 /// The wetted surface of a truncated vertical cylinder floating upright,
@@ -112,15 +157,20 @@ pub fn sphere_panels(a: f64, centre: Point3<f64>, top: f64, rings: usize, segmen
 /// the flow turns the corner; spacing as `sin` of even steps), normals out
 /// of the body.
 ///
-/// # Panics
-/// For `radius`, `draft`, `bands`, `rings` or `segments` zero.
+/// # Errors
+/// [`SeakeepingError::BadParameter`] naming `radius`, `draft`, `bands`,
+/// `rings` or `segments` where one is not positive (and finite).
 pub fn truncated_cylinder_panels(
     radius: f64,
     draft: f64,
     bands: usize,
     rings: usize,
     segments: usize,
-) -> Vec<Panel> {
+) -> Result<Vec<Panel>, SeakeepingError> {
+    check(
+        &[("cylinder radius", radius), ("cylinder draft", draft)],
+        &[("bands", bands), ("rings", rings), ("segments", segments)],
+    )?;
     let at = |r: f64, y: f64, j: usize| {
         let phi = 2.0 * PI * j as f64 / segments as f64;
         Point3::new(r * phi.cos(), y, r * phi.sin())
@@ -153,5 +203,42 @@ pub fn truncated_cylinder_panels(
             panels.push(oriented(quad, -Vector3::y()));
         }
     }
-    panels
+    collect(panels, "cylinder radius", radius)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Bad sizes are refused by name; good ones give closed panels' areas.
+    #[test]
+    fn bad_sizes_are_named_and_good_ones_have_the_right_area() {
+        let name = |r: Result<Vec<Panel>, SeakeepingError>| match r {
+            Err(SeakeepingError::BadParameter { name, .. }) => name,
+            other => panic!("{:?}", other.map(|p| p.len())),
+        };
+        assert_eq!(
+            name(sphere_panels(0.0, Point3::origin(), PI, 4, 8)),
+            "sphere radius"
+        );
+        assert_eq!(name(sphere_panels(1.0, Point3::origin(), PI, 0, 8)), "rings");
+        assert_eq!(
+            name(sphere_panels(1.0, Point3::new(f64::NAN, 0.0, 0.0), PI, 4, 8)),
+            "sphere centre"
+        );
+        assert_eq!(
+            name(truncated_cylinder_panels(1.0, f64::INFINITY, 4, 4, 8)),
+            "cylinder draft"
+        );
+        assert_eq!(name(truncated_cylinder_panels(1.0, 1.0, 4, 4, 0)), "segments");
+        // The cylinder's wetted area: side 2π r d, bottom π r² (the
+        // polygon's, 48 sides: a fraction (sin(2π/48)·48/(2π)) of it).
+        let panels = truncated_cylinder_panels(1.0, 0.5, 6, 6, 48).unwrap();
+        let area: f64 = panels.iter().map(|p| p.area).sum();
+        let polygon = (2.0 * PI / 48.0).sin() * 48.0 / (2.0 * PI);
+        let chord = (PI / 48.0).sin() * 48.0 / PI;
+        let expected = 2.0 * PI * 0.5 * chord + PI * polygon;
+        assert!((area - expected).abs() < 1e-9, "{area} vs {expected}");
+        assert!(panels.iter().all(|p| p.normal.y <= 1e-12), "no panel faces up");
+    }
 }

@@ -19,7 +19,7 @@ fn heave_matches_the_eigenfunction_solution() {
     // 1,152 panels: 12 bands on the side, 12 rings on the bottom, 48
     // around (at 768, 8 × 8 × 48, the damping is 2.7 % low at Ka 2; at
     // 2,048, 16 × 16 × 64, within 0.8 % up to Ka 2).
-    let panels = references::truncated_cylinder_panels(1.0, 1.0, 12, 12, 48);
+    let panels = references::truncated_cylinder_panels(1.0, 1.0, 12, 12, 48).unwrap();
     let problem = Radiation::new(panels, Point3::origin(), RHO, G).unwrap();
     let (mut worst_a, mut worst_b): (f64, f64) = (0.0, 0.0);
     let scale = RHO * PI;

@@ -129,7 +129,7 @@ fn surge_infinite_frequency_reference() -> f64 {
 #[test]
 fn a_sphere_in_unbounded_water_has_half_its_displaced_mass() {
     // 1,152 panels.
-    let panels = sphere_panels(1.0, Point3::new(0.0, -10.0, 0.0), PI, 24, 48);
+    let panels = sphere_panels(1.0, Point3::new(0.0, -10.0, 0.0), PI, 24, 48).unwrap();
     let problem = Radiation::new(panels, Point3::new(0.0, -10.0, 0.0), RHO, G).unwrap();
     let c = problem.solve(Surface::Unbounded).unwrap();
     let expected = 0.5 * RHO * 4.0 / 3.0 * PI;
