@@ -58,7 +58,7 @@ impl GpuBackend {
         water: &Water,
         seas: &[Option<Water>],
         work: &[(usize, BodyState)],
-        options: &dyn Fn(&SoakBody<H>) -> HydroOptions,
+        options: &dyn Fn(&SoakBody<H>, &BodyState) -> HydroOptions,
         t: f64,
     ) -> Result<Vec<HydroForces>, soak_hydro::gpu::GpuHydroError> {
         let batch: Vec<GpuBody<'_>> = work
@@ -69,7 +69,7 @@ impl GpuBackend {
                 water: sea.as_ref().unwrap_or(water),
                 state: *state,
                 mass: *bodies[*k].mass_properties(),
-                options: options(&bodies[*k]),
+                options: options(&bodies[*k], state),
             })
             .collect();
         self.hydro.evaluate_batch(&batch, t)

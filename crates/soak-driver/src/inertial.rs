@@ -130,12 +130,14 @@ impl Inertial {
         self.linear.is_some()
     }
 
-    /// What Euler's equations of the whole inertia `J` (the body's `own`,
-    /// object axes, and the water's) add to the spin's acceleration beyond
-    /// what an engine applying the gyroscopic term of `own` alone does, at
-    /// angular velocity `omega` (world, rad/s) of a body turned by
-    /// `rotation`: `−J⁻¹ (ω × J ω) + I⁻¹ (ω × I ω)`, rad/s² (zero without
-    /// an added mass, or where either inertia cannot be inverted).
+    /// What the body and its water turning together add to the spin's
+    /// acceleration beyond what an engine applying the gyroscopic term of
+    /// the body's `own` inertia `I` (object axes) alone does, at angular
+    /// velocity `omega` (world, rad/s) of a body turned by `rotation`:
+    /// `(I⁻¹ − J⁻¹) (ω × I ω)`, rad/s², for the spin `J ω̇ = τ − ω × I ω`
+    /// of the whole inertia `J = I + A` (zero without an added mass, or
+    /// where either inertia cannot be inverted). See
+    /// [`Inertial::for_engine`].
     pub(crate) fn spin_difference(
         &self,
         own: &Matrix3<f64>,
@@ -150,7 +152,8 @@ impl Inertial {
         let body = r * own * r.transpose();
         match (whole.try_inverse(), body.try_inverse()) {
             (Some(j), Some(i)) => {
-                let d = i * omega.cross(&(body * omega)) - j * omega.cross(&(whole * omega));
+                let gyro = omega.cross(&(body * omega));
+                let d = (i - j) * gyro;
                 if d.iter().all(|x| x.is_finite()) {
                     d
                 } else {
@@ -170,15 +173,22 @@ impl Inertial {
     /// `spin` is the body's angular velocity (world, rad/s) where the
     /// engine applies the gyroscopic term `−ω × I ω` of the body's own
     /// inertia `I` (Rapier's default): the body and its water then turn as
-    /// Euler's equations of their whole inertia `J = I + A` say,
-    /// `J ω̇ = τ − ω × J ω`, so the engine is handed
-    /// `I J⁻¹ (τ − ω × J ω) + ω × I ω`, and the kinetic energy
-    /// `½ ω·J ω` changes by the torque's work alone. (Handed `I J⁻¹ τ`,
-    /// the engine's own gyroscopic term would act on `J`'s answer, a
-    /// mismatch that does work on a spinning body whose added inertia is
-    /// not a multiple of its own: a light hull rolling and yawing gained
-    /// energy every turn.) `None` where the engine leaves the term out:
-    /// `I J⁻¹ τ`, which conserves that energy as well.
+    /// `J ω̇ = τ − ω × I ω` (`J = I + A`), so the engine is handed
+    /// `I J⁻¹ (τ − ω × I ω) + ω × I ω`, and the kinetic energy `½ ω·J ω`
+    /// changes by the torque's work alone (no gyroscopic term `ω × X ω`
+    /// does work). The water takes its share of every torque and adds no
+    /// gyroscopic term of its own: Euler's equations of `J` itself,
+    /// `J ω̇ = τ − ω × J ω`, conserve that energy as well, but `J` need
+    /// not be the inertia of any rigid body (a rod's added inertia about
+    /// its length is nil, about its breadth several times its own, far
+    /// outside the triangle inequality of a body's principal moments),
+    /// and through them the water's turning spun a light rod about its
+    /// length faster than any step resolves, gaining energy every step.
+    /// (Handed `I J⁻¹ τ`, the engine's gyroscopic term would act on `J`'s
+    /// answer, a mismatch that does work on a spinning body whose added
+    /// inertia is not a multiple of its own: a light hull rolling and
+    /// yawing gained energy every turn.) `None` where the engine leaves
+    /// the term out: `I J⁻¹ τ`, which conserves that energy as well.
     pub(crate) fn for_engine(
         &self,
         w: &Wrench,

@@ -6,10 +6,10 @@
 //! [`Driver::before_step`] and [`Driver::after_step`], which do a whole
 //! step around the engine's.
 
-use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Matrix3, Point3, Translation3, UnitQuaternion, Vector3};
 use rayon::prelude::*;
 use soak_hydro::{
-    BodyState, BuoyancyMode, HydroForces, HydroOptions, MassProperties, Water, WaterPlane, Wrench,
+    AddedMass, BodyState, BuoyancyMode, HydroForces, HydroOptions, MassProperties, Water, WaterPlane, Wrench,
 };
 
 use crate::body::{SlamReport, SlamState, SoakBody};
@@ -99,6 +99,7 @@ impl<H: Handle> Driver<H> {
         // with each body, on or off).
         let shared = SharedOptions {
             dt,
+            density: self.water.density,
             sea: self.sea,
             sea_velocity: self.sea_velocity,
         };
@@ -197,7 +198,7 @@ impl<H: Handle> Driver<H> {
             work.par_iter()
                 .map(|(k, state)| {
                     let b = &bodies[*k];
-                    let options = shared.of(b);
+                    let options = shared.of(b, state);
                     let sea = soak_hydro::sampled_water(&b.atlas, water, state, t, &options)
                         .ok()
                         .flatten();
@@ -228,7 +229,14 @@ impl<H: Handle> Driver<H> {
         let mut results: Vec<Result<HydroForces, String>> = Vec::with_capacity(work.len());
         #[cfg(feature = "gpu")]
         if let Some(gpu) = &self.gpu {
-            match gpu.evaluate(&self.bodies, &self.water, &seas, &work, &|b| shared.of(b), t) {
+            match gpu.evaluate(
+                &self.bodies,
+                &self.water,
+                &seas,
+                &work,
+                &|b, state| shared.of(b, state),
+                t,
+            ) {
                 Ok(forces) => results.extend(forces.into_iter().map(Ok)),
                 Err(e) => {
                     // Keep going on the CPU for this step; say so once per failure.
@@ -247,7 +255,7 @@ impl<H: Handle> Driver<H> {
                 .zip(&seas)
                 .map(|((k, state), sea)| {
                     let b = &bodies[*k];
-                    let options = &shared.of(b);
+                    let options = &shared.of(b, state);
                     let water = sea.as_ref().unwrap_or(water);
                     let r = match (&b.tiled, &b.effects.drag_texels) {
                         (Some(tiled), None) => tiled.evaluate(&b.atlas, water, state, &b.mass, t, options),
@@ -295,7 +303,7 @@ impl<H: Handle> Driver<H> {
             work.iter().zip(results).zip(&seas).zip(&engine).enumerate()
         {
             let b = &mut self.bodies[*k];
-            let options = &shared.of(b);
+            let options = &shared.of(b, state);
             let forces = match result {
                 Ok(f) => f,
                 Err(e) => {
@@ -316,7 +324,13 @@ impl<H: Handle> Driver<H> {
                     // Whole from half the rest displacement up (small
                     // motions see the linear model unchanged), fading to
                     // none as the body leaves the water.
-                    let share = (2.0 * forces.submerged_volume / model.hydrostatics().volume).clamp(0.0, 1.0);
+                    let rest = model.hydrostatics().volume;
+                    let share = (2.0 * forces.submerged_volume / rest).clamp(0.0, 1.0);
+                    // The share at the last step (none before the first).
+                    let last_share = run
+                        .state
+                        .has_history()
+                        .then(|| (2.0 * b.forces.submerged_volume / rest).clamp(0.0, 1.0));
                     // Read in the model's frame: the body's heading.
                     let rotation = &model.heading(&rb.pose.rotation);
                     // On a sea of known waves the body radiates as it
@@ -349,9 +363,27 @@ impl<H: Handle> Driver<H> {
                     let (force, torque) = run.state.world_force(model, rotation);
                     let (linear, angular) = model.infinite_blocks(&model.heading(&state.pose.rotation));
                     let excitation = excitation.unwrap_or_default();
+                    // Entering the water: the share of A∞ that grows over
+                    // the step takes its momentum, `−ΔA v / dt` (and `−ΔA ω
+                    // / dt` turning), so that the body and its water keep
+                    // the momentum the body brought (a light body held
+                    // its speed against the water's whole inertia and
+                    // came out of the water with more energy than it went
+                    // in with). Leaving it, the water keeps what it took.
+                    // With slamming on, the slam takes the entry.
+                    let growth = last_share.map_or(0.0, |last| share - last);
+                    let entry = if growth > 0.0 && b.effects.slamming.is_none() {
+                        let r = state.pose.rotation.to_rotation_matrix().into_inner();
+                        Wrench {
+                            force: -(linear * growth) * (rb.linear_velocity - flow) / dt,
+                            torque: -(r * (angular * growth) * r.transpose()) * rb.angular_velocity / dt,
+                        }
+                    } else {
+                        Wrench::default()
+                    };
                     radiation = Wrench {
-                        force: (force + linear * flow_acceleration + excitation.force) * share,
-                        torque: (torque + excitation.torque) * share,
+                        force: (force + linear * flow_acceleration + excitation.force) * share + entry.force,
+                        torque: (torque + excitation.torque) * share + entry.torque,
                     };
                     if !radiation.is_finite() {
                         self.firewall
@@ -710,20 +742,50 @@ fn press_waves(
 #[derive(Clone, Copy)]
 struct SharedOptions {
     dt: f64,
+    /// The water's density, kg/m³.
+    density: f64,
     sea: soak_hydro::SeaSampling,
     sea_velocity: soak_hydro::SeaVelocity,
 }
 
 impl SharedOptions {
-    /// Body `b`'s options: its buoyancy mode, drag and added mass.
-    fn of<H>(&self, b: &SoakBody<H>) -> HydroOptions {
+    /// Body `b`'s options at `state`: its buoyancy mode, drag and the
+    /// added mass its implicit drag moves with it.
+    fn of<H>(&self, b: &SoakBody<H>, state: &BodyState) -> HydroOptions {
         HydroOptions {
             buoyancy: b.effects.buoyancy.unwrap_or(BuoyancyMode::Off),
             drag: b.effects.drag,
             dt: self.dt,
             sea: self.sea,
             sea_velocity: self.sea_velocity,
-            added_mass: b.effects.added_mass.as_deref().copied(),
+            added_mass: self.added_mass(b, &state.pose.rotation),
+        }
+    }
+
+    /// The added mass body `b`'s implicit drag moves with it, turned by
+    /// `rotation`: with radiation where the step resolves it, radiation's
+    /// translational A∞ as the step takes it (whole from half the rest
+    /// displacement under water, a share of it below), so that the drag
+    /// does not ask more of the body's few submerged texels than the body
+    /// and its water could give (a light torus' drag, solved on its own
+    /// mass, sent it off at 40 m/s); its turning with the body's own
+    /// inertia (the rotational A∞, read about the body's axes at rest, is
+    /// the inertia of no rigid body: a rod's about its length is nil,
+    /// about its breadth several times its own, and a drag solve through
+    /// it traded the water's turning into the rod's spin about its
+    /// length). Otherwise its added-mass effect, if any.
+    fn added_mass<H>(&self, b: &SoakBody<H>, rotation: &UnitQuaternion<f64>) -> Option<AddedMass> {
+        match &b.effects.radiation {
+            Some(model) if b.radiation.is_some() && model.resolved_by(self.dt) && self.density > 0.0 => {
+                let (linear, _) = model.infinite_blocks(&model.heading(rotation));
+                let r = rotation.to_rotation_matrix().into_inner();
+                Some(AddedMass {
+                    translation: r.transpose() * linear * r / self.density,
+                    rotation: Matrix3::zeros(),
+                    volume: 0.5 * model.hydrostatics().volume,
+                })
+            }
+            _ => b.effects.added_mass.as_deref().copied(),
         }
     }
 }

@@ -873,6 +873,12 @@ impl RadiationState {
         [v.x, v.y, v.z, w.x, w.y, w.z]
     }
 
+    /// Whether it has recorded a velocity (a body that has stepped with
+    /// it at least once).
+    pub fn has_history(&self) -> bool {
+        self.last.is_some()
+    }
+
     /// Takes the body's velocity now (axes at rest, [`Self::local_velocity`])
     /// at `time` (s): the memory advances from the last time exactly for a
     /// velocity linear in between. The first call only records it; a time

@@ -277,10 +277,9 @@ pub fn quick_matrix() -> Vec<Cell> {
             } else {
                 &mut k
             };
-            // The radiation level is the full matrix's alone: 30 of its
-            // 1,890 cells fail (light slivers and tori, a boat at 150
-            // panels; docs/stress.md), and the quick matrix asks every
-            // cell to pass.
+            // The radiation level is the full matrix's alone (each of its
+            // cells bakes the panel method, seconds each; docs/stress.md),
+            // and adding it here would change every later pick.
             for level in Level::ALL.into_iter().filter(|&l| l != Level::Radiation) {
                 let (density, rate, scale) = PICKS[*k % PICKS.len()];
                 *k += 1;
