@@ -51,9 +51,9 @@ fn a_frame_sequence_of_the_wet_crate_shows_wet_and_dry_planks() {
     let Some(out) = render(&[
         scene.to_str().unwrap(),
         "--frame",
-        "120",
+        "240",
         "--every",
-        "60",
+        "120",
         "--width",
         "320",
         "--height",
@@ -66,18 +66,20 @@ fn a_frame_sequence_of_the_wet_crate_shows_wet_and_dry_planks() {
         return;
     };
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    for step in [0, 60, 120] {
+    for step in [0, 120, 240] {
         let path = dir.join(format!("frame_{step:06}.png"));
         let image = image::open(&path)
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
             .to_rgb8();
         assert_eq!(image.dimensions(), (320, 180), "{}", path.display());
     }
-    // After 2 s the crate has plunged: its lower planks are saturated (red
-    // in the pseudo-colour: the band above the waterline, 66 to 92
-    // pixels as the crate drifts one way or another), its top is still dry
-    // (blue, 4,500 pixels and more).
-    let last = image::open(dir.join("frame_000120.png")).unwrap().to_rgb8();
+    // After 4 s the crate has settled in: its lower planks are saturated
+    // (red in the pseudo-colour: about 300 pixels), its top is still dry
+    // (blue, 5,000 pixels and more). (At 2 s they were already, when the
+    // crate plunged past its draft; with radiation, on by default on this
+    // swell, the water it enters takes the momentum it brings, and it
+    // dips in more gently: 27 pixels warmer than blue at 2 s, none red.)
+    let last = image::open(dir.join("frame_000240.png")).unwrap().to_rgb8();
     let red = last.pixels().filter(|p| p[0] > 150 && p[2] < 90).count();
     let blue = last.pixels().filter(|p| p[2] > 150 && p[0] < 90).count();
     assert!(red >= 40, "{red} wet (red) pixels");
