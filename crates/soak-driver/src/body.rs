@@ -177,7 +177,9 @@ impl<H> SoakBody<H> {
     /// N·m about the centre of mass): `−∫ K(t − τ) ẋ(τ) dτ`, faded out as
     /// the body leaves the water (with linear theory's excitation on a
     /// Gerstner sea, and as the body enters the water the momentum the
-    /// growing share of A∞ takes, `−ΔA v / dt`); the A∞ part is in
+    /// growing share of A∞ takes, `−w ΔA v / dt` with `w` the cube of
+    /// the water's part of the inertia, whole for a light body); the A∞
+    /// part is in
     /// [`SoakBody::added_mass_force`]. Both are already part of
     /// [`SoakBody::applied`]. `None` without radiation
     /// ([`Effects::radiation`](crate::Effects::radiation)).

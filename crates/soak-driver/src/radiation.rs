@@ -66,3 +66,35 @@ pub(crate) fn sea_excitation(
         torque: Vector3::zeros(),
     })
 }
+
+/// The part of the entry's momentum a body gives the water whose inertia
+/// it gains (see the step): `(a / (m + a))³` for an added inertia `a` and
+/// the body's own `m` (kg, or kg·m² turning); 0 where either is not a
+/// positive finite number. Whole for a body much lighter than its water,
+/// negligible for one as heavy as it or heavier.
+pub(crate) fn entry_weight(added: f64, own: f64) -> f64 {
+    if !(added > 0.0 && own > 0.0 && added.is_finite() && own.is_finite()) {
+        return 0.0;
+    }
+    (added / (own + added)).powi(3)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::entry_weight;
+
+    #[test]
+    fn the_entry_weight_is_whole_for_light_bodies_and_small_for_heavy_ones() {
+        // A body a hundred times lighter than its water: 97 %.
+        assert!((entry_weight(100.0, 1.0) - (100.0f64 / 101.0).powi(3)).abs() < 1e-15);
+        assert!(entry_weight(100.0, 1.0) > 0.97);
+        // As heavy as its water: an eighth; four times heavier: 1/125.
+        assert!((entry_weight(1.0, 1.0) - 0.125).abs() < 1e-15);
+        assert!((entry_weight(1.0, 4.0) - 0.008).abs() < 1e-15);
+        // Nothing added, nothing taken; nothing finite, nothing taken.
+        assert_eq!(entry_weight(0.0, 1.0), 0.0);
+        assert_eq!(entry_weight(f64::NAN, 1.0), 0.0);
+        assert_eq!(entry_weight(1.0, 0.0), 0.0);
+        assert_eq!(entry_weight(f64::INFINITY, 1.0), 0.0);
+    }
+}

@@ -19,7 +19,7 @@ use crate::engine::{Bodies, BodiesMut, EngineBody, Handle, StepParams};
 use crate::error::SoakError;
 use crate::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
 use crate::inertial::Inertial;
-use crate::radiation::{sea_excitation, water_motion};
+use crate::radiation::{entry_weight, sea_excitation, water_motion};
 use crate::waves::{CoupledWaves, Pressed};
 use soak_seakeeping::RadiationState;
 
@@ -364,19 +364,29 @@ impl<H: Handle> Driver<H> {
                     let (linear, angular) = model.infinite_blocks(&model.heading(&state.pose.rotation));
                     let excitation = excitation.unwrap_or_default();
                     // Entering the water: the share of A∞ that grows over
-                    // the step takes its momentum, `−ΔA v / dt` (and `−ΔA ω
-                    // / dt` turning), so that the body and its water keep
-                    // the momentum the body brought (a light body held
-                    // its speed against the water's whole inertia and
-                    // came out of the water with more energy than it went
-                    // in with). Leaving it, the water keeps what it took.
-                    // With slamming on, the slam takes the entry.
+                    // the step takes its momentum, `−w ΔA v / dt` (and
+                    // `−w ΔA ω / dt` turning), so that a light body and
+                    // its water keep the momentum the body brought: held
+                    // at its speed against the water's whole inertia, a
+                    // body a hundred times lighter than the water it moves
+                    // came out with more energy than it went in with. The
+                    // weight `w = (a / (m + a))³` is the water's part of
+                    // the inertia (`a` the mean diagonal of A∞, `m` the
+                    // body's mass or mean principal inertia), cubed: whole
+                    // for such a body, negligible for one as heavy as its
+                    // water or heavier, which bobs through the surface on
+                    // a swell as linear theory (a constant A∞, no entry)
+                    // says. Leaving the water, the water keeps what it
+                    // took. With slamming on, the slam takes the entry.
                     let growth = last_share.map_or(0.0, |last| share - last);
                     let entry = if growth > 0.0 && b.effects.slamming.is_none() {
                         let r = state.pose.rotation.to_rotation_matrix().into_inner();
+                        let w_linear = entry_weight(linear.trace() / 3.0, rb.mass);
+                        let w_angular = entry_weight(angular.trace() / 3.0, b.mass.inertia.trace() / 3.0);
                         Wrench {
-                            force: -(linear * growth) * (rb.linear_velocity - flow) / dt,
-                            torque: -(r * (angular * growth) * r.transpose()) * rb.angular_velocity / dt,
+                            force: -(linear * (w_linear * growth)) * (rb.linear_velocity - flow) / dt,
+                            torque: -(r * (angular * (w_angular * growth)) * r.transpose()) * rb.angular_velocity
+                                / dt,
                         }
                     } else {
                         Wrench::default()
