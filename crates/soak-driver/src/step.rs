@@ -385,7 +385,8 @@ impl<H: Handle> Driver<H> {
                         let w_angular = entry_weight(angular.trace() / 3.0, b.mass.inertia.trace() / 3.0);
                         Wrench {
                             force: -(linear * (w_linear * growth)) * (rb.linear_velocity - flow) / dt,
-                            torque: -(r * (angular * (w_angular * growth)) * r.transpose()) * rb.angular_velocity
+                            torque: -(r * (angular * (w_angular * growth)) * r.transpose())
+                                * rb.angular_velocity
                                 / dt,
                         }
                     } else {
