@@ -1,56 +1,58 @@
 #!/usr/bin/env bash
 # Packs every crate of the workspace as it would be published and checks
-# that what is packed builds on its own:
-# 1. `cargo package --workspace --all-features` builds each packed crate
-#    from its .crate contents (every feature, the GPU kernels' WGSL included);
-# 2. an empty project that depends on the packed soak-hydro with its `gpu`
-#    feature (and on the packed soak-wet with its `gpu` feature), by path to
-#    the unpacked .crate files, builds and runs: it composes every GPU
-#    kernel's WGSL, which a crate that packed a file outside its own folder
-#    would not have.
+# that what is packed compiles on its own:
+# 1. `cargo package --workspace --no-verify` packs each crate;
+# 2. the packed crates, unpacked, are the members of a workspace of their
+#    own (each other's dependencies through `[patch.crates-io]`, as they
+#    would be from the registry), and each is checked alone with every
+#    feature (`cargo check -p CRATE --all-features`: its own features
+#    resolved, as a user's build would; a file it includes from outside its
+#    folder, such as a GPU kernel's WGSL, fails the check);
+# 3. a small program of that workspace, depending on the packed soak-hydro
+#    and soak-wet with their `gpu` feature, builds and runs: it composes
+#    every GPU kernel's WGSL.
+# The check workspace carries the main workspace's profiles and builds in
+# its target folder, so the dependencies clippy checked and the tests build
+# are not compiled again (`cargo package`'s own verification compiled ~700
+# crates a second time, unoptimised: 14 of CI's minutes).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$(pwd)"
-# Full debug information is not needed to check that a crate builds.
-export CARGO_PROFILE_DEV_DEBUG="${CARGO_PROFILE_DEV_DEBUG:-0}"
 version="$(cargo metadata --format-version 1 --no-deps |
   python3 -c 'import json,sys; print(next(p["version"] for p in json.load(sys.stdin)["packages"] if p["name"] == "soak-hydro"))')"
-# `cargo package --workspace` verifies each crate against the others through
-# a temporary local registry, which cargo unpacks into
-# $CARGO_HOME/registry/src/-<hash of its path>/ and, when a folder of the same
-# name and version is already there, does not unpack again; and it takes the
-# build of a registry crate of the same name and version in its target
-# folder as up to date. A checkout at the same path as an earlier run would
-# verify against the earlier run's sources: remove our crates' unpacked
-# copies from the local registries (the folders whose name starts with '-';
-# crates.io's are named after its host), and verify in a target folder of
-# its own, emptied first.
-cargo_home="${CARGO_HOME:-$HOME/.cargo}"
-for unpacked in "$cargo_home"/registry/src/-*/soak-"$version" \
-  "$cargo_home"/registry/src/-*/soak-*-"$version"; do
-  if [ -d "$unpacked" ]; then rm -rf "$unpacked"; fi
-done
-packed="$root/target/package-verify"
-rm -rf "$packed"
-# The packed facade carries the workspace's profiles (deps at opt-level 2,
-# Bevy at 0) and the other packed crates none: without one profile for all,
-# the facade's check compiled every dependency a second time (9 of the 20
-# minutes). Every check compiles its dependencies unoptimised.
-CARGO_TARGET_DIR="$packed" cargo package --workspace --all-features --locked \
-  --config 'profile.dev.package."*".opt-level=0'
+cargo package --workspace --no-verify --locked --quiet ${SOAK_PACKAGE_ALLOW_DIRTY:+--allow-dirty}
 
 check="$root/target/package-check"
 rm -rf "$check"
 mkdir -p "$check/unpacked" "$check/app/src"
-for crate in "$packed"/package/*-"$version".crate; do
+crates=()
+for crate in "$root"/target/package/*-"$version".crate; do
   tar xzf "$crate" -C "$check/unpacked"
+  name="$(basename "$crate" .crate)"
+  crates+=("${name%-"$version"}")
 done
+# A path crate counts as up to date when its files are older than its last
+# build: the files keep the times they were packed with, so a later pack of
+# changed sources with older times would be taken as built. Touched, they
+# are newer than any earlier build.
+find "$check/unpacked" -type f -exec touch {} +
 patches=""
-for dir in "$check"/unpacked/*/; do
-  name="$(basename "$dir")"
-  name="${name%-"$version"}"
-  patches+="$name = { path = \"$dir\" }"$'\n'
+for name in "${crates[@]}"; do
+  patches+="$name = { path = \"unpacked/$name-$version\" }"$'\n'
 done
+{
+  cat <<TOML
+[workspace]
+resolver = "3"
+members = ["unpacked/*", "app"]
+
+[patch.crates-io]
+$patches
+TOML
+  # The main workspace's profiles, so that the dependencies' builds are the
+  # same builds.
+  sed -n '/^\[profile\./,$p' "$root/Cargo.toml"
+} >"$check/Cargo.toml"
 cat >"$check/app/Cargo.toml" <<TOML
 [package]
 name = "packed-soak-check"
@@ -59,12 +61,8 @@ edition = "2024"
 publish = false
 
 [dependencies]
-soak-hydro = { path = "$check/unpacked/soak-hydro-$version", features = ["gpu"] }
-soak-wet = { path = "$check/unpacked/soak-wet-$version", features = ["gpu"] }
-
-[patch.crates-io]
-$patches
-[workspace]
+soak-hydro = { version = "$version", features = ["gpu"] }
+soak-wet = { version = "$version", features = ["gpu"] }
 TOML
 cat >"$check/app/src/main.rs" <<'RS'
 //! Composes every GPU kernel of the packed crates: each must be non-empty
@@ -81,7 +79,10 @@ fn main() {
 }
 RS
 # The workspace's lock file pins the same versions of every dependency.
-cp "$root/Cargo.lock" "$check/app/Cargo.lock"
-# The same target folder as the verification above: only the packed soak
-# crates build again.
-CARGO_TARGET_DIR="$packed" cargo run --quiet --manifest-path "$check/app/Cargo.toml"
+cp "$root/Cargo.lock" "$check/Cargo.lock"
+export CARGO_TARGET_DIR="$root/target"
+for name in "${crates[@]}"; do
+  echo "$(date -u +%H:%M:%S) checking the packed $name"
+  cargo check --quiet --manifest-path "$check/Cargo.toml" -p "$name" --all-features
+done
+cargo run --quiet --manifest-path "$check/Cargo.toml" -p packed-soak-check

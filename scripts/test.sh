@@ -12,28 +12,32 @@ if [ -z "${XDG_RUNTIME_DIR:-}" ] || [ ! -d "${XDG_RUNTIME_DIR}" ]; then
 fi
 # A one-off build gains nothing from incremental artefacts (gigabytes on disk).
 export CARGO_INCREMENTAL="${CARGO_INCREMENTAL:-0}"
+# Each stage's start, for seeing where the time goes.
+stage() { echo "== $(date -u +%H:%M:%S) $*"; }
+stage fmt
 cargo fmt --all -- --check
 # No file of a crate imports another that imports it back.
 python3 scripts/module_cycles.py crates/*/src
+stage clippy
 cargo clippy --workspace --all-targets --all-features --locked -- -D warnings
+# Every crate packed as it would be published compiles on its own, the GPU
+# kernels of the packed crates included (checked in the same target folder
+# as clippy's: its dependencies are not compiled again).
+stage package
+bash scripts/package.sh
 # The fuzz targets are their own workspace (fuzz/); they must build, on
 # stable, without cargo-fuzz or nightly (docs/fuzzing.md runs them).
+stage fuzz
 cargo fmt --manifest-path fuzz/Cargo.toml -- --check
 cargo clippy --manifest-path fuzz/Cargo.toml --all-targets --locked -- -D warnings
+stage test
 cargo test --workspace --all-features --locked
 # The API documentation builds without a warning (intra-doc links resolve).
+stage doc
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --all-features --locked
 # The README's program, pasted into a new project, builds and runs.
+stage paste
 bash scripts/paste_check.sh
-# On CI (a one-off checkout) the test build is not needed past this point:
-# removed before the packed crates build in a target folder of their own,
-# so that the two (8 and 5 GB) are never on the disk together.
-if [ "${CI:-}" = true ]; then
-  du -sh target/debug 2>/dev/null || true
-  rm -rf target/debug
-fi
-# Every crate packed as it would be published builds on its own, the GPU
-# kernels of the packed crates included.
-bash scripts/package.sh
+stage done
 # Disk used by the build, for keeping CI within its machine.
 du -sh target fuzz/target 2>/dev/null || true
