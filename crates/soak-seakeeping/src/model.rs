@@ -54,8 +54,9 @@ pub struct RadiationSettings {
     /// How many frequencies the sweep solves (≥ 8), evenly from
     /// `0.24 √(g/L)` (`L` the radius of a disc of the water-plane's area;
     /// KL ≈ 0.06) to `3.36 √(g/L)` (KL ≈ 11, where a surface body's
-    /// damping has died out) or to the shortest wave six panels resolve,
-    /// whichever is lower. Default 40.
+    /// damping has died out) or to the shortest wave six panels resolve
+    /// (a panel's size taken as `√(2 ā)`, `ā` their mean area), whichever
+    /// is lower. Default 40.
     pub frequencies: usize,
     /// At most how many poles each retardation kernel is fitted with
     /// (≥ 1). Default 10.
@@ -91,7 +92,9 @@ pub struct Hydrostatics {
     /// `∫ z² dA`, m⁴.
     pub waterplane_moments: [f64; 2],
     /// The restoring stiffness of heave (N/m) and of the rotations about
-    /// x and z (N·m/rad), about the centre of mass.
+    /// x and z (N·m/rad), about the centre of mass, with their couplings
+    /// (N/rad, N·m/m: `ρ g ∫ x dA` couples heave and the rotation about z
+    /// when the water-plane's centre is not under the centre of mass).
     pub stiffness: Matrix6<f64>,
 }
 
@@ -234,8 +237,13 @@ impl RadiationModel {
         let scale = (g / length).sqrt();
         // From KL ≈ 0.06 (below, B falls to 0 and A is held: see
         // `Sweep::at`) to KL ≈ 11 or to the shortest wave six panels
-        // resolve, evenly.
-        let finest = (g * std::f64::consts::TAU / (6.0 * size)).sqrt();
+        // resolve, evenly. A panel's typical edge is that of a right
+        // isosceles triangle of their mean area: the longest edge (`size`)
+        // of a hull cut into long strips along its length stopped a boat's
+        // sweep below its heave resonance, where the tails of `Sweep::at`
+        // took over.
+        let typical = (2.0 * panels.iter().map(|p| p.area).sum::<f64>() / panels.len() as f64).sqrt();
+        let finest = (g * std::f64::consts::TAU / (6.0 * typical)).sqrt();
         let (low, high) = (0.24 * scale, (3.36 * scale).min(finest).max(0.48 * scale));
         let count = settings.frequencies;
         let omegas: Vec<f64> = (0..count)
@@ -400,27 +408,59 @@ impl RadiationModel {
         }
     }
 
-    /// The uncoupled motion of `mode` released from `x0` (m or rad) at
-    /// rest, at each of `times` (s), from the frequency-domain
-    /// coefficients: `x(t) = x0 (1 − C s(t))`, `s` the response to a unit
-    /// step force, `s(t) = (2/π) ∫₀^∞ Re H(ω) sin ωt / ω dω` with
-    /// `H = 1/(C − ω² (M + A(ω)) − i ω B(ω))`. `None` for a mode without
-    /// stiffness (surge, sway, yaw).
+    /// The motion of `mode` released from `x0` (m or rad) at rest, at each
+    /// of `times` (s), from the frequency-domain coefficients: `x(t) = x0
+    /// (1 − (S(t) C)_mm)`, `S` the response to a unit step force, `S(t) =
+    /// (2/π) ∫₀^∞ Re H(ω) sin ωt / ω dω` with `H = (C − ω² (M + A(ω)) − i ω
+    /// B(ω))⁻¹` over the six modes. The modes are coupled as the time
+    /// domain couples them: through the stiffness (a water-plane whose
+    /// centre is not under the centre of mass couples heave and pitch),
+    /// through A∞'s translational and rotational blocks; each mode's
+    /// memory is its own (`A(ω) − A∞` and `B(ω)` on the diagonal). `None`
+    /// for a mode without stiffness (surge, sway, yaw).
     pub fn release(&self, mode: usize, x0: f64, times: &[f64]) -> Option<Vec<f64>> {
-        let stiffness = self.hydrostatics.stiffness[(mode, mode)];
-        if stiffness <= 0.0 {
+        let stiffness = &self.hydrostatics.stiffness;
+        if stiffness[(mode, mode)] <= 0.0 {
             return None;
         }
-        let inertia = self.mode_inertia(mode);
-        let natural = (stiffness / (inertia + self.sweep.infinite[(mode, mode)])).sqrt();
-        let (top, steps) = (12.0 * natural, 30_000);
+        let top = 12.0
+            * (0..6)
+                .filter(|&m| stiffness[(m, m)] > 0.0)
+                .map(|m| (stiffness[(m, m)] / (self.mode_inertia(m) + self.sweep.infinite[(m, m)])).sqrt())
+                .fold(0.0, f64::max);
+        let steps = 30_000;
         let d_omega = top / steps as f64;
+        let infinite = &self.sweep.infinite;
+        let mut inertia = Matrix6::zeros();
+        for i in 0..6 {
+            for j in 0..6 {
+                let own = match (i < 3, j < 3) {
+                    (true, true) if i == j => self.mass,
+                    (false, false) => self.inertia[(i - 3, j - 3)],
+                    _ => 0.0,
+                };
+                let blocks = if (i < 3) == (j < 3) { infinite[(i, j)] } else { 0.0 };
+                inertia[(i, j)] = own + blocks;
+            }
+        }
+        let force: nalgebra::Vector6<Complex64> = stiffness.column(mode).map(|c| Complex64::new(c, 0.0));
         let response: Vec<(f64, f64)> = (1..=steps)
-            .map(|n| {
+            .filter_map(|n| {
                 let omega = n as f64 * d_omega;
-                let (a, b) = self.sweep.at(mode, mode, omega);
-                let h = 1.0 / Complex64::new(stiffness - omega * omega * (inertia + a), -omega * b);
-                (omega, h.re)
+                let z = nalgebra::Matrix6::<Complex64>::from_fn(|i, j| {
+                    let (a, b) = if i == j {
+                        let (a, b) = self.sweep.at(i, i, omega);
+                        (a - infinite[(i, i)], b)
+                    } else {
+                        (0.0, 0.0)
+                    };
+                    Complex64::new(
+                        stiffness[(i, j)] - omega * omega * (inertia[(i, j)] + a),
+                        -omega * b,
+                    )
+                });
+                let y = z.lu().solve(&force)?;
+                Some((omega, y[mode].re))
             })
             .collect();
         Some(
@@ -434,7 +474,7 @@ impl RadiationModel {
                         * d_omega
                         * 2.0
                         / std::f64::consts::PI;
-                    x0 * (1.0 - stiffness * s)
+                    x0 * (1.0 - s)
                 })
                 .collect(),
         )
@@ -601,7 +641,12 @@ fn reciprocal(added: &Matrix6<f64>) -> Result<(), SeakeepingError> {
 /// crossings) and the decay per cycle (the mean ratio of the first two
 /// pairs of successive positive peaks, the release `x[0]` counted as the
 /// first) of a free decay `x` sampled every `dt` (s) from a positive
-/// release. `None` with fewer than two crossings.
+/// release. A peak below a tenth of the release ends the pairs: a heave
+/// damped a quarter of critical (a boat's) falls to a fifth in its first
+/// cycle, and its next peak, a few thousandths of the release, measures
+/// more of what is not the linear decay (a hull's flare, the last
+/// millimetre of its rest) than of the decay. `None` with fewer than two
+/// crossings.
 pub fn decay_measure(x: &[f64], dt: f64) -> Option<(f64, f64)> {
     let crossings: Vec<f64> = x
         .windows(2)
@@ -620,7 +665,13 @@ pub fn decay_measure(x: &[f64], dt: f64) -> Option<(f64, f64)> {
             .filter(|w| w[1] > w[0] && w[1] >= w[2] && w[1] > 0.0)
             .map(|w| w[1]),
     );
-    let ratios: Vec<f64> = peaks.windows(2).take(2).map(|p| p[1] / p[0]).collect();
+    let floor = 0.1 * peaks[0];
+    let ratios: Vec<f64> = peaks
+        .windows(2)
+        .take(2)
+        .take_while(|p| p[1] >= floor)
+        .map(|p| p[1] / p[0])
+        .collect();
     (!ratios.is_empty()).then(|| (period, ratios.iter().sum::<f64>() / ratios.len() as f64))
 }
 
@@ -795,6 +846,7 @@ fn hydrostatics(panels: &[Panel], height: f64, rho: f64, g: f64) -> Hydrostatics
     let area = -panels.iter().map(|p| p.area * p.normal.y).sum::<f64>();
     let xx = -moment(&|p| p.x * p.x);
     let zz = -moment(&|p| p.z * p.z);
+    let (x1, z1, xz) = (-moment(&|p| p.x), -moment(&|p| p.z), -moment(&|p| p.x * p.z));
     let mut stiffness = Matrix6::zeros();
     stiffness[(1, 1)] = rho * g * area;
     // Rotation about x tilts z into y, about z tilts x: the water-plane's
@@ -803,6 +855,12 @@ fn hydrostatics(panels: &[Panel], height: f64, rho: f64, g: f64) -> Hydrostatics
     let lever = volume * (by - height);
     stiffness[(3, 3)] = rho * g * (zz + lever);
     stiffness[(5, 5)] = rho * g * (xx + lever);
+    // A water-plane whose centre is not under the centre of mass couples
+    // them: a point (x, z) of it rises by `η + x θ_z − z θ_x`.
+    for (i, j, c) in [(1, 3, -z1), (1, 5, x1), (3, 5, -xz)] {
+        stiffness[(i, j)] = rho * g * c;
+        stiffness[(j, i)] = rho * g * c;
+    }
     Hydrostatics {
         volume,
         center_of_buoyancy: Point3::new(bx, by, bz),
