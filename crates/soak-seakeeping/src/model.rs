@@ -54,9 +54,8 @@ pub struct RadiationSettings {
     /// How many frequencies the sweep solves (≥ 8), evenly from
     /// `0.24 √(g/L)` (`L` the radius of a disc of the water-plane's area;
     /// KL ≈ 0.06) to `3.36 √(g/L)` (KL ≈ 11, where a surface body's
-    /// damping has died out) or to the shortest wave six panels resolve
-    /// (a panel's size taken as `√(2 ā)`, `ā` their mean area), whichever
-    /// is lower. Default 40.
+    /// damping has died out) or to the shortest wave six panels resolve,
+    /// whichever is lower. Default 40.
     pub frequencies: usize,
     /// At most how many poles each retardation kernel is fitted with
     /// (≥ 1). Default 10.
@@ -237,13 +236,8 @@ impl RadiationModel {
         let scale = (g / length).sqrt();
         // From KL ≈ 0.06 (below, B falls to 0 and A is held: see
         // `Sweep::at`) to KL ≈ 11 or to the shortest wave six panels
-        // resolve, evenly. A panel's typical edge is that of a right
-        // isosceles triangle of their mean area: the longest edge (`size`)
-        // of a hull cut into long strips along its length stopped a boat's
-        // sweep below its heave resonance, where the tails of `Sweep::at`
-        // took over.
-        let typical = (2.0 * panels.iter().map(|p| p.area).sum::<f64>() / panels.len() as f64).sqrt();
-        let finest = (g * std::f64::consts::TAU / (6.0 * typical)).sqrt();
+        // resolve, evenly.
+        let finest = (g * std::f64::consts::TAU / (6.0 * size)).sqrt();
         let (low, high) = (0.24 * scale, (3.36 * scale).min(finest).max(0.48 * scale));
         let count = settings.frequencies;
         let omegas: Vec<f64> = (0..count)
