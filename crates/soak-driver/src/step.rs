@@ -360,7 +360,8 @@ impl<H: Handle> Driver<H> {
                         &rb.angular_velocity,
                     );
                     run.state.record(model, velocity, t);
-                    let (force, torque) = run.state.world_force(model, rotation);
+                    // Held over the step: the memory's force at its middle.
+                    let (force, torque) = run.state.world_force_ahead(model, rotation, 0.5 * dt);
                     let (linear, angular) = model.infinite_blocks(&model.heading(&state.pose.rotation));
                     let excitation = excitation.unwrap_or_default();
                     // Entering the water: the share of A∞ that grows over

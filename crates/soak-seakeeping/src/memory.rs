@@ -203,6 +203,68 @@ impl Kernel {
         Kernel { poles, residues }
     }
 
+    /// The same poles with residues refitted, by least squares, to a
+    /// frequency response: at each `(ω, T)` of `response`, the kernel's
+    /// transform [`Kernel::transform`] should be `T = B(ω) − i ω (A(ω) −
+    /// A∞)`, or B alone where T's imaginary part is NaN; rows with a
+    /// `weight` (relative, 1 for a computed frequency) count that much. Held, as [`Kernel::fit`] holds it, to a zero
+    /// integral (`B(0) = 0`). Fitted to the time samples alone, the
+    /// kernel's residues follow B over every frequency, its extrapolated
+    /// tail included, and the added mass Kramers–Kronig makes of them
+    /// missed the computed one wherever that tail was wrong; fitted here,
+    /// both A and B are the computed ones over the sweep.
+    pub fn refit(&self, response: &[(f64, Complex64, f64)]) -> Kernel {
+        let n = self.poles.len();
+        if n == 0 || response.is_empty() {
+            return self.clone();
+        }
+        // Unknowns: Re c_k and Im c_k. With u = 1/(λ + iω), v = 1/(λ̄ +
+        // iω), the transform of Re(c e^{λt}) is −½ (x (u + v) + i y (u − v)).
+        let rows = 2 * response.len() + 1;
+        let scale = response.iter().fold(0.0f64, |m, r| m.max(r.1.norm()));
+        if !(scale > 0.0) {
+            return self.clone();
+        }
+        let mut design = DMatrix::<f64>::zeros(rows, 2 * n);
+        let mut target = DVector::<f64>::zeros(rows);
+        for (r, &(omega, t, weight)) in response.iter().enumerate() {
+            let s = Complex64::new(0.0, omega);
+            for (k, p) in self.poles.iter().enumerate() {
+                let u = 1.0 / (p + s);
+                let v = 1.0 / (p.conj() + s);
+                let on_x = -0.5 * (u + v);
+                let on_y = -0.5 * Complex64::new(0.0, 1.0) * (u - v);
+                design[(2 * r, 2 * k)] = weight * on_x.re;
+                design[(2 * r, 2 * k + 1)] = weight * on_y.re;
+                design[(2 * r + 1, 2 * k)] = weight * on_x.im;
+                design[(2 * r + 1, 2 * k + 1)] = weight * on_y.im;
+            }
+            target[2 * r] = weight * t.re;
+            // An unknown added mass (NaN): B alone.
+            if t.im.is_nan() {
+                for k in 0..2 * n {
+                    design[(2 * r + 1, k)] = 0.0;
+                }
+            } else {
+                target[2 * r + 1] = weight * t.im;
+            }
+        }
+        // The integral: Re Σ −c/λ = 0, weighted against the rows' scale.
+        for (k, p) in self.poles.iter().enumerate() {
+            let q = 1.0 / p;
+            design[(rows - 1, 2 * k)] = -STEADY_WEIGHT * q.re;
+            design[(rows - 1, 2 * k + 1)] = STEADY_WEIGHT * q.im;
+        }
+        let svd = design.svd(true, true);
+        let Ok(x) = svd.solve(&target, 1e-12 * svd.singular_values.max()) else {
+            return self.clone();
+        };
+        Kernel {
+            poles: self.poles.clone(),
+            residues: (0..n).map(|k| Complex64::new(x[2 * k], x[2 * k + 1])).collect(),
+        }
+    }
+
     /// K(t) of the fit.
     pub fn value(&self, t: f64) -> f64 {
         self.poles
@@ -300,6 +362,18 @@ impl Memory {
     /// `v1` (exact for that history).
     pub fn advance(&mut self, kernel: &Kernel, v0: f64, v1: f64, dt: f64) {
         self.advance_by(&kernel.step(dt), v0, v1);
+    }
+
+    /// `∫ K(t − τ) ẋ(τ) dτ` at the end of a step of `step`'s length over
+    /// which the velocity goes linearly from `v0` to `v1`, the states
+    /// left as they are.
+    pub fn force_after(&self, kernel: &Kernel, step: &[StepFactors], v0: f64, v1: f64) -> f64 {
+        self.states
+            .iter()
+            .zip(step)
+            .zip(&kernel.residues)
+            .map(|((s, f), c)| (c * (f.decay * *s + f.constant * v0 + f.ramp * (v1 - v0))).re)
+            .sum()
     }
 
     /// [`Memory::advance`] with the step's factors already computed

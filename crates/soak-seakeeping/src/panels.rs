@@ -9,9 +9,9 @@ use crate::green::Panel;
 /// The part of `mesh` (placed by `pose` in the water's frame: y up, still
 /// water at y = 0) below the still water plane, as flat panels no larger
 /// than `max_size` (m, the longest edge): each triangle clipped by the
-/// plane, the part below kept, and split into `n²` congruent triangles
-/// with the fewest `n` that make them small enough (a quadrilateral left
-/// by the clip is cut in two first). The mesh's triangles are counter-clockwise seen from outside,
+/// plane, the part below kept, and its longest edge halved until every
+/// edge is short enough (a quadrilateral left by the clip is cut in two
+/// first). The mesh's triangles are counter-clockwise seen from outside,
 /// so the panels' normals point into the water.
 pub fn wetted_panels(
     mesh: &Mesh,
@@ -77,39 +77,33 @@ pub fn wetted_panels(
     Ok(panels)
 }
 
-/// Splits a triangle into `n²` congruent ones, `n` the fewest that bring
-/// its longest edge to at most `max_size` (points on an edge lying in the
-/// water plane stay exactly on it).
+/// Splits a triangle by halving its longest edge, again and again, until
+/// no edge is longer than `max_size` (points on an edge lying in the
+/// water plane stay exactly on it). A long thin triangle (a hull's strip
+/// from bow to stern) becomes panels about as wide as they are long: cut
+/// into `n²` congruent copies of itself instead, it stayed as thin, and
+/// the shortest wave the panels resolve was set by their length.
 fn split(t: &[Point3<f64>; 3], max_size: f64, out: &mut Vec<Panel>) {
-    let longest = (0..3).map(|i| (t[(i + 1) % 3] - t[i]).norm()).fold(0.0, f64::max);
-    let n = (longest / max_size).ceil().clamp(1.0, 4096.0) as usize;
-    let on_plane = [
-        t[0].y == 0.0 && t[1].y == 0.0,
-        t[0].y == 0.0 && t[2].y == 0.0,
-        t[1].y == 0.0 && t[2].y == 0.0,
-    ];
-    let point = |i: usize, j: usize| {
-        let (a, b) = (i as f64 / n as f64, j as f64 / n as f64);
-        let mut p = Point3::from(t[0].coords + (t[1] - t[0]) * a + (t[2] - t[0]) * b);
-        if (j == 0 && on_plane[0]) || (i == 0 && on_plane[1]) || (i + j == n && on_plane[2]) {
-            p.y = 0.0;
-        }
-        p
-    };
-    for i in 0..n {
-        for j in 0..n - i {
-            if let Some(panel) = Panel::new(&[point(i, j), point(i + 1, j), point(i, j + 1)])
+    let mut pending = vec![(*t, 0u32)];
+    while let Some((t, depth)) = pending.pop() {
+        let edge = |i: usize| (t[(i + 1) % 3] - t[i]).norm();
+        let k = (0..3).fold(0, |k, i| if edge(i) > edge(k) { i } else { k });
+        // 2²⁴ pieces at most from one triangle, as `n` ≤ 4096 bounded them.
+        if edge(k) <= max_size || depth >= 24 {
+            if let Some(panel) = Panel::new(&t)
                 && !waterline_strip(&panel)
             {
                 out.push(panel);
             }
-            if i + j + 1 < n
-                && let Some(panel) = Panel::new(&[point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)])
-                && !waterline_strip(&panel)
-            {
-                out.push(panel);
-            }
+            continue;
         }
+        let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+        let mut middle = Point3::from((a.coords + b.coords) * 0.5);
+        if a.y == 0.0 && b.y == 0.0 {
+            middle.y = 0.0;
+        }
+        pending.push(([a, middle, c], depth + 1));
+        pending.push(([middle, b, c], depth + 1));
     }
 }
 
