@@ -7,10 +7,12 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::Context;
+use nalgebra::{Isometry3, Translation3, Vector3};
 use serde::Serialize;
+use soak_bake::Mesh;
 use soak_hydro::MassModel;
 use soak_report::chart::{Axis, Chart, Figure, Line, Series, palette};
-use soak_seakeeping::{FloatingBody, RadiationModel, RadiationSettings};
+use soak_seakeeping::{FloatingBody, RadiationModel, RadiationSettings, SeakeepingError, wetted_panels};
 
 use crate::common;
 
@@ -51,10 +53,20 @@ pub struct Args {
     /// Print one JSON object instead of the tables.
     #[arg(long)]
     json: bool,
+    /// Write the hull the radiation was baked on to this Wavefront OBJ
+    /// (vertices in m, triangles counter-clockwise seen from outside), at
+    /// its rest pose in the water's frame: y up, the still water at y = 0,
+    /// the centre of mass at x = z = 0. A mesh with many more wetted
+    /// triangles than --panels is baked on a simplified copy, and that copy
+    /// is written; should it not displace the model's volume at the rest
+    /// pose (the bake changed its rule), it is written anyway with a warning.
+    /// For another panel code: scripts/references/capytaine_hull.py.
+    #[arg(long, value_name = "FILE")]
+    hull_obj: Option<PathBuf>,
     /// Instead of a mesh: the panel method against the references of two
     /// classical bodies (Hulme's surging hemisphere, the truncated
     /// cylinder's heave by eigenfunction expansions), a table and this PNG.
-    #[arg(long, conflicts_with_all = ["mesh", "plot", "json"])]
+    #[arg(long, conflicts_with_all = ["mesh", "plot", "json", "hull_obj"])]
     references: Option<PathBuf>,
 }
 
@@ -86,11 +98,30 @@ struct Decay {
     peak_ratio: f64,
 }
 
+/// The hull `--hull-obj` wrote.
+#[derive(Serialize)]
+struct HullObj {
+    path: PathBuf,
+    vertices: usize,
+    triangles: usize,
+    /// whether it is the bake's simplified copy of the mesh
+    simplified: bool,
+    /// volume under the still water at the rest pose, m³ (`displaced`
+    /// when it is the hull baked)
+    displaced: f64,
+}
+
 #[derive(Serialize)]
 struct Report {
     mesh: String,
+    /// fluid density, kg/m³
+    water_density: f64,
+    /// m/s²
+    gravity: f64,
     /// kg
     mass: f64,
+    /// centre of mass, the mesh's own frame, m
+    center_of_mass: [f64; 3],
     /// m³
     displaced: f64,
     /// m²
@@ -99,6 +130,9 @@ struct Report {
     center_of_mass_height: f64,
     /// rest orientation found, as a rotation vector (rad)
     rest_rotation: [f64; 3],
+    /// with `rest_rotation` R, the rest pose: a point p of the mesh is at
+    /// R p + t in the water's frame (m)
+    rest_translation: [f64; 3],
     /// heave N/m, roll and pitch N·m/rad
     stiffness: [f64; 3],
     panels: usize,
@@ -107,6 +141,9 @@ struct Report {
     /// the infinite-frequency added mass per mode
     infinite: [f64; 6],
     bake_seconds: f64,
+    /// the hull written by `--hull-obj`
+    #[serde(skip_serializing_if = "Option::is_none")]
+    hull_obj: Option<HullObj>,
     rows: Vec<Row>,
     decay: Vec<Decay>,
 }
@@ -187,19 +224,29 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
             curves.push((MODES[mode], times.into_iter().zip(x).collect::<Vec<_>>()));
         }
     }
-    let rest = radiation.rotation().scaled_axis();
+    let hull_obj = match &args.hull_obj {
+        Some(path) => Some(write_hull(&mesh, &radiation, args.panels, path)?),
+        None => None,
+    };
+    let pose = rest_pose(&radiation, h.center_of_mass_height);
+    let rest = pose.rotation.scaled_axis();
     let report = Report {
         mesh: mesh.name.clone(),
+        water_density: radiation.density(),
+        gravity: g,
         mass: radiation.mass(),
+        center_of_mass: common::arr(radiation.center_of_mass()),
         displaced: h.volume,
         waterplane_area: h.waterplane_area,
         center_of_mass_height: h.center_of_mass_height,
         rest_rotation: [rest.x, rest.y, rest.z],
+        rest_translation: common::vec3(&pose.translation.vector),
         stiffness: RESTORING.map(|m| h.stiffness[(m, m)]),
         panels: radiation.panel_count(),
         states: std::array::from_fn(|m| radiation.kernel(m).poles.len()),
         infinite: std::array::from_fn(|m| radiation.infinite()[(m, m)]),
         bake_seconds,
+        hull_obj,
         rows,
         decay,
     };
@@ -214,7 +261,138 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     if let Some(path) = &args.plot {
         println!("plots in {}", path.display());
     }
+    if let Some(hull) = &report.hull_obj {
+        println!(
+            "hull at rest in {} ({} triangles{}, displacing {:.5} m³)",
+            hull.path.display(),
+            hull.triangles,
+            if hull.simplified {
+                ", the bake's simplified copy"
+            } else {
+                ""
+            },
+            hull.displaced
+        );
+    }
     Ok(())
+}
+
+/// The model's rest pose with the centre of mass `height` m above the
+/// still water: the mesh's frame → the water's (y up, the centre of mass
+/// at x = z = 0), as the bake places the body.
+fn rest_pose(radiation: &RadiationModel, height: f64) -> Isometry3<f64> {
+    let rotation = *radiation.rotation();
+    let com = rotation * radiation.center_of_mass().coords;
+    Isometry3::from_parts(
+        Translation3::from(Vector3::new(-com.x, height - com.y, -com.z)),
+        rotation,
+    )
+}
+
+/// `--hull-obj`: the hull `radiation` was baked on, placed at its rest
+/// pose, written to `path` as Wavefront OBJ. The bake floats a mesh with
+/// more than 3/2 as many wetted triangles as `panels` (at the draft where
+/// it displaces the mass) as a copy simplified to about `panels` of them
+/// within 0.5 % of its extent; that copy is made here by the same rule,
+/// and the volume it displaces at the rest pose, checked against the
+/// model's, tells whether it is the hull baked (a warning when not).
+fn write_hull(
+    mesh: &Mesh,
+    radiation: &RadiationModel,
+    panels: usize,
+    path: &std::path::Path,
+) -> anyhow::Result<HullObj> {
+    // Volume under the still water, m³, of `hull` with its centre of mass
+    // `height` m above it.
+    let displaced = |hull: &Mesh, height: f64| -> Result<f64, SeakeepingError> {
+        match wetted_panels(hull, &rest_pose(radiation, height), 1e9) {
+            Ok(panels) => Ok(panels.iter().map(|p| p.area * p.normal.y * p.centroid.y).sum()),
+            Err(SeakeepingError::NoWettedSurface) => Ok(0.0),
+            Err(e) => Err(e),
+        }
+    };
+    // The mesh's own draft for the mass, by the bake's bisection.
+    let target = radiation.mass() / radiation.density();
+    let rotation = radiation.rotation();
+    let com = rotation * radiation.center_of_mass().coords;
+    let reach = mesh
+        .positions
+        .iter()
+        .map(|p| (rotation * p.coords - com).norm())
+        .fold(0.0f64, f64::max);
+    let (mut low, mut high) = (-1.01 * reach, 1.01 * reach);
+    for _ in 0..60 {
+        let mid = 0.5 * (low + high);
+        if displaced(mesh, mid)? > target {
+            low = mid;
+        } else {
+            high = mid;
+        }
+    }
+    let wetted = wetted_panels(mesh, &rest_pose(radiation, 0.5 * (low + high)), 1e9)
+        .with_context(|| format!("the wetted surface of {}", mesh.name))?
+        .len();
+    let simplified = wetted > panels * 3 / 2;
+    let hull = if simplified {
+        let share = panels as f64 / wetted as f64;
+        mesh.simplified_within(((mesh.triangles.len() as f64 * share) as usize).max(8), 0.005)
+    } else {
+        mesh.clone()
+    };
+    let h = radiation.hydrostatics();
+    let volume = displaced(&hull, h.center_of_mass_height)
+        .with_context(|| format!("the wetted surface of {}", mesh.name))?;
+    if (volume - h.volume).abs() > 1e-6 * h.volume {
+        eprintln!(
+            "warning: the hull written to {} displaces {volume:.6} m³ at the rest pose, the model's \
+             hull {:.6} m³: not the hull the radiation was baked on",
+            path.display(),
+            h.volume
+        );
+    }
+    // Seams welded, only the vertices the triangles use, in their order.
+    let pose = rest_pose(radiation, h.center_of_mass_height);
+    let mut index = vec![u32::MAX; hull.positions.len()];
+    let mut positions = Vec::new();
+    let triangles = hull
+        .welded_triangles()
+        .into_iter()
+        .map(|t| {
+            t.map(|v| {
+                let slot = &mut index[v as usize];
+                if *slot == u32::MAX {
+                    *slot = positions.len() as u32;
+                    positions.push(pose * hull.positions[v as usize]);
+                }
+                *slot
+            })
+        })
+        .collect();
+    let placed = Mesh {
+        name: format!(
+            "{}{} at rest: y up, still water y = 0, centre of mass at x = z = 0 and y = {} m",
+            mesh.name,
+            if simplified {
+                " (simplified for the bake)"
+            } else {
+                ""
+            },
+            h.center_of_mass_height
+        ),
+        positions,
+        uvs: None,
+        triangles,
+        openings: Vec::new(),
+        source: None,
+    };
+    std::fs::write(path, placed.to_obj()).with_context(|| format!("writing {}", path.display()))?;
+    Ok(HullObj {
+        path: path.to_path_buf(),
+        vertices: placed.positions.len(),
+        triangles: placed.triangles.len(),
+        simplified,
+        displaced: volume,
+    })
 }
 
 fn print_report(r: &Report, heading: f64) {
@@ -459,4 +637,96 @@ fn references(path: &std::path::Path) -> anyhow::Result<()> {
         .with_context(|| format!("writing {}", path.display()))?;
     println!("wrote {}", path.display());
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use nalgebra::{Point3, UnitQuaternion};
+
+    use super::*;
+
+    /// `source` solid at half the water's density, baked on about `panels`
+    /// panels at 8 frequencies, as `soak seakeeping` bakes it.
+    fn baked(source: &str, panels: usize) -> (Mesh, RadiationModel) {
+        let mesh = common::mesh(source, false).expect("a builtin");
+        let (atlas, _) = common::bake(&mesh, 32).expect("its atlas");
+        let mass = MassModel::Solid { density: 500.0 }
+            .mass_properties(&atlas)
+            .expect("its mass");
+        let radiation = RadiationModel::bake(
+            &FloatingBody {
+                mesh: &mesh,
+                mass: mass.mass,
+                center_of_mass: mass.center_of_mass,
+                inertia: mass.inertia,
+                rotation: UnitQuaternion::identity(),
+            },
+            &RadiationSettings {
+                panels,
+                frequencies: 8,
+                ..RadiationSettings::default()
+            },
+        )
+        .expect("its radiation");
+        (mesh, radiation)
+    }
+
+    /// The OBJ at `path` read back: the volume it puts under y = 0 (m³)
+    /// and the centroid of all it encloses (m).
+    fn read_back(path: &Path) -> (f64, Point3<f64>) {
+        let hull = soak_bake::load_mesh(path.to_str().expect("a UTF-8 path")).expect("reads the OBJ");
+        let under: f64 = wetted_panels(&hull, &Isometry3::identity(), 1e9)
+            .expect("its wetted part")
+            .iter()
+            .map(|p| p.area * p.normal.y * p.centroid.y)
+            .sum();
+        let (mut volume, mut moment) = (0.0, Vector3::zeros());
+        for t in 0..hull.triangles.len() {
+            let [a, b, c] = hull.triangle_points(t);
+            let v = a.coords.dot(&b.coords.cross(&c.coords)) / 6.0;
+            volume += v;
+            moment += v * (a.coords + b.coords + c.coords) / 4.0;
+        }
+        (under, Point3::from(moment / volume))
+    }
+
+    #[test]
+    fn the_hull_is_written_at_rest_as_it_was_baked() {
+        let dir = std::env::temp_dir().join(format!("soak-seakeeping-hull-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a scratch folder");
+        let path = dir.join("hull.obj");
+        // A cube of half the water's density turns some 57° to its rest and
+        // is written as given (12 triangles); a fine sphere (4,000) is baked
+        // on a simplified copy, and that copy is written.
+        for (source, simplified) in [("builtin:box", false), ("builtin:sphere", true)] {
+            let (mesh, radiation) = baked(source, 60);
+            let hull = write_hull(&mesh, &radiation, 60, &path).expect("writes the OBJ");
+            let h = radiation.hydrostatics();
+            assert_eq!(hull.simplified, simplified, "{source}");
+            let (under, centroid) = read_back(&path);
+            // Counter-clockwise seen from outside, at rest: the volume the
+            // model displaces (to the rounding of its finer panels, as
+            // `write_hull` judges it), its centre of mass (the solid's
+            // centroid) at x = z = 0, `center_of_mass_height` up.
+            for volume in [hull.displaced, under] {
+                assert!(
+                    (volume / h.volume - 1.0).abs() < 1e-6,
+                    "{source}: {volume} against {}",
+                    h.volume
+                );
+            }
+            let off = centroid - Point3::new(0.0, h.center_of_mass_height, 0.0);
+            assert!(off.norm() < 0.01, "{source}: centroid {centroid}");
+        }
+        // A path that cannot be written: the error names it, no panic.
+        let (mesh, radiation) = baked("builtin:box", 60);
+        let missing = dir.join("missing").join("hull.obj");
+        let Err(e) = write_hull(&mesh, &radiation, 60, &missing) else {
+            panic!("wrote into a folder that does not exist");
+        };
+        assert!(format!("{e:#}").contains(&missing.display().to_string()), "{e:#}");
+        std::fs::remove_dir_all(&dir).ok();
+    }
 }

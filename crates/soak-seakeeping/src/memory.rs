@@ -221,8 +221,9 @@ impl Kernel {
         // Unknowns: Re c_k and Im c_k. With u = 1/(λ + iω), v = 1/(λ̄ +
         // iω), the transform of Re(c e^{λt}) is −½ (x (u + v) + i y (u − v)).
         let rows = 2 * response.len() + 1;
-        let scale = response.iter().fold(0.0f64, |m, r| m.max(r.1.norm()));
-        if !(scale > 0.0) {
+        // Nothing to fit to (a response of zeros): the kernel as it is.
+        let largest = response.iter().fold(0.0f64, |m, r| m.max(r.1.re.abs()));
+        if largest == 0.0 {
             return self.clone();
         }
         let mut design = DMatrix::<f64>::zeros(rows, 2 * n);
@@ -249,7 +250,7 @@ impl Kernel {
                 target[2 * r + 1] = weight * t.im;
             }
         }
-        // The integral: Re Σ −c/λ = 0, weighted against the rows' scale.
+        // The integral: Re Σ −c/λ = 0, weighted STEADY_WEIGHT.
         for (k, p) in self.poles.iter().enumerate() {
             let q = 1.0 / p;
             design[(rows - 1, 2 * k)] = -STEADY_WEIGHT * q.re;
