@@ -264,15 +264,10 @@ impl Panel {
         if n < 3 {
             return None;
         }
-        // The normal from the vertices taken about their mean: about the
-        // origin, the cross products of a thin panel a kilometre away
-        // cancelled to a normal tilted enough to lift its projected
-        // corners 0.26 mm above the water.
-        let mean = vertices.iter().fold(Vector3::zeros(), |s, p| s + p.coords) / n as f64;
         let mut normal = Vector3::zeros();
         for i in 0..n {
-            let a = vertices[i].coords - mean;
-            let b = vertices[(i + 1) % n].coords - mean;
+            let a = vertices[i].coords;
+            let b = vertices[(i + 1) % n].coords;
             normal += a.cross(&b);
         }
         let twice_area = normal.norm();
@@ -280,6 +275,7 @@ impl Panel {
             return None;
         }
         normal /= twice_area;
+        let mean = vertices.iter().fold(Vector3::zeros(), |s, p| s + p.coords) / n as f64;
         let projected: Vec<Point3<f64>> = vertices
             .iter()
             .map(|p| Point3::from(p.coords - normal * (p.coords - mean).dot(&normal)))
