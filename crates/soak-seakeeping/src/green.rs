@@ -258,28 +258,38 @@ pub struct Panel {
 impl Panel {
     /// A panel from a polygon's vertices (counter-clockwise about the
     /// outward normal), projected onto its mean plane; `None` when its
-    /// area is zero.
+    /// area is zero. A triangle is its own plane and keeps its corners as
+    /// given: a corner on the water plane stays exactly on it, however
+    /// thin the triangle and however far from the origin (projected, a
+    /// kilometre-long sliver's corners moved by its normal's rounding
+    /// error, a quarter of a millimetre).
     pub fn new(vertices: &[Point3<f64>]) -> Option<Panel> {
         let n = vertices.len();
         if n < 3 {
             return None;
         }
+        // The fan's cross products about the first corner: the same vector
+        // area as about the origin, without the rounding of coordinates a
+        // kilometre from it.
+        let first = vertices[0].coords;
         let mut normal = Vector3::zeros();
-        for i in 0..n {
-            let a = vertices[i].coords;
-            let b = vertices[(i + 1) % n].coords;
-            normal += a.cross(&b);
+        for i in 1..n - 1 {
+            normal += (vertices[i].coords - first).cross(&(vertices[i + 1].coords - first));
         }
         let twice_area = normal.norm();
         if !twice_area.is_finite() || twice_area <= 0.0 {
             return None;
         }
         normal /= twice_area;
-        let mean = vertices.iter().fold(Vector3::zeros(), |s, p| s + p.coords) / n as f64;
-        let projected: Vec<Point3<f64>> = vertices
-            .iter()
-            .map(|p| Point3::from(p.coords - normal * (p.coords - mean).dot(&normal)))
-            .collect();
+        let projected: Vec<Point3<f64>> = if n == 3 {
+            vertices.to_vec()
+        } else {
+            let mean = vertices.iter().fold(Vector3::zeros(), |s, p| s + p.coords) / n as f64;
+            vertices
+                .iter()
+                .map(|p| Point3::from(p.coords - normal * (p.coords - mean).dot(&normal)))
+                .collect()
+        };
         // Area-weighted centroid of the fan.
         let mut centroid = Vector3::zeros();
         let mut area = 0.0;

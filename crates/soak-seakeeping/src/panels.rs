@@ -92,6 +92,7 @@ fn split(t: &[Point3<f64>; 3], max_size: f64, out: &mut Vec<Panel>) {
         if edge(k) <= max_size || depth >= 24 {
             if let Some(panel) = Panel::new(&t)
                 && !waterline_strip(&panel)
+                && !needle(&panel, edge(k))
             {
                 out.push(panel);
             }
@@ -105,6 +106,15 @@ fn split(t: &[Point3<f64>; 3], max_size: f64, out: &mut Vec<Panel>) {
         pending.push(([a, middle, c], depth + 1));
         pending.push(([middle, b, c], depth + 1));
     }
+}
+
+/// Whether `panel`, whose longest edge is `longest` (m), is a needle:
+/// an area under a millionth of its longest edge squared (a millionth
+/// as wide as long). What the clip and the halving leave of a triangle
+/// cut a rounding error from one of its corners; its normal is the
+/// rounding error's direction, its area nothing against the hull's.
+fn needle(panel: &Panel, longest: f64) -> bool {
+    panel.area < 1e-6 * longest * longest
 }
 
 /// Whether `panel` is a strip along the water-plane thinner than a
@@ -159,5 +169,41 @@ mod tests {
         // The trapezoid under the water: 0.2 m deep, 1 m and 0.8286 m wide.
         let top = 1.0 - 0.2 / 0.7;
         assert!((area - 0.2 * (1.0 + top) / 2.0).abs() < 1e-12, "{area}");
+    }
+
+    #[test]
+    fn a_kilometre_sliver_a_kilometre_away_keeps_its_waterline_on_the_water() {
+        // A hull's side a kilometre long and 3 m deep, leaning 1e-4 out of
+        // the vertical, placed a kilometre from the origin: halved into
+        // panels 20 m long, each as thin as a rounding error allows.
+        let (x, z) = (1.0e3, 2.0e3);
+        let mesh = Mesh::new(
+            "side".to_string(),
+            vec![
+                Point3::new(x, -3.0, z),
+                Point3::new(x + 1.0e3, -3.0, z + 3.0e-4),
+                Point3::new(x + 1.0e3, 1.0, z - 1.0e-4),
+                Point3::new(x, 1.0, z - 1.0e-4),
+            ],
+            None,
+            vec![[0, 1, 2], [0, 2, 3]],
+        );
+        let panels = wetted_panels(&mesh, &Isometry3::identity(), 20.0).unwrap();
+        assert!(panels.len() > 100, "{} panels", panels.len());
+        for (i, panel) in panels.iter().enumerate() {
+            let highest = panel.vertices.iter().map(|v| v.y).fold(f64::MIN, f64::max);
+            assert!(highest <= 0.0, "panel {i} reaches {highest} m above the water");
+            assert!(
+                panel.area >= 1e-6 * 20.0 * 20.0 * 1e-3,
+                "panel {i}: {}",
+                panel.area
+            );
+            // Every panel's normal is the side's (to its thinness' rounding).
+            assert!(panel.normal.z.abs() > 1.0 - 1e-6, "panel {i}: {}", panel.normal);
+        }
+        // Less the strips along the waterline (a twentieth as deep as
+        // long: see `waterline_strip`).
+        let area: f64 = panels.iter().map(|p| p.area).sum();
+        assert!(area <= 3.0e3 && area > 0.9 * 3.0e3, "{area}");
     }
 }
