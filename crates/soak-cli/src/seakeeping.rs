@@ -85,7 +85,8 @@ struct Row {
     added_mass: [f64; 6],
     /// per mode: kg/s, kg·m²/s
     damping: [f64; 6],
-    /// heave (m/m), roll and pitch (rad/m) at the heading
+    /// heave (m/m), roll and pitch (rad/m) at the heading, moving
+    /// together as the time domain moves them
     rao: [Option<f64>; 3],
 }
 
@@ -197,7 +198,10 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
             kl: c.omega * c.omega / g * radiation.length(),
             added_mass: std::array::from_fn(|m| c.added_mass[(m, m)]),
             damping: std::array::from_fn(|m| c.damping[(m, m)]),
-            rao: RESTORING.map(|m| radiation.rao(m, c.omega, heading)),
+            rao: {
+                let coupled = radiation.coupled_rao(c.omega, heading);
+                std::array::from_fn(|i| coupled.map(|r| r[i]))
+            },
         })
         .collect();
     // Free decay of each restoring mode, from the frequency domain.

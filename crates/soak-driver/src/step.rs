@@ -346,7 +346,8 @@ impl<H: Handle> Driver<H> {
                     // velocity it samples at its own place, whose mean is
                     // no drift of the real sea's.
                     let center = rb.pose * b.mass.center_of_mass;
-                    let excitation = sea_excitation(&self.water, model, rotation, &center, t);
+                    let pushed = b.effects.buoyancy == Some(BuoyancyMode::Pressure);
+                    let excitation = sea_excitation(&self.water, model, rotation, &center, t, pushed);
                     let (flow, flow_acceleration) = if excitation.is_some() {
                         (Vector3::zeros(), Vector3::zeros())
                     } else {

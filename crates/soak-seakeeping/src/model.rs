@@ -118,9 +118,13 @@ pub struct RadiationModel {
     /// The same for the hydrostatic columns' wave force (see
     /// [`RadiationModel::column_excitation`]), per frequency and heading.
     columns: Vec<[[Complex64; 6]; HEADINGS]>,
-    /// Per wetted panel: its centroid's x and z (m) and `−n_y` × area
-    /// (m²), the water-plane seen through the hull.
-    waterline: Vec<[f64; 3]>,
+    /// Quadrature points of the wetted panels (each triangle's edge
+    /// midpoints, a third of its area each): x and z (m), `−n_y` × the
+    /// weight (m², the water-plane seen through the hull), `n_y y` × it
+    /// (m³, the share of `∫_V dV`) and `n_y (y²/2 − h y)` × it (m⁴, of
+    /// `∫_V (y − h) dV`, h the centre of mass' height); see
+    /// [`column_forces`].
+    waterline: Vec<[f64; 5]>,
     kernels: Vec<Kernel>,
     kernel_step: f64,
     length: f64,
@@ -249,9 +253,21 @@ impl RadiationModel {
             .map(|n| low + (high - low) * n as f64 / (count - 1) as f64)
             .collect();
         let count = panels.len();
-        let waterline: Vec<[f64; 3]> = panels
+        let waterline: Vec<[f64; 5]> = panels
             .iter()
-            .map(|p| [p.centroid.x, p.centroid.z, -p.normal.y * p.area])
+            .flat_map(|p| {
+                // The edge-midpoint rule of `quadratic`, point by point.
+                let v = &p.vertices;
+                (1..v.len().saturating_sub(1)).flat_map(move |k| {
+                    let (a, b, c) = (v[0], v[k], v[k + 1]);
+                    let third = 0.5 * (b - a).cross(&(c - a)).norm() / 3.0;
+                    [(a, b), (b, c), (c, a)].map(|(u, w)| {
+                        let m = Point3::from((u.coords + w.coords) * 0.5);
+                        let w = p.normal.y * third;
+                        [m.x, m.z, -w, w * m.y, w * m.y * (0.5 * m.y - height)]
+                    })
+                })
+            })
             .collect();
         let problem = Radiation::new(panels, Point3::new(0.0, height, 0.0), rho, g)?;
         // Each frequency's potentials give its coefficients and the wave
@@ -473,36 +489,12 @@ impl RadiationModel {
                 .fold(0.0, f64::max);
         let steps = 30_000;
         let d_omega = top / steps as f64;
-        let infinite = &self.sweep.infinite;
-        let mut inertia = Matrix6::zeros();
-        for i in 0..6 {
-            for j in 0..6 {
-                let own = match (i < 3, j < 3) {
-                    (true, true) if i == j => self.mass,
-                    (false, false) => self.inertia[(i - 3, j - 3)],
-                    _ => 0.0,
-                };
-                let blocks = if (i < 3) == (j < 3) { infinite[(i, j)] } else { 0.0 };
-                inertia[(i, j)] = own + blocks;
-            }
-        }
+        let inertia = self.coupled_inertia();
         let force: nalgebra::Vector6<Complex64> = stiffness.column(mode).map(|c| Complex64::new(c, 0.0));
         let response: Vec<(f64, f64)> = (1..=steps)
             .filter_map(|n| {
                 let omega = n as f64 * d_omega;
-                let z = nalgebra::Matrix6::<Complex64>::from_fn(|i, j| {
-                    let (a, b) = if i == j {
-                        let (a, b) = self.coefficients(i, omega);
-                        (a - infinite[(i, i)], b)
-                    } else {
-                        (0.0, 0.0)
-                    };
-                    Complex64::new(
-                        stiffness[(i, j)] - omega * omega * (inertia[(i, j)] + a),
-                        -omega * b,
-                    )
-                });
-                let y = z.lu().solve(&force)?;
+                let y = self.impedance(&inertia, omega).lu().solve(&force)?;
                 Some((omega, y[mode].re))
             })
             .collect();
@@ -523,6 +515,43 @@ impl RadiationModel {
         )
     }
 
+    /// The inertia the time domain gives the six modes: the body's mass
+    /// and inertia with A∞'s translational and rotational blocks (its
+    /// cross blocks left out, as the time domain leaves them).
+    fn coupled_inertia(&self) -> Matrix6<f64> {
+        let infinite = &self.sweep.infinite;
+        Matrix6::from_fn(|i, j| {
+            let own = match (i < 3, j < 3) {
+                (true, true) if i == j => self.mass,
+                (false, false) => self.inertia[(i - 3, j - 3)],
+                _ => 0.0,
+            };
+            let blocks = if (i < 3) == (j < 3) { infinite[(i, j)] } else { 0.0 };
+            own + blocks
+        })
+    }
+
+    /// `C − ω² (M + A∞ + A(ω) − A∞) − i ω B(ω)` over the six modes as the
+    /// time domain couples them: `inertia` from
+    /// [`coupled_inertia`](Self::coupled_inertia), each mode's memory on
+    /// the diagonal.
+    fn impedance(&self, inertia: &Matrix6<f64>, omega: f64) -> nalgebra::Matrix6<Complex64> {
+        let stiffness = &self.hydrostatics.stiffness;
+        let infinite = &self.sweep.infinite;
+        nalgebra::Matrix6::<Complex64>::from_fn(|i, j| {
+            let (a, b) = if i == j {
+                let (a, b) = self.coefficients(i, omega);
+                (a - infinite[(i, i)], b)
+            } else {
+                (0.0, 0.0)
+            };
+            Complex64::new(
+                stiffness[(i, j)] - omega * omega * (inertia[(i, j)] + a),
+                -omega * b,
+            )
+        })
+    }
+
     /// The wave excitation of `mode` (N or N·m per metre of wave
     /// amplitude; phase relative to the incident crest at the centre of
     /// mass) in regular waves of frequency `omega` (rad/s) travelling along
@@ -534,14 +563,17 @@ impl RadiationModel {
         self.interpolate(&self.excitation, mode, omega, heading)
     }
 
-    /// The linear part of the wave force the hydrostatic columns of soak's
-    /// texels give (`ρ g V_s` of the water under the local surface, up at
-    /// its centre: no decay of the wave's pressure with depth and no
-    /// diffraction) in the same regular waves as
-    /// [`RadiationModel::excitation`]: `ρ g ∫ e^{i k·x} dA` over the
-    /// water-plane for heave and its moments `−∫ z …` about x and
-    /// `∫ x …` about z; no surge, sway or yaw. N or N·m per metre of wave
-    /// amplitude, same phase. `None` outside the frequencies solved.
+    /// The linear part of the wave force and moments soak's texels give,
+    /// their pressure hydrostatic under the local surface (no decay of the
+    /// wave's pressure with depth and no diffraction), in the same regular
+    /// waves as [`RadiationModel::excitation`]: for heave the columns of
+    /// water under the surface, `ρ g ∫ e^{i k·x} dA` over the water-plane;
+    /// for surge and sway the push the sloping surface gives the hull,
+    /// `−i k (cos β, sin β) ρ g ∫_V e^{i k·x} dV` over the displaced
+    /// volume; for roll, yaw and pitch the moments of both about the
+    /// centre of mass. In long waves roll and pitch are the restoring
+    /// moment `ρ g V GM` times the surface's slope. N or N·m per metre of
+    /// wave amplitude, same phase. `None` outside the frequencies solved.
     pub fn column_excitation(&self, mode: usize, omega: f64, heading: f64) -> Option<Complex64> {
         self.interpolate(&self.columns, mode, omega, heading)
     }
@@ -608,7 +640,9 @@ impl RadiationModel {
     }
 
     /// The response amplitude operator of `mode` alone (its couplings
-    /// left out, as in the time domain): `|X / (C − ω² (M + A) − i ω B)|`,
+    /// left out; [`RadiationModel::coupled_rao`] moves heave, roll and
+    /// pitch together as the time domain does): `|X / (C − ω² (M + A) −
+    /// i ω B)|`,
     /// m or rad per metre of wave amplitude, in regular waves of frequency
     /// `omega` along `heading` (see [`RadiationModel::excitation`]).
     pub fn rao(&self, mode: usize, omega: f64, heading: f64) -> Option<f64> {
@@ -617,6 +651,29 @@ impl RadiationModel {
         let c = self.hydrostatics.stiffness[(mode, mode)];
         let h = Complex64::new(c - omega * omega * (self.mode_inertia(mode) + a), -omega * b);
         Some((x / h).norm())
+    }
+
+    /// The response amplitude operators of heave, roll and pitch moving
+    /// together, as the time domain moves them (m or rad per metre of wave
+    /// amplitude, `[heave, roll, pitch]`), in regular waves of frequency
+    /// `omega` (rad/s) along `heading` (rad, axes at rest): `|ξ|` of `Z ξ
+    /// = X` over the three modes with stiffness, `Z` the impedance the
+    /// release integrates (the stiffness' couplings, A∞'s blocks, each
+    /// mode's memory its own) and `X` their wave excitation. Surge, sway
+    /// and yaw are left out: the time domain gives them the texels'
+    /// forces, not linear theory's. For a body symmetric about its centre
+    /// of mass each is [`RadiationModel::rao`]. `None` outside the
+    /// frequencies solved.
+    pub fn coupled_rao(&self, omega: f64, heading: f64) -> Option<[f64; 3]> {
+        const MODES: [usize; 3] = [1, 3, 5];
+        let z = self.impedance(&self.coupled_inertia(), omega);
+        let z = nalgebra::Matrix3::<Complex64>::from_fn(|i, j| z[(MODES[i], MODES[j])]);
+        let mut x = nalgebra::Vector3::<Complex64>::zeros();
+        for (i, &mode) in MODES.iter().enumerate() {
+            x[i] = self.excitation(mode, omega, heading)?;
+        }
+        let xi = z.lu().solve(&x)?;
+        Some([xi[0].norm(), xi[1].norm(), xi[2].norm()])
     }
 
     /// The orientation the model reads a body turned by `rotation` (object
@@ -743,21 +800,40 @@ pub fn decay_measure(x: &[f64], dt: f64) -> Option<(f64, f64)> {
 /// How many headings the excitation is computed at (every 45°).
 const HEADINGS: usize = 8;
 
-/// The hydrostatic columns' linear wave force per metre of amplitude in
-/// regular waves of wavenumber `k` (1/m) along `heading` (rad), `weight`
-/// = ρ g: `ρ g Σ (−n_y A) e^{i k (x cos β + z sin β)}` over the wetted
-/// panels (the water-plane integral, as the hull sees it: the lid and the
-/// hull close a volume, so for any f(x, z) the lid's integral is minus
-/// the hull's), with its moments about x (−z) and z (x).
-fn column_forces(waterline: &[[f64; 3]], k: f64, heading: f64, weight: f64) -> [Complex64; 6] {
+/// The linear wave force and moments per metre of amplitude of a
+/// pressure hydrostatic under the surface (`p = ρ g (a f − y)`, `f =
+/// e^{i k (x cos β + z sin β)}`), in regular waves of wavenumber `k` (1/m)
+/// along `heading` β (rad), `weight` = ρ g, about the centre of mass at
+/// (0, h, 0). The wetted hull and the lid at y = 0 close the displaced
+/// volume V, so over the hull `−∫ p n dS = ρ g a (∫_lid f ŷ dA − ∫_V ∇f
+/// dV)` and `−∫ p r × n dS = ρ g a (∫_lid f r × ŷ dA + ∫_V ∇f × r dV)`:
+/// heave is the water-plane's columns, `ρ g ∫ f dA` (summed over the
+/// panels as `Σ (−n_y A) f`: the lid's integral of a function of x and z
+/// is minus the hull's); roll and pitch are the columns' moments (`−∫ z f
+/// dA`, `∫ x f dA`) and the moment of the horizontal push `−ρ g ∫_V ∇f
+/// dV`, `−i k sin β ∫_V f (y − h) dV` about x and `i k cos β ∫_V f (y −
+/// h) dV` about z (`∫_V g(x, z) (y − h) dV = ∮ g (y²/2 − h y) n_y dS`),
+/// the push itself `−i k (cos β, 0, sin β) ρ g ∫_V f dV` (`∫_V g dV = ∮
+/// g y n_y dS`) and its moment about y `i k ρ g ∫_V f (x sin β − z cos β)
+/// dV`; each integral by the edge-midpoint rule. Long waves tilt the
+/// water as a slope would: roll and pitch are then the restoring moment
+/// `ρ g V GM` times the slope, where the columns alone give `ρ g V BM`,
+/// and the push is the displaced water's weight times the slope.
+fn column_forces(waterline: &[[f64; 5]], k: f64, heading: f64, weight: f64) -> [Complex64; 6] {
     let (cos, sin) = (heading.cos(), heading.sin());
     let mut out = [Complex64::new(0.0, 0.0); 6];
-    for &[x, z, area] in waterline {
+    let ik = Complex64::new(0.0, k);
+    for &[x, z, area, volume, lever] in waterline {
         let (s, c) = (k * (x * cos + z * sin)).sin_cos();
-        let f = Complex64::new(c, s) * (area * weight);
-        out[1] += f;
-        out[3] -= f * z;
-        out[5] += f * x;
+        let f = Complex64::new(c, s) * weight;
+        let push = ik * f * lever;
+        let along = ik * f * volume;
+        out[0] -= along * cos;
+        out[1] += f * area;
+        out[2] -= along * sin;
+        out[3] -= f * area * z + push * sin;
+        out[4] += along * (x * sin - z * cos);
+        out[5] += f * area * x + push * cos;
     }
     out
 }
