@@ -43,12 +43,15 @@ pub(crate) fn water_motion(
 /// theory adds the diffraction, which carries a small body along with the
 /// water's orbit as the radiation damps it. Archimedes' buoyancy acts
 /// straight up by design (no sideways force, no drift of its own): such a
-/// body takes none of linear theory's surge and sway either, and its
-/// back-and-forth is left to its drag. (Given linear theory's whole
+/// body takes linear theory's heave, roll and pitch, none of its surge,
+/// sway and yaw (the diffraction's yaw is the moment of its sway), and
+/// its back-and-forth is left to its drag. (Given linear theory's whole
 /// push and diffraction, a 10 cm ball on the steep swell drifted at 0.63
-/// of the Stokes drift; with its pressure summed, 1.0; with neither,
-/// 0.83.) `None` on any other surface: there the body radiates against
-/// the water's own vertical motion instead (see the step).
+/// of the Stokes drift, where with its pressure summed it drifts at 1.0
+/// and with neither at 0.83; given the diffraction's yaw without its
+/// sway, a metre-long needle on the stability matrix's breaking-limit sea
+/// spun up.) `None` on any other surface: there the body radiates
+/// against the water's own vertical motion instead (see the step).
 pub(crate) fn sea_excitation(
     water: &Water,
     model: &RadiationModel,
@@ -70,7 +73,7 @@ pub(crate) fn sea_excitation(
         let phase = k * (cos * center.x + sin * center.z) - omega * t + wave.phase;
         let (s, c) = phase.sin_cos();
         for (mode, added) in added.iter_mut().enumerate() {
-            if !pushed && (mode == 0 || mode == 2) {
+            if !pushed && matches!(mode, 0 | 2 | 4) {
                 continue;
             }
             let difference = model.excitation_beyond_columns(mode, omega, heading);
