@@ -79,10 +79,11 @@ pub fn wetted_panels(
 
 /// Splits a triangle by halving its longest edge, again and again, until
 /// no edge is longer than `max_size` (points on an edge lying in the
-/// water plane stay exactly on it). A long thin triangle (a hull's strip
-/// from bow to stern) becomes panels about as wide as they are long: cut
-/// into `n²` congruent copies of itself instead, it stayed as thin, and
-/// the shortest wave the panels resolve was set by their length.
+/// water plane stay exactly on it). Halving keeps a triangle's shape
+/// within a few classes (a right triangle's quarters are like it), so a
+/// long thin triangle (a hull's strip from bow to stern) gives panels
+/// about as thin as itself; what the halving bounds is their longest
+/// edge, which sets the shortest wave they resolve.
 fn split(t: &[Point3<f64>; 3], max_size: f64, out: &mut Vec<Panel>) {
     let mut pending = vec![(*t, 0u32)];
     while let Some((t, depth)) = pending.pop() {
