@@ -240,8 +240,8 @@ impl RadiationModel {
         let scale = (g / length).sqrt();
         // From KL ≈ 0.06 (below, B falls to 0 and A is held: see
         // `Sweep::at`) to KL ≈ 11 or to the shortest wave three panels
-        // resolve, evenly. Three, not more: the panels are cut about as
-        // wide as long (see `wetted_panels`), and the boat's 295 matched an
+        // resolve, evenly. Three, not more: the halving bounds every panel's
+        // longest edge (see `wetted_panels`), and the boat's 295 matched an
         // independent boundary-element code within a few percent where
         // its longest are half a wave; at six the boat's sweep stopped
         // below its heave resonance, and its time domain, whose kernel
