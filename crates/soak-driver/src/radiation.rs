@@ -72,11 +72,11 @@ pub(crate) fn sea_excitation(
         let heading = along.z.atan2(along.x);
         let phase = k * (cos * center.x + sin * center.z) - omega * t + wave.phase;
         let (s, c) = phase.sin_cos();
-        for (mode, added) in added.iter_mut().enumerate() {
+        let differences = model.excitations_beyond_columns(omega, heading);
+        for (mode, (added, difference)) in added.iter_mut().zip(differences).enumerate() {
             if !pushed && matches!(mode, 0 | 2 | 4) {
                 continue;
             }
-            let difference = model.excitation_beyond_columns(mode, omega, heading);
             *added += wave.amplitude * (difference.re * c - difference.im * s);
         }
     }

@@ -257,15 +257,9 @@ impl RadiationModel {
             .iter()
             .flat_map(|p| {
                 // The edge-midpoint rule of `quadratic`, point by point.
-                let v = &p.vertices;
-                (1..v.len().saturating_sub(1)).flat_map(move |k| {
-                    let (a, b, c) = (v[0], v[k], v[k + 1]);
-                    let third = 0.5 * (b - a).cross(&(c - a)).norm() / 3.0;
-                    [(a, b), (b, c), (c, a)].map(|(u, w)| {
-                        let m = Point3::from((u.coords + w.coords) * 0.5);
-                        let w = p.normal.y * third;
-                        [m.x, m.z, -w, w * m.y, w * m.y * (0.5 * m.y - height)]
-                    })
+                edge_midpoints(p).flat_map(move |(third, midpoints)| {
+                    let w = p.normal.y * third;
+                    midpoints.map(|m| [m.x, m.z, -w, w * m.y, w * m.y * (0.5 * m.y - height)])
                 })
             })
             .collect();
@@ -590,29 +584,42 @@ impl RadiationModel {
     /// solved and the columns' force is summed panel by panel. Zero for
     /// a mode out of range or a frequency that is not finite and positive.
     pub fn excitation_beyond_columns(&self, mode: usize, omega: f64, heading: f64) -> Complex64 {
+        if mode >= 6 {
+            return Complex64::new(0.0, 0.0);
+        }
+        self.excitations_beyond_columns(omega, heading)[mode]
+    }
+
+    /// [`RadiationModel::excitation_beyond_columns`] of the six modes at
+    /// once (past the sweep the texels' part is summed over the panels
+    /// once for all six).
+    pub fn excitations_beyond_columns(&self, omega: f64, heading: f64) -> [Complex64; 6] {
         let zero = Complex64::new(0.0, 0.0);
         let f = &self.sweep.frequencies;
         let (Some(first), Some(last)) = (f.first(), f.last()) else {
-            return zero;
+            return [zero; 6];
         };
-        if mode >= 6 || !(omega.is_finite() && omega > 0.0) {
-            return zero;
+        if !(omega.is_finite() && omega > 0.0) {
+            return [zero; 6];
         }
-        let difference = |omega: f64| {
+        let difference = |mode: usize, omega: f64| {
             self.excitation(mode, omega, heading).unwrap_or(zero)
                 - self.column_excitation(mode, omega, heading).unwrap_or(zero)
         };
         if omega < first.omega {
-            difference(first.omega) * (omega / first.omega).powi(2)
+            std::array::from_fn(|mode| difference(mode, first.omega) * (omega / first.omega).powi(2))
         } else if omega <= last.omega {
-            difference(omega)
+            std::array::from_fn(|mode| difference(mode, omega))
         } else {
             let g = self.gravity;
             let (k, k_last) = (omega * omega / g, last.omega * last.omega / g);
             let depth = (-self.hydrostatics.center_of_buoyancy.y).max(0.0);
-            let x =
-                self.excitation(mode, last.omega, heading).unwrap_or(zero) * (-(k - k_last) * depth).exp();
-            x - column_forces(&self.waterline, k, heading, self.density * g)[mode]
+            let columns = column_forces(&self.waterline, k, heading, self.density * g);
+            std::array::from_fn(|mode| {
+                let x = self.excitation(mode, last.omega, heading).unwrap_or(zero)
+                    * (-(k - k_last) * depth).exp();
+                x - columns[mode]
+            })
         }
     }
 
@@ -959,18 +966,24 @@ fn float_height(
     Ok(0.5 * (low + high))
 }
 
-/// Exact integral over a flat polygon of a quadratic `f`: fan triangles,
-/// each by its edge midpoints.
-fn quadratic(panel: &Panel, f: impl Fn(&Point3<f64>) -> f64) -> f64 {
+/// The edge-midpoint rule over a flat polygon: per fan triangle, a third
+/// of its area (m²) and its three edge midpoints (exact for quadratics).
+fn edge_midpoints(panel: &Panel) -> impl Iterator<Item = (f64, [Point3<f64>; 3])> + '_ {
     let v = &panel.vertices;
-    let mut sum = 0.0;
-    for k in 1..v.len().saturating_sub(1) {
+    (1..v.len().saturating_sub(1)).map(move |k| {
         let (a, b, c) = (v[0], v[k], v[k + 1]);
         let area = 0.5 * (b - a).cross(&(c - a)).norm();
         let mid = |p: Point3<f64>, q: Point3<f64>| Point3::from((p.coords + q.coords) * 0.5);
-        sum += area / 3.0 * (f(&mid(a, b)) + f(&mid(b, c)) + f(&mid(c, a)));
-    }
-    sum
+        (area / 3.0, [mid(a, b), mid(b, c), mid(c, a)])
+    })
+}
+
+/// Exact integral over a flat polygon of a quadratic `f`
+/// ([`edge_midpoints`]).
+fn quadratic(panel: &Panel, f: impl Fn(&Point3<f64>) -> f64) -> f64 {
+    edge_midpoints(panel)
+        .map(|(third, [a, b, c])| third * (f(&a) + f(&b) + f(&c)))
+        .sum()
 }
 
 fn hydrostatics(panels: &[Panel], height: f64, rho: f64, g: f64) -> Hydrostatics {
