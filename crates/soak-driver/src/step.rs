@@ -298,7 +298,34 @@ impl<H: Handle> Driver<H> {
             press_waves(w, self.bodies.len(), &work, pressed);
         }
 
-        // 3. The firewall, then the engine.
+        // 3. Radiation's memory and wrench and the inertia the step moves,
+        // for every radiating body on its own in one parallel pass (the
+        // other bodies' inertia is made as they are handed to the engine,
+        // and a scene without radiation makes no pass). `work` lists the
+        // bodies in order, so the pass's results come in `work`'s order.
+        let radiates = |b: &SoakBody<H>| b.effects.radiation.is_some() && b.radiation.is_some();
+        let mut radiating: Vec<Option<Moved>> = Vec::new();
+        if work.iter().any(|(k, _)| radiates(&self.bodies[*k])) {
+            let mut slot = vec![usize::MAX; self.bodies.len()];
+            for (i, (k, _)) in work.iter().enumerate() {
+                slot[*k] = i;
+            }
+            let water = &self.water;
+            radiating = self
+                .bodies
+                .par_iter_mut()
+                .enumerate()
+                .filter_map(|(k, b)| {
+                    let i = slot[k];
+                    (i != usize::MAX).then(|| {
+                        let forces = results[i].as_ref().ok().filter(|_| radiates(b))?;
+                        Some(moved(b, &engine[i], &work[i].1, forces, water, t, dt))
+                    })
+                })
+                .collect();
+        }
+
+        // 4. The firewall, then the engine.
         for (i, ((((k, state), result), sea), rb)) in
             work.iter().zip(results).zip(&seas).zip(&engine).enumerate()
         {
@@ -312,114 +339,17 @@ impl<H: Handle> Driver<H> {
                     continue;
                 }
             };
-            // What the step moves: the body, and with an added mass the
-            // water it sets moving (as much of it as is under water now).
-            // Radiation's A∞ supersedes the added mass; its memory acts
-            // with the drag.
-            let mut radiation = Wrench::default();
-            let inertial = match (&b.effects.radiation, &mut b.radiation, &b.effects.added_mass) {
-                // Radiation where the step resolves the body's motion (see
-                // `RadiationModel::resolved_by`); otherwise as without it.
-                (Some(model), Some(run), _) if model.resolved_by(dt) => {
-                    // Whole from half the rest displacement up (small
-                    // motions see the linear model unchanged), fading to
-                    // none as the body leaves the water.
-                    let rest = model.hydrostatics().volume;
-                    let share = (2.0 * forces.submerged_volume / rest).clamp(0.0, 1.0);
-                    // The share at the last step (none before the first).
-                    let last_share = run
-                        .state
-                        .has_history()
-                        .then(|| (2.0 * b.forces.submerged_volume / rest).clamp(0.0, 1.0));
-                    // Read in the model's frame: the body's heading.
-                    let rotation = &model.heading(&rb.pose.rotation);
-                    // On a sea of known waves the body radiates as it
-                    // moves and takes linear theory's excitation: the
-                    // texels' hydrostatic columns and what the model adds
-                    // to them (the pressure's decay with depth and the
-                    // diffraction). On other moving water it radiates
-                    // against the water's own vertical motion at the
-                    // centre of buoyancy (relative velocity and
-                    // acceleration: the long-wave limit of the
-                    // diffraction). The horizontal motion is left to the
-                    // texels' forces: a body does not ride the orbital
-                    // velocity it samples at its own place, whose mean is
-                    // no drift of the real sea's.
-                    let center = rb.pose * b.mass.center_of_mass;
-                    let pushed = b.effects.buoyancy == Some(BuoyancyMode::Pressure);
-                    let excitation = sea_excitation(&self.water, model, rotation, &center, t, pushed);
-                    let (flow, flow_acceleration) = if excitation.is_some() {
-                        (Vector3::zeros(), Vector3::zeros())
-                    } else {
-                        let (u, a) = water_motion(&self.water, &forces.center_of_buoyancy, t, dt);
-                        (Vector3::y() * u.y, Vector3::y() * a.y)
-                    };
-                    let velocity = RadiationState::local_velocity(
-                        model,
-                        rotation,
-                        &(rb.linear_velocity - flow),
-                        &rb.angular_velocity,
-                    );
-                    run.state.record(model, velocity, t);
-                    // Held over the step: the memory's force at its middle.
-                    let (force, torque) = run.state.world_force_ahead(model, rotation, 0.5 * dt);
-                    let (linear, angular) = model.infinite_blocks(&model.heading(&state.pose.rotation));
-                    let excitation = excitation.unwrap_or_default();
-                    // Entering the water: the share of A∞ that grows over
-                    // the step takes its momentum, `−w ΔA v / dt` (and
-                    // `−w ΔA ω / dt` turning), so that a light body and
-                    // its water keep the momentum the body brought: held
-                    // at its speed against the water's whole inertia, a
-                    // body a hundred times lighter than the water it moves
-                    // came out with more energy than it went in with. The
-                    // weight `w = (a / (m + a))³` is the water's part of
-                    // the inertia (`a` the mean diagonal of A∞, `m` the
-                    // body's mass or mean principal inertia), cubed: whole
-                    // for such a body, negligible for one as heavy as its
-                    // water or heavier, which bobs through the surface on
-                    // a swell as linear theory (a constant A∞, no entry)
-                    // says. Leaving the water, the water keeps what it
-                    // took. With slamming on, the slam takes the entry.
-                    let growth = last_share.map_or(0.0, |last| share - last);
-                    let entry = if growth > 0.0 && b.effects.slamming.is_none() {
-                        let r = state.pose.rotation.to_rotation_matrix().into_inner();
-                        let w_linear = entry_weight(linear.trace() / 3.0, rb.mass);
-                        let w_angular = entry_weight(angular.trace() / 3.0, b.mass.inertia.trace() / 3.0);
-                        Wrench {
-                            force: -(linear * (w_linear * growth)) * (rb.linear_velocity - flow) / dt,
-                            torque: -(r * (angular * (w_angular * growth)) * r.transpose())
-                                * rb.angular_velocity
-                                / dt,
-                        }
-                    } else {
-                        Wrench::default()
-                    };
-                    radiation = Wrench {
-                        force: (force + linear * flow_acceleration + excitation.force) * share + entry.force,
-                        torque: (torque + excitation.torque) * share + entry.torque,
-                    };
-                    if !radiation.is_finite() {
-                        self.firewall
-                            .reject(step, &b.name, "radiation", format!("non-finite {radiation:?}"));
-                        radiation = Wrench::default();
-                    }
-                    run.force = radiation;
-                    if share > 0.0 {
-                        Inertial::with_blocks(rb.mass, &b.mass.inertia, &(linear * share), &(angular * share))
-                    } else {
-                        Inertial::plain(rb.mass, &b.mass.inertia)
-                    }
-                }
-                (_, _, None) => Inertial::plain(rb.mass, &b.mass.inertia),
-                (_, _, Some(added)) => Inertial::with_added(
-                    rb.mass,
-                    &b.mass.inertia,
-                    added,
-                    &state.pose.rotation,
-                    self.water.density,
-                    forces.submerged_volume,
-                ),
+            let Moved {
+                inertial,
+                radiation,
+                rejected,
+            } = match radiating.get_mut(i).and_then(Option::take) {
+                Some(moved) => moved,
+                None => moved(b, rb, state, &forces, &self.water, t, dt),
             };
+            if let Some(reason) = rejected {
+                self.firewall.reject(step, &b.name, "radiation", reason);
+            }
             // Slamming: the momentum the water-plane's growing added mass
             // takes, acting over the step like the drag.
             let slam = match (
@@ -749,6 +679,144 @@ fn press_waves(
     }
     w.settle_pending = false;
     w.follow = (lo[0] <= hi[0]).then(|| [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])]);
+}
+
+/// What a body's water adds to its step: the inertia the step moves and
+/// radiation's wrench (with the reason the firewall must record when that
+/// wrench came out non-finite and was set to nil). Each body's is its own
+/// (radiation's memory records the body's velocity here), so the step
+/// makes them for every body at once, in parallel, before it hands the
+/// forces to the engine one body at a time.
+struct Moved {
+    inertial: Inertial,
+    radiation: Wrench,
+    rejected: Option<String>,
+}
+
+/// Body `b`'s [`Moved`] for the step `dt` (s) at time `t` (s): `rb` is what
+/// the engine says of it, `state` its predicted state and `forces` what its
+/// texels gave at that state, on `water`.
+fn moved<H>(
+    b: &mut SoakBody<H>,
+    rb: &EngineBody,
+    state: &BodyState,
+    forces: &HydroForces,
+    water: &Water,
+    t: f64,
+    dt: f64,
+) -> Moved {
+    // What the step moves: the body, and with an added mass the
+    // water it sets moving (as much of it as is under water now).
+    // Radiation's A∞ supersedes the added mass; its memory acts
+    // with the drag.
+    let mut radiation = Wrench::default();
+    let mut rejected = None;
+    let inertial = match (&b.effects.radiation, &mut b.radiation, &b.effects.added_mass) {
+        // Radiation where the step resolves the body's motion (see
+        // `RadiationModel::resolved_by`); otherwise as without it.
+        (Some(model), Some(run), _) if model.resolved_by(dt) => {
+            // Whole from half the rest displacement up (small
+            // motions see the linear model unchanged), fading to
+            // none as the body leaves the water.
+            let rest = model.hydrostatics().volume;
+            let share = (2.0 * forces.submerged_volume / rest).clamp(0.0, 1.0);
+            // The share at the last step (none before the first).
+            let last_share = run
+                .state
+                .has_history()
+                .then(|| (2.0 * b.forces.submerged_volume / rest).clamp(0.0, 1.0));
+            // Read in the model's frame: the body's heading.
+            let rotation = &model.heading(&rb.pose.rotation);
+            // On a sea of known waves the body radiates as it
+            // moves and takes linear theory's excitation: the
+            // texels' hydrostatic columns and what the model adds
+            // to them (the pressure's decay with depth and the
+            // diffraction). On other moving water it radiates
+            // against the water's own vertical motion at the
+            // centre of buoyancy (relative velocity and
+            // acceleration: the long-wave limit of the
+            // diffraction). The horizontal motion is left to the
+            // texels' forces: a body does not ride the orbital
+            // velocity it samples at its own place, whose mean is
+            // no drift of the real sea's.
+            let center = rb.pose * b.mass.center_of_mass;
+            let pushed = b.effects.buoyancy == Some(BuoyancyMode::Pressure);
+            let excitation = sea_excitation(water, model, rotation, &center, t, pushed);
+            let (flow, flow_acceleration) = if excitation.is_some() {
+                (Vector3::zeros(), Vector3::zeros())
+            } else {
+                let (u, a) = water_motion(water, &forces.center_of_buoyancy, t, dt);
+                (Vector3::y() * u.y, Vector3::y() * a.y)
+            };
+            let velocity = RadiationState::local_velocity(
+                model,
+                rotation,
+                &(rb.linear_velocity - flow),
+                &rb.angular_velocity,
+            );
+            run.state.record(model, velocity, t);
+            // Held over the step: the memory's force at its middle.
+            let (force, torque) = run.state.world_force_ahead(model, rotation, 0.5 * dt);
+            let (linear, angular) = model.infinite_blocks(&model.heading(&state.pose.rotation));
+            let excitation = excitation.unwrap_or_default();
+            // Entering the water: the share of A∞ that grows over
+            // the step takes its momentum, `−w ΔA v / dt` (and
+            // `−w ΔA ω / dt` turning), so that a light body and
+            // its water keep the momentum the body brought: held
+            // at its speed against the water's whole inertia, a
+            // body a hundred times lighter than the water it moves
+            // came out with more energy than it went in with. The
+            // weight `w = (a / (m + a))³` is the water's part of
+            // the inertia (`a` the mean diagonal of A∞, `m` the
+            // body's mass or mean principal inertia), cubed: whole
+            // for such a body, negligible for one as heavy as its
+            // water or heavier, which bobs through the surface on
+            // a swell as linear theory (a constant A∞, no entry)
+            // says. Leaving the water, the water keeps what it
+            // took. With slamming on, the slam takes the entry.
+            let growth = last_share.map_or(0.0, |last| share - last);
+            let entry = if growth > 0.0 && b.effects.slamming.is_none() {
+                let r = state.pose.rotation.to_rotation_matrix().into_inner();
+                let w_linear = entry_weight(linear.trace() / 3.0, rb.mass);
+                let w_angular = entry_weight(angular.trace() / 3.0, b.mass.inertia.trace() / 3.0);
+                Wrench {
+                    force: -(linear * (w_linear * growth)) * (rb.linear_velocity - flow) / dt,
+                    torque: -(r * (angular * (w_angular * growth)) * r.transpose()) * rb.angular_velocity
+                        / dt,
+                }
+            } else {
+                Wrench::default()
+            };
+            radiation = Wrench {
+                force: (force + linear * flow_acceleration + excitation.force) * share + entry.force,
+                torque: (torque + excitation.torque) * share + entry.torque,
+            };
+            if !radiation.is_finite() {
+                rejected = Some(format!("non-finite {radiation:?}"));
+                radiation = Wrench::default();
+            }
+            run.force = radiation;
+            if share > 0.0 {
+                Inertial::with_blocks(rb.mass, &b.mass.inertia, &(linear * share), &(angular * share))
+            } else {
+                Inertial::plain(rb.mass, &b.mass.inertia)
+            }
+        }
+        (_, _, None) => Inertial::plain(rb.mass, &b.mass.inertia),
+        (_, _, Some(added)) => Inertial::with_added(
+            rb.mass,
+            &b.mass.inertia,
+            added,
+            &state.pose.rotation,
+            water.density,
+            forces.submerged_volume,
+        ),
+    };
+    Moved {
+        inertial,
+        radiation,
+        rejected,
+    }
 }
 
 /// What every body's [`HydroOptions`] share in a step.
