@@ -315,6 +315,9 @@ impl<H: Handle> Driver<H> {
                 .bodies
                 .par_iter_mut()
                 .enumerate()
+                // A body's radiation is about a microsecond: a few bodies
+                // per task.
+                .with_min_len(8)
                 .filter_map(|(k, b)| {
                     let i = slot[k];
                     (i != usize::MAX).then(|| {

@@ -11,9 +11,10 @@ use soak_bake::Mesh;
 
 use crate::error::SeakeepingError;
 use crate::green::Panel;
-use crate::memory::{Kernel, Memory, Sweep};
+use crate::memory::{Kernel, Memory, StepFactors, Sweep};
 use crate::panels::wetted_panels;
 use crate::radiation::Radiation;
+use std::sync::{Arc, Mutex};
 
 /// A body as it floats: its mesh (object frame), mass, centre of mass and
 /// inertia, and how it is turned at rest.
@@ -131,6 +132,9 @@ pub struct RadiationModel {
     panels: usize,
     density: f64,
     gravity: f64,
+    /// The step factors of the lengths bodies step it by, shared by every
+    /// body of the model (see [`RadiationState::record`]).
+    steps: SharedSteps,
 }
 
 impl RadiationModel {
@@ -364,6 +368,7 @@ impl RadiationModel {
             panels: count,
             density: rho,
             gravity: g,
+            steps: SharedSteps::default(),
         };
         Ok(model)
     }
@@ -1043,9 +1048,8 @@ pub struct RadiationState {
 }
 
 /// The factors of the last step's length and of the last look ahead
-/// ([`RadiationState::force_ahead`]): recomputed when either changes (the
-/// same arithmetic either way, so the memory does not depend on what was
-/// cached).
+/// ([`RadiationState::force_ahead`]), the model's shared copy: looked up
+/// again when either changes.
 #[derive(Clone, Debug, Default)]
 struct StepCache {
     step: Option<Factors>,
@@ -1053,18 +1057,58 @@ struct StepCache {
 }
 
 /// A length's bits and the factors of every mode's kernel for it.
-type Factors = (u64, Vec<Vec<crate::memory::StepFactors>>);
+type Factors = (u64, Arc<[Vec<StepFactors>]>);
 
-/// `cached`'s factors for `dt`, computed first if they were for another.
-fn factors<'a>(
-    cached: &'a mut Option<Factors>,
-    model: &RadiationModel,
-    dt: f64,
-) -> &'a [Vec<crate::memory::StepFactors>] {
-    if !matches!(cached, Some((bits, _)) if *bits == dt.to_bits()) {
-        *cached = Some((dt.to_bits(), model.kernels.iter().map(|k| k.step(dt)).collect()));
+/// The factors of the few step lengths a model's bodies step it by,
+/// computed once for all of them: a thousand bodies of one mesh read one
+/// copy (each body's own copy of its factors made the memory's step read
+/// kilobytes per body that no cache kept). Not state: a clone starts
+/// empty.
+#[derive(Default)]
+struct SharedSteps(Mutex<Vec<Factors>>);
+
+/// How many step lengths a model keeps factors for: the step's and the
+/// look ahead's, and room for a change of step.
+const SHARED_STEPS: usize = 4;
+
+impl SharedSteps {
+    /// The factors for `dt` (s), computed from `kernels` if none are kept.
+    fn get(&self, kernels: &[Kernel], dt: f64) -> Arc<[Vec<StepFactors>]> {
+        // A poisoned lock holds factors still whole (they are pushed once
+        // computed): read on.
+        let mut kept = self.0.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some((_, factors)) = kept.iter().find(|(bits, _)| *bits == dt.to_bits()) {
+            return Arc::clone(factors);
+        }
+        let factors: Arc<[Vec<StepFactors>]> = kernels.iter().map(|k| k.step(dt)).collect();
+        if kept.len() == SHARED_STEPS {
+            kept.remove(0);
+        }
+        kept.push((dt.to_bits(), Arc::clone(&factors)));
+        factors
     }
-    cached.as_ref().map_or(&[], |(_, f)| f.as_slice())
+}
+
+impl Clone for SharedSteps {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl std::fmt::Debug for SharedSteps {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SharedSteps").finish_non_exhaustive()
+    }
+}
+
+/// `cached`'s factors for `dt`, taken from the model's if they were for
+/// another length (the same arithmetic either way, so the memory does
+/// not depend on what was cached).
+fn factors<'a>(cached: &'a mut Option<Factors>, model: &RadiationModel, dt: f64) -> &'a [Vec<StepFactors>] {
+    if !matches!(cached, Some((bits, _)) if *bits == dt.to_bits()) {
+        *cached = Some((dt.to_bits(), model.steps.get(&model.kernels, dt)));
+    }
+    cached.as_ref().map_or(&[], |(_, f)| &f[..])
 }
 
 impl PartialEq for StepCache {
