@@ -42,6 +42,12 @@ pub struct Args {
     /// `--water calm,jonswap`) [default: all three].
     #[arg(long, value_delimiter = ',', value_parser = parse_water)]
     pub water: Option<Vec<scaling::WaterKind>>,
+    /// Build every column's world of a size first and step them in turn,
+    /// one step each per round, so that the ratios between columns are of
+    /// one moment on a machine whose speed drifts (the budget is then the
+    /// size's whole, and the memory counts every world of the size)
+    #[arg(long)]
+    pub interleave: bool,
 }
 
 /// A water of the bench by its label.
@@ -72,6 +78,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     }
     options.gpu = args.gpu;
     options.gpu_max_bodies = args.gpu_max_bodies;
+    options.interleave = args.interleave;
     let report = scaling::run(&options, |m| {
         eprintln!(
             "{:>6} bodies, {:<34} {:>10} per step ({} steps, setup {})",

@@ -101,3 +101,21 @@ fn the_waters_asked_for_are_the_ones_measured() {
     assert_eq!(WaterKind::from_label("swell"), Some(WaterKind::Swell));
     assert_eq!(WaterKind::from_label("lake"), None);
 }
+
+/// Interleaved, every case of a size is built before any is timed and
+/// each takes its steps in turn: the same cells, each with its steps.
+#[test]
+fn interleaved_runs_measure_every_cell() {
+    let options = ScalingOptions {
+        interleave: true,
+        waters: vec![WaterKind::Calm],
+        ..tiny()
+    };
+    let report = run(&options, |_| {}).expect("the bench runs interleaved");
+    assert_eq!(report.measurements.len(), 2 * report.columns.len());
+    for m in &report.measurements {
+        assert_eq!(m.steps, 2, "{m:?}");
+        assert!(m.median_ms.is_finite() && m.median_ms > 0.0, "{m:?}");
+    }
+    assert!(report.notes.iter().any(|n| n.starts_with("interleaved")));
+}

@@ -248,6 +248,96 @@ fn rss_mb() -> Option<f64> {
     Some(kb / 1024.0)
 }
 
+/// One case's world, built and settled, and its timed steps so far.
+struct Running {
+    case: Case,
+    world: PhysicsWorld,
+    soak: Option<ForceGenerator>,
+    setup_ms: f64,
+    rss_mb: Option<f64>,
+    rss_growth_mb: Option<f64>,
+    /// Step times, ms.
+    times: Vec<f64>,
+}
+
+impl Running {
+    /// Builds `case`'s world and steps it `options.settle_steps` times.
+    fn start(
+        fleet: &Fleet,
+        case: &Case,
+        options: &ScalingOptions,
+        gpu: &dyn Fn(ForceGenerator) -> Result<ForceGenerator, ScalingError>,
+    ) -> Result<Self, ScalingError> {
+        let before = rss_mb();
+        let start = Instant::now();
+        let (mut world, mut soak) = build(fleet, case.bodies, &case.column, gpu)?;
+        let setup_ms = start.elapsed().as_secs_f64() * 1e3;
+        let rss_mb = rss_mb();
+        for _ in 0..options.settle_steps {
+            step(&mut world, &mut soak)?;
+        }
+        Ok(Self {
+            case: *case,
+            world,
+            soak,
+            setup_ms,
+            rss_mb,
+            rss_growth_mb: rss_mb.zip(before).map(|(a, b)| a - b),
+            times: Vec::new(),
+        })
+    }
+
+    /// One timed step.
+    fn time_step(&mut self) -> Result<(), ScalingError> {
+        let s = Instant::now();
+        step(&mut self.world, &mut self.soak)?;
+        self.times.push(s.elapsed().as_secs_f64() * 1e3);
+        Ok(())
+    }
+
+    /// What the timed steps measured.
+    fn finish(mut self, fleet: &Fleet) -> Measurement {
+        let times = &mut self.times;
+        let mean_ms = times.iter().sum::<f64>() / times.len().max(1) as f64;
+        times.sort_by(f64::total_cmp);
+        let median_ms = match times.len() {
+            0 => f64::NAN,
+            n if n % 2 == 1 => times[n / 2],
+            n => 0.5 * (times[n / 2 - 1] + times[n / 2]),
+        };
+        let submerged = self.soak.as_ref().map(|s| {
+            s.bodies()
+                .iter()
+                .enumerate()
+                .map(|(i, b)| b.forces().submerged_volume / fleet.volumes[i % 2])
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), f| {
+                    (lo.min(f), hi.max(f))
+                })
+        });
+        Measurement {
+            case: self.case,
+            steps: times.len(),
+            median_ms,
+            mean_ms,
+            min_ms: times.first().copied().unwrap_or(f64::NAN),
+            max_ms: times.last().copied().unwrap_or(f64::NAN),
+            setup_ms: self.setup_ms,
+            rss_mb: self.rss_mb,
+            rss_growth_mb: self.rss_growth_mb,
+            submerged,
+            firewall: self.soak.as_ref().map_or(0, |s| s.firewall().count()),
+        }
+    }
+}
+
+/// Whether timing goes on after `done` timed steps (each case's, or each
+/// round's with several cases in turn) and `elapsed` seconds of them, for
+/// `cases` cases sharing the budget.
+fn more(options: &ScalingOptions, done: usize, elapsed: f64, cases: usize) -> bool {
+    let max_steps = options.max_steps.max(options.min_steps).max(1);
+    done < max_steps && (done < options.min_steps.max(1) || elapsed < options.budget_s * cases as f64)
+}
+
 /// Builds and times one case.
 ///
 /// # Errors
@@ -258,53 +348,38 @@ pub fn measure(
     options: &ScalingOptions,
     gpu: &dyn Fn(ForceGenerator) -> Result<ForceGenerator, ScalingError>,
 ) -> Result<Measurement, ScalingError> {
-    let before = rss_mb();
-    let start = Instant::now();
-    let (mut world, mut soak) = build(fleet, case.bodies, &case.column, gpu)?;
-    let setup_ms = start.elapsed().as_secs_f64() * 1e3;
-    let rss_mb = rss_mb();
-    for _ in 0..options.settle_steps {
-        step(&mut world, &mut soak)?;
-    }
-    let mut times = Vec::new();
+    let mut running = Running::start(fleet, case, options, gpu)?;
     let timing = Instant::now();
-    let max_steps = options.max_steps.max(options.min_steps).max(1);
-    while times.len() < max_steps
-        && (times.len() < options.min_steps.max(1) || timing.elapsed().as_secs_f64() < options.budget_s)
-    {
-        let s = Instant::now();
-        step(&mut world, &mut soak)?;
-        times.push(s.elapsed().as_secs_f64() * 1e3);
+    while more(options, running.times.len(), timing.elapsed().as_secs_f64(), 1) {
+        running.time_step()?;
     }
-    let mean_ms = times.iter().sum::<f64>() / times.len() as f64;
-    times.sort_by(f64::total_cmp);
-    let median_ms = if times.len() % 2 == 1 {
-        times[times.len() / 2]
-    } else {
-        0.5 * (times[times.len() / 2 - 1] + times[times.len() / 2])
-    };
-    let submerged = soak.as_ref().map(|s| {
-        s.bodies()
-            .iter()
-            .enumerate()
-            .map(|(i, b)| b.forces().submerged_volume / fleet.volumes[i % 2])
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), f| {
-                (lo.min(f), hi.max(f))
-            })
-    });
-    Ok(Measurement {
-        case: *case,
-        steps: times.len(),
-        median_ms,
-        mean_ms,
-        min_ms: times[0],
-        max_ms: times[times.len() - 1],
-        setup_ms,
-        rss_mb,
-        rss_growth_mb: rss_mb.zip(before).map(|(a, b)| a - b),
-        submerged,
-        firewall: soak.as_ref().map_or(0, |s| s.firewall().count()),
-    })
+    Ok(running.finish(fleet))
+}
+
+/// Builds every case of `cases` (one size), then times them in turn, one
+/// step of each per round ([`ScalingOptions::interleave`]).
+///
+/// # Errors
+/// A body that does not register or a step that fails.
+fn measure_interleaved(
+    fleet: &Fleet,
+    cases: &[Case],
+    options: &ScalingOptions,
+    gpu: &dyn Fn(ForceGenerator) -> Result<ForceGenerator, ScalingError>,
+) -> Result<Vec<Measurement>, ScalingError> {
+    let mut running = cases
+        .iter()
+        .map(|case| Running::start(fleet, case, options, gpu))
+        .collect::<Result<Vec<_>, _>>()?;
+    let timing = Instant::now();
+    let mut rounds = 0;
+    while more(options, rounds, timing.elapsed().as_secs_f64(), cases.len()) {
+        for r in &mut running {
+            r.time_step()?;
+        }
+        rounds += 1;
+    }
+    Ok(running.into_iter().map(|r| r.finish(fleet)).collect())
 }
 
 /// Runs the bench: every size, every column, in that order; `progress`
@@ -377,24 +452,34 @@ pub fn run(
             options.gpu_max_bodies
         ));
     }
+    if options.interleave {
+        notes.push(
+            "interleaved: every column's world of a size built first, then stepped in turn, one step each per round (ratios between columns of one moment; memory counts every world of the size)"
+                .to_string(),
+        );
+    }
     let columns = Column::on(run_gpu, &options.waters);
     let mut measurements = Vec::new();
     for &n in &options.sizes {
-        for column in &columns {
-            if column.device == Device::Gpu && n > options.gpu_max_bodies {
-                continue;
+        let cases: Vec<Case> = columns
+            .iter()
+            .filter(|c| !(c.device == Device::Gpu && n > options.gpu_max_bodies))
+            .map(|c| Case {
+                bodies: n,
+                column: *c,
+            })
+            .collect();
+        if options.interleave {
+            for m in measure_interleaved(&fleet, &cases, options, &gpu)? {
+                progress(&m);
+                measurements.push(m);
             }
-            let m = measure(
-                &fleet,
-                &Case {
-                    bodies: n,
-                    column: *column,
-                },
-                options,
-                &gpu,
-            )?;
-            progress(&m);
-            measurements.push(m);
+        } else {
+            for case in &cases {
+                let m = measure(&fleet, case, options, &gpu)?;
+                progress(&m);
+                measurements.push(m);
+            }
         }
     }
     Ok(ScalingReport {

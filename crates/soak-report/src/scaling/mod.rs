@@ -237,6 +237,15 @@ pub struct ScalingOptions {
     /// The waters measured (all three by default; Rapier alone is
     /// always measured).
     pub waters: Vec<WaterKind>,
+    /// Build every column's world of a size first, then step them in
+    /// turn, one step each per round, so that a change of the machine's
+    /// speed during the run (a shared machine's drifts by a third from
+    /// one minute to the next) falls on every column alike: the ratios
+    /// between columns are then of one moment. The budget is then the
+    /// whole size's (`budget_s` × the columns), and the memory after
+    /// setup counts every world of the size at once.
+    #[serde(default)]
+    pub interleave: bool,
 }
 
 impl ScalingOptions {
@@ -254,6 +263,7 @@ impl ScalingOptions {
             gpu: false,
             gpu_max_bodies: 1_000,
             waters: WaterKind::ALL.to_vec(),
+            interleave: false,
         }
     }
 
