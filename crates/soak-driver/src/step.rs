@@ -834,15 +834,19 @@ struct SharedOptions {
 
 impl SharedOptions {
     /// Body `b`'s options at `state`: its buoyancy mode, drag and the
-    /// added mass its implicit drag moves with it.
+    /// added mass its implicit drag moves with it (none for a body without
+    /// drag, whose evaluation would not read it).
     fn of<H>(&self, b: &SoakBody<H>, state: &BodyState) -> HydroOptions {
+        let dragged = b.effects.drag.is_some() || b.effects.drag_texels.is_some();
         HydroOptions {
             buoyancy: b.effects.buoyancy.unwrap_or(BuoyancyMode::Off),
             drag: b.effects.drag,
             dt: self.dt,
             sea: self.sea,
             sea_velocity: self.sea_velocity,
-            added_mass: self.added_mass(b, &state.pose.rotation),
+            added_mass: dragged
+                .then(|| self.added_mass(b, &state.pose.rotation))
+                .flatten(),
         }
     }
 
