@@ -125,11 +125,6 @@ impl Inertial {
         }
     }
 
-    /// Whether an added mass is counted.
-    pub(crate) fn has_added(&self) -> bool {
-        self.linear.is_some()
-    }
-
     /// What the body and its water turning together add to the spin's
     /// acceleration beyond what an engine applying the gyroscopic term of
     /// the body's `own` inertia `I` (object axes) alone does, at angular
@@ -165,12 +160,14 @@ impl Inertial {
     }
 
     /// The wrench the engine must be given, moving the body's `own` inertia
-    /// (object axes) and its mass alone, for the body turned by `rotation`
-    /// to move as the body and the water it sets moving would under `w`
-    /// (about the centre of mass, world) and gravity `g`: the same linear
-    /// and angular accelerations. Without an added mass, `w` itself.
+    /// (object axes) and its mass alone, for the body to move as the body
+    /// and the water it sets moving would under `w` (about the centre of
+    /// mass, world) and gravity `g`: the same linear and angular
+    /// accelerations. `map` is the body's turn and spin
+    /// ([`Inertial::engine_map`]); without an added mass there is none,
+    /// and the engine takes `w` itself.
     ///
-    /// `spin` is the body's angular velocity (world, rad/s) where the
+    /// The map's `spin` is the body's angular velocity (world, rad/s) where the
     /// engine applies the gyroscopic term `−ω × I ω` of the body's own
     /// inertia `I` (Rapier's default): the body and its water then turn as
     /// `J ω̇ = τ − ω × I ω` (`J = I + A`), so the engine is handed
@@ -189,25 +186,11 @@ impl Inertial {
     /// inertia is not a multiple of its own: a light hull rolling and
     /// yawing gained energy every turn.) `None` where the engine leaves
     /// the term out: `I J⁻¹ τ`, which conserves that energy as well.
-    pub(crate) fn for_engine(
-        &self,
-        w: &Wrench,
-        own: &Matrix3<f64>,
-        rotation: &UnitQuaternion<f64>,
-        g: f64,
-        spin: Option<&Vector3<f64>>,
-    ) -> Wrench {
-        if self.linear.is_none() {
-            return *w;
-        }
+    pub(crate) fn for_engine(&self, map: &EngineMap, w: &Wrench, own: &Matrix3<f64>, g: f64) -> Wrench {
         let a = self.acceleration(&w.force, g);
-        let r = rotation.to_rotation_matrix().into_inner();
-        let whole = r * self.inertia * r.transpose();
-        let body = r * own * r.transpose();
-        let turn = spin.map_or_else(Vector3::zeros, |omega| self.spin_difference(own, rotation, omega));
-        let torque = whole
-            .try_inverse()
-            .map(|inverse| body * (inverse * w.torque + turn))
+        let torque = map
+            .whole_inverse
+            .map(|inverse| map.body * (inverse * w.torque + map.turn))
             .filter(|t| t.iter().all(|x| x.is_finite()))
             .unwrap_or(w.torque);
         Wrench {
@@ -215,6 +198,38 @@ impl Inertial {
             torque,
         }
     }
+
+    /// What [`Inertial::for_engine`] needs of the body turned by
+    /// `rotation`, whose own inertia is `own` (object axes), spinning at
+    /// `spin` (see there), made before the wrench is known (the step makes
+    /// it for every radiating body in parallel): `None` without an added
+    /// mass, whose wrench the engine takes as it is.
+    pub(crate) fn engine_map(
+        &self,
+        own: &Matrix3<f64>,
+        rotation: &UnitQuaternion<f64>,
+        spin: Option<&Vector3<f64>>,
+    ) -> Option<EngineMap> {
+        self.linear.as_ref()?;
+        let r = rotation.to_rotation_matrix().into_inner();
+        let whole = r * self.inertia * r.transpose();
+        Some(EngineMap {
+            body: r * own * r.transpose(),
+            whole_inverse: whole.try_inverse(),
+            turn: spin.map_or_else(Vector3::zeros, |omega| self.spin_difference(own, rotation, omega)),
+        })
+    }
+}
+
+/// The part of [`Inertial::for_engine`] that does not depend on the
+/// wrench: the body's own inertia in world axes, the inverse of the whole
+/// (body and water, `None` where it has none) and the spin's difference
+/// ([`Inertial::spin_difference`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct EngineMap {
+    body: Matrix3<f64>,
+    whole_inverse: Option<Matrix3<f64>>,
+    turn: Vector3<f64>,
 }
 
 #[cfg(test)]
@@ -241,12 +256,18 @@ mod tests {
         let want = (w.force - Vector3::y() * m * g) / total;
         assert!((a - want).norm() < 1e-12 * want.norm());
         assert!((inertial.force_for(&a, g) - w.force).norm() < 1e-9 * w.force.norm());
-        let engine = inertial.for_engine(&w, &inertia, &UnitQuaternion::identity(), g, None);
+        let map = inertial
+            .engine_map(&inertia, &UnitQuaternion::identity(), None)
+            .unwrap();
+        let engine = inertial.for_engine(&map, &w, &inertia, g);
         assert!((engine.force / m - Vector3::y() * g - want).norm() < 1e-9 * want.norm());
         // A sphere has no rotational added mass: the torque is untouched.
         assert!((engine.torque - w.torque).norm() < 1e-12);
         // Dry: the body's own.
         let dry = Inertial::with_added(m, &inertia, &added, &UnitQuaternion::identity(), rho, 0.0);
-        assert!(!dry.has_added());
+        assert!(
+            dry.engine_map(&inertia, &UnitQuaternion::identity(), None)
+                .is_none()
+        );
     }
 }

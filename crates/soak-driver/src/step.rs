@@ -18,7 +18,7 @@ use crate::driver::{Driver, Impact};
 use crate::engine::{Bodies, BodiesMut, EngineBody, Handle, StepParams};
 use crate::error::SoakError;
 use crate::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
-use crate::inertial::Inertial;
+use crate::inertial::{EngineMap, Inertial};
 use crate::radiation::{entry_weight, sea_excitation, water_motion};
 use crate::waves::{CoupledWaves, Pressed};
 use soak_seakeeping::RadiationState;
@@ -344,6 +344,7 @@ impl<H: Handle> Driver<H> {
             };
             let Moved {
                 inertial,
+                engine,
                 radiation,
                 rejected,
             } = match radiating.get_mut(i).and_then(Option::take) {
@@ -408,13 +409,13 @@ impl<H: Handle> Driver<H> {
             }
             // With an added mass: the wrench that gives the body alone the
             // accelerations the body and the water would take.
-            let applied = if inertial.has_added() {
-                let g = self.water.gravity * rb.gravity_scale;
-                let spin = rb.gyroscopic.then_some(&rb.angular_velocity);
-                let engine = inertial.for_engine(&wrench, &b.mass.inertia, &state.pose.rotation, g, spin);
-                if engine.is_finite() { engine } else { wrench }
-            } else {
-                wrench
+            let applied = match &engine {
+                Some(map) => {
+                    let g = self.water.gravity * rb.gravity_scale;
+                    let engine = inertial.for_engine(map, &wrench, &b.mass.inertia, g);
+                    if engine.is_finite() { engine } else { wrench }
+                }
+                None => wrench,
             };
             bodies.set_wrench(b.handle, &applied);
             b.added_force = Wrench {
@@ -692,6 +693,9 @@ fn press_waves(
 /// forces to the engine one body at a time.
 struct Moved {
     inertial: Inertial,
+    /// What handing the engine the body's wrench takes of its turn (with
+    /// an added mass; see [`Inertial::for_engine`]).
+    engine: Option<EngineMap>,
     radiation: Wrench,
     rejected: Option<String>,
 }
@@ -815,8 +819,14 @@ fn moved<H>(
             forces.submerged_volume,
         ),
     };
+    let engine = inertial.engine_map(
+        &b.mass.inertia,
+        &state.pose.rotation,
+        rb.gyroscopic.then_some(&rb.angular_velocity),
+    );
     Moved {
         inertial,
+        engine,
         radiation,
         rejected,
     }
