@@ -145,18 +145,7 @@ impl Inertial {
         let r = rotation.to_rotation_matrix().into_inner();
         let whole = r * self.inertia * r.transpose();
         let body = r * own * r.transpose();
-        match (whole.try_inverse(), body.try_inverse()) {
-            (Some(j), Some(i)) => {
-                let gyro = omega.cross(&(body * omega));
-                let d = (i - j) * gyro;
-                if d.iter().all(|x| x.is_finite()) {
-                    d
-                } else {
-                    Vector3::zeros()
-                }
-            }
-            _ => Vector3::zeros(),
-        }
+        spin_difference(&body, whole.try_inverse().as_ref(), omega)
     }
 
     /// The wrench the engine must be given, moving the body's `own` inertia
@@ -213,11 +202,36 @@ impl Inertial {
         self.linear.as_ref()?;
         let r = rotation.to_rotation_matrix().into_inner();
         let whole = r * self.inertia * r.transpose();
+        let body = r * own * r.transpose();
+        let whole_inverse = whole.try_inverse();
         Some(EngineMap {
-            body: r * own * r.transpose(),
-            whole_inverse: whole.try_inverse(),
-            turn: spin.map_or_else(Vector3::zeros, |omega| self.spin_difference(own, rotation, omega)),
+            body,
+            whole_inverse,
+            turn: spin.map_or_else(Vector3::zeros, |omega| {
+                spin_difference(&body, whole_inverse.as_ref(), omega)
+            }),
         })
+    }
+}
+
+/// [`Inertial::spin_difference`] of the body's own inertia `body` and the
+/// whole's inverse `whole_inverse` (world axes).
+fn spin_difference(
+    body: &Matrix3<f64>,
+    whole_inverse: Option<&Matrix3<f64>>,
+    omega: &Vector3<f64>,
+) -> Vector3<f64> {
+    match (whole_inverse, body.try_inverse()) {
+        (Some(j), Some(i)) => {
+            let gyro = omega.cross(&(body * omega));
+            let d = (i - j) * gyro;
+            if d.iter().all(|x| x.is_finite()) {
+                d
+            } else {
+                Vector3::zeros()
+            }
+        }
+        _ => Vector3::zeros(),
     }
 }
 
