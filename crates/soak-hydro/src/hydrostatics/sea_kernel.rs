@@ -355,37 +355,41 @@ mod avx2 {
 
         let all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
         let (start, end) = (range.start, range.end);
-        let whole = end - (end - start) % LANES;
-        for i in (start..whole).step_by(LANES) {
-            let d = group(xs, avs, areas, i, all);
-            if let Some(out) = depths.as_deref_mut() {
-                out[i - start..i - start + LANES].copy_from_slice(&d);
-            }
-        }
-        if whole < end {
-            let k = end - whole;
-            let pad = |v: &[f32]| {
-                let mut padded = [0.0f32; LANES];
-                padded[..k].copy_from_slice(&v[whole..end]);
-                padded
+        // One call of `group` in the loop (the last texels of the range, a
+        // group of their own, read from padded copies): the compiler then
+        // keeps the running sums in registers.
+        let mut i = start;
+        while i < end {
+            let k = (end - i).min(LANES);
+            let (pxs, pavs, pareas);
+            let (gx, ga, gar, at, valid) = if k == LANES {
+                (xs, avs, areas, i, all)
+            } else {
+                let pad = |v: &[f32]| {
+                    let mut padded = [0.0f32; LANES];
+                    padded[..k].copy_from_slice(&v[i..end]);
+                    padded
+                };
+                (pxs, pavs, pareas) = (xs.map(pad), avs.map(pad), pad(areas));
+                let valid = _mm256_castsi256_pd(_mm256_setr_epi64x(
+                    -1,
+                    if k > 1 { -1 } else { 0 },
+                    if k > 2 { -1 } else { 0 },
+                    0,
+                ));
+                (
+                    pxs.each_ref().map(|v| &v[..]),
+                    pavs.each_ref().map(|v| &v[..]),
+                    &pareas[..],
+                    0,
+                    valid,
+                )
             };
-            let (pxs, pavs, pareas) = (xs.map(pad), avs.map(pad), pad(areas));
-            let valid = _mm256_castsi256_pd(_mm256_setr_epi64x(
-                -1,
-                if k > 1 { -1 } else { 0 },
-                if k > 2 { -1 } else { 0 },
-                0,
-            ));
-            let d = group(
-                pxs.each_ref().map(|v| &v[..]),
-                pavs.each_ref().map(|v| &v[..]),
-                &pareas,
-                0,
-                valid,
-            );
-            if let Some(out) = depths {
-                out[whole - start..end - start].copy_from_slice(&d[..k]);
+            let d = group(gx, ga, gar, at, valid);
+            if let Some(out) = depths.as_deref_mut() {
+                out[i - start..i - start + k].copy_from_slice(&d[..k]);
             }
+            i += k;
         }
 
         let sum = |v: __m256d| {
