@@ -49,7 +49,7 @@ mod special;
 
 pub use self::error::SeakeepingError;
 pub use self::green::Panel;
-pub use self::memory::{Kernel, Memory, StepFactors, Sweep};
+pub use self::memory::{Kernel, KernelStep, Memory, StepFactors, Sweep};
 pub use self::model::{
     FloatingBody, Hydrostatics, RadiationModel, RadiationSettings, RadiationState, decay_measure,
 };

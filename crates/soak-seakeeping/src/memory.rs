@@ -367,23 +367,43 @@ impl Memory {
 
     /// `∫ K(t − τ) ẋ(τ) dτ` at the end of a step of `step`'s length over
     /// which the velocity goes linearly from `v0` to `v1`, the states
-    /// left as they are.
-    pub fn force_after(&self, kernel: &Kernel, step: &[StepFactors], v0: f64, v1: f64) -> f64 {
-        self.states
+    /// left as they are: one real product per pole (the residues folded
+    /// into the step's [`KernelStep::weights`]).
+    pub fn force_after(&self, step: &KernelStep, v0: f64, v1: f64) -> f64 {
+        let held: f64 = self
+            .states
             .iter()
-            .zip(step)
-            .zip(&kernel.residues)
-            .map(|((s, f), c)| (c * (f.decay * *s + f.constant * v0 + f.ramp * (v1 - v0))).re)
-            .sum()
+            .zip(&step.weights)
+            .map(|(s, w)| w.re * s.re - w.im * s.im)
+            .sum();
+        held + step.constant * v0 + step.ramp * (v1 - v0)
     }
 
     /// [`Memory::advance`] with the step's factors already computed
     /// ([`Kernel::step`]: the same for every body and step of one `dt`).
-    pub fn advance_by(&mut self, step: &[StepFactors], v0: f64, v1: f64) {
-        for (s, f) in self.states.iter_mut().zip(step) {
+    pub fn advance_by(&mut self, step: &KernelStep, v0: f64, v1: f64) {
+        for (s, f) in self.states.iter_mut().zip(&step.poles) {
             *s = f.decay * *s + f.constant * v0 + f.ramp * (v1 - v0);
         }
     }
+}
+
+/// A step of one length for one [`Kernel`]: each pole's [`StepFactors`]
+/// (to advance a [`Memory`]), and the same folded with the kernel's
+/// residues (for the force at the step's end, [`Memory::force_after`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct KernelStep {
+    /// Each pole's factors, in order.
+    pub poles: Vec<StepFactors>,
+    /// Each pole's residue times its decay, `c e^{p dt}` (the force per
+    /// unit state).
+    pub weights: Vec<Complex64>,
+    /// `Σ Re(c · constant)` over the poles: the force per unit of the
+    /// velocity held over the step (N·s/m and their like).
+    pub constant: f64,
+    /// `Σ Re(c · ramp)`: the force per unit of the velocity's change
+    /// over the step.
+    pub ramp: f64,
 }
 
 /// What one step of `dt` does to one state of a [`Memory`]: for a pole
@@ -400,8 +420,32 @@ pub struct StepFactors {
 }
 
 impl Kernel {
-    /// The factors of a step of `dt` (s) for each pole, in order.
-    pub fn step(&self, dt: f64) -> Vec<StepFactors> {
+    /// The factors of a step of `dt` (s): each pole's, in order, and
+    /// folded with the residues.
+    pub fn step(&self, dt: f64) -> KernelStep {
+        let poles = self.pole_factors(dt);
+        let weights = poles
+            .iter()
+            .zip(&self.residues)
+            .map(|(f, c)| c * f.decay)
+            .collect();
+        let part = |factor: fn(&StepFactors) -> Complex64| -> f64 {
+            poles
+                .iter()
+                .zip(&self.residues)
+                .map(|(f, c)| (c * factor(f)).re)
+                .sum()
+        };
+        KernelStep {
+            constant: part(|f| f.constant),
+            ramp: part(|f| f.ramp),
+            weights,
+            poles,
+        }
+    }
+
+    /// Each pole's factors of a step of `dt` (s), in order.
+    fn pole_factors(&self, dt: f64) -> Vec<StepFactors> {
         self.poles
             .iter()
             .map(|&p| {

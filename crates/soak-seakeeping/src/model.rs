@@ -11,7 +11,7 @@ use soak_bake::Mesh;
 
 use crate::error::SeakeepingError;
 use crate::green::Panel;
-use crate::memory::{Kernel, Memory, StepFactors, Sweep};
+use crate::memory::{Kernel, KernelStep, Memory, Sweep};
 use crate::panels::wetted_panels;
 use crate::radiation::Radiation;
 use std::sync::{Arc, Mutex};
@@ -1057,7 +1057,7 @@ struct StepCache {
 }
 
 /// A length's bits and the factors of every mode's kernel for it.
-type Factors = (u64, Arc<[Vec<StepFactors>]>);
+type Factors = (u64, Arc<[KernelStep]>);
 
 /// The factors of the few step lengths a model's bodies step it by,
 /// computed once for all of them: a thousand bodies of one mesh read one
@@ -1073,14 +1073,14 @@ const SHARED_STEPS: usize = 4;
 
 impl SharedSteps {
     /// The factors for `dt` (s), computed from `kernels` if none are kept.
-    fn get(&self, kernels: &[Kernel], dt: f64) -> Arc<[Vec<StepFactors>]> {
+    fn get(&self, kernels: &[Kernel], dt: f64) -> Arc<[KernelStep]> {
         // A poisoned lock holds factors still whole (they are pushed once
         // computed): read on.
         let mut kept = self.0.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         if let Some((_, factors)) = kept.iter().find(|(bits, _)| *bits == dt.to_bits()) {
             return Arc::clone(factors);
         }
-        let factors: Arc<[Vec<StepFactors>]> = kernels.iter().map(|k| k.step(dt)).collect();
+        let factors: Arc<[KernelStep]> = kernels.iter().map(|k| k.step(dt)).collect();
         if kept.len() == SHARED_STEPS {
             kept.remove(0);
         }
@@ -1104,7 +1104,7 @@ impl std::fmt::Debug for SharedSteps {
 /// `cached`'s factors for `dt`, taken from the model's if they were for
 /// another length (the same arithmetic either way, so the memory does
 /// not depend on what was cached).
-fn factors<'a>(cached: &'a mut Option<Factors>, model: &RadiationModel, dt: f64) -> &'a [Vec<StepFactors>] {
+fn factors<'a>(cached: &'a mut Option<Factors>, model: &RadiationModel, dt: f64) -> &'a [KernelStep] {
     if !matches!(cached, Some((bits, _)) if *bits == dt.to_bits()) {
         *cached = Some((dt.to_bits(), model.steps.get(&model.kernels, dt)));
     }
@@ -1207,7 +1207,7 @@ impl RadiationState {
         let ahead = factors(&mut self.steps.ahead, model, h);
         Vector6::from_fn(|mode, _| {
             let change = (v[mode] - p[mode]) / (t - tp) * h;
-            -self.memory[mode].force_after(&model.kernels[mode], &ahead[mode], v[mode], v[mode] + change)
+            -self.memory[mode].force_after(&ahead[mode], v[mode], v[mode] + change)
         })
     }
 
