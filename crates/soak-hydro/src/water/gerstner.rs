@@ -5,6 +5,7 @@ use nalgebra::{Point3, Vector2, Vector3};
 use serde::{Deserialize, Serialize};
 
 use super::Surface;
+use super::surface::{SurfaceNode, fill_nodes};
 use crate::error::WaterError;
 
 /// One Gerstner (trochoidal) wave on deep water.
@@ -169,6 +170,15 @@ impl Gerstner {
     /// Rest position of the particle above `(x, z)`, starting from the guess
     /// that its horizontal displacement is `shift`.
     fn rest_position_from(&self, x: f64, z: f64, t: f64, shift: [f64; 2]) -> (f64, f64) {
+        let (x0, z0, _) = self.invert(x, z, t, shift);
+        (x0, z0)
+    }
+
+    /// [`Self::rest_position_from`], with the jet of the last of Newton's
+    /// iterations: taken where the residual was below its tolerance, at
+    /// most that far from the rest position returned (`None` when the
+    /// iterations ran out first).
+    fn invert(&self, x: f64, z: f64, t: f64, shift: [f64; 2]) -> (f64, f64, Option<Jet>) {
         // Newton's method on P(x0) = (x, z), with the Jacobian
         // J = I − Σ Q A k cos θ d dᵀ; a fixed-point step where J is near
         // singular (the sharpest crests). Converges in a few iterations.
@@ -186,10 +196,10 @@ impl Gerstner {
             x0 -= dx;
             z0 -= dz;
             if rx.abs() + rz.abs() < 1e-12 * (1.0 + x.abs() + z.abs()) {
-                break;
+                return (x0, z0, Some(jet));
             }
         }
-        (x0, z0)
+        (x0, z0, None)
     }
 
     /// The horizontal position of the particle at rest position `(x0, z0)`,
@@ -198,11 +208,13 @@ impl Gerstner {
         let (mut px, mut pz) = (x0, z0);
         let (mut jxx, mut jxz, mut jzz) = (1.0, 0.0, 1.0);
         let (mut gx, mut gz) = (0.0, 0.0);
+        let mut height = self.level;
         for w in &self.cache {
             let th = w.k * (w.dir.x * x0 + w.dir.y * z0) - w.omega * t + w.phase;
             let (s, c) = th.sin_cos();
             px -= w.qa * w.dir.x * s;
             pz -= w.qa * w.dir.y * s;
+            height += w.a * c;
             let f = w.qa * w.k * c;
             jxx -= f * w.dir.x * w.dir.x;
             jxz -= f * w.dir.x * w.dir.y;
@@ -213,6 +225,7 @@ impl Gerstner {
         }
         Jet {
             position: [px, pz],
+            height,
             jacobian: [jxx, jxz, jzz],
             height_gradient: [gx, gz],
         }
@@ -224,8 +237,24 @@ impl Gerstner {
 /// of its height over its rest position.
 struct Jet {
     position: [f64; 2],
+    /// The particle's height, m.
+    height: f64,
     jacobian: [f64; 3],
     height_gradient: [f64; 2],
+}
+
+impl Jet {
+    /// The surface's slope `(∂f/∂x, ∂f/∂z) = J⁻¹ ∇y` where the particle
+    /// is (zero where `J` is singular).
+    fn slope(&self) -> [f64; 2] {
+        let [jxx, jxz, jzz] = self.jacobian;
+        let [gx, gz] = self.height_gradient;
+        let det = jxx * jzz - jxz * jxz;
+        if det.abs() < 1e-12 {
+            return [0.0, 0.0];
+        }
+        [(jzz * gx - jxz * gz) / det, (jxx * gz - jxz * gx) / det]
+    }
 }
 
 impl Surface for Gerstner {
@@ -285,13 +314,31 @@ impl Surface for Gerstner {
             let (x0, z0) = self.rest_position_from(x, z, t, *hint);
             jet = self.jet(x0, z0, t);
         }
-        let [jxx, jxz, jzz] = jet.jacobian;
-        let [gx, gz] = jet.height_gradient;
-        let det = jxx * jzz - jxz * jxz;
-        if det.abs() < 1e-12 {
-            return [0.0, 0.0];
-        }
-        [(jzz * gx - jxz * gz) / det, (jxx * gz - jxz * gx) / det]
+        jet.slope()
+    }
+
+    /// One inversion per node: the last of Newton's iterations, within
+    /// its tolerance of the rest position, gives the height and the slope
+    /// there (the general path inverts, then reads the particle and its
+    /// jet again, three passes over the waves for one).
+    fn sample_nodes(
+        &self,
+        t: f64,
+        origin: [f64; 2],
+        spacing: f64,
+        nodes: [usize; 2],
+        out: &mut [SurfaceNode],
+    ) {
+        fill_nodes(origin, spacing, nodes, out, |x, z, hint| {
+            let (x0, z0, jet) = self.invert(x, z, t, *hint);
+            *hint = [x - x0, z - z0];
+            let jet = jet.unwrap_or_else(|| self.jet(x0, z0, t));
+            SurfaceNode {
+                height: jet.height,
+                slope: jet.slope(),
+                hint: *hint,
+            }
+        });
     }
 
     /// The water's velocity at `p`, m/s: linear (Airy) theory's for each
@@ -354,5 +401,46 @@ impl Gerstner {
             v.z += speed * w.dir.y;
         }
         v
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The nodes sampled in one inversion each against the exact read of
+    /// the surface: the height of the particle whose rest position the
+    /// node's hint names, and that height's central differences.
+    #[test]
+    fn nodes_sampled_in_one_inversion_match_the_exact_surface() {
+        let sea = Gerstner::new(0.1, GerstnerWave::SWELL.to_vec(), 9.81).unwrap();
+        let (origin, spacing, nodes) = ([-1.3, 0.7], 0.25, [9, 7]);
+        for t in [0.0, 1.7, 4.2] {
+            let mut out = vec![SurfaceNode::default(); nodes[0] * nodes[1]];
+            sea.sample_nodes(t, origin, spacing, nodes, &mut out);
+            for (k, node) in out.iter().enumerate() {
+                let [x, z] = super::super::surface::node_at(origin, spacing, nodes, k);
+                // The hint is the displacement of the particle over the node.
+                let p = sea.particle(x - node.hint[0], z - node.hint[1], t);
+                assert!(
+                    (p.x - x).abs() + (p.z - z).abs() < 1e-10,
+                    "node {k} at t = {t}: {p}"
+                );
+                assert!((node.height - p.y).abs() < 1e-10, "node {k} at t = {t}");
+                assert!(
+                    (node.height - sea.height(x, z, t)).abs() < 1e-10,
+                    "node {k} at t = {t}"
+                );
+                let e = 1e-5;
+                let dx = (sea.height(x + e, z, t) - sea.height(x - e, z, t)) / (2.0 * e);
+                let dz = (sea.height(x, z + e, t) - sea.height(x, z - e, t)) / (2.0 * e);
+                assert!(
+                    (node.slope[0] - dx).abs() < 1e-8 && (node.slope[1] - dz).abs() < 1e-8,
+                    "node {k} at t = {t}: {:?} against {:?}",
+                    node.slope,
+                    [dx, dz]
+                );
+            }
+        }
     }
 }
