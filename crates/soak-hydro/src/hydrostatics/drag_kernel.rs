@@ -601,9 +601,22 @@ impl DragMoments {
 
     /// `self += to − from`.
     pub(crate) fn add_difference(&mut self, to: &Self, from: &Self) {
+        self.add_linear_difference(to, from);
+        self.add_quadratic_difference(to, from);
+    }
+
+    /// [`DragMoments::add_difference`] of the skin friction's moments
+    /// alone (`linear`), for sums only [`DragMoments::add_linear`] reads.
+    pub(crate) fn add_linear_difference(&mut self, to: &Self, from: &Self) {
         for ((m, t), f) in self.linear.iter_mut().zip(&to.linear).zip(&from.linear) {
             *m += t - f;
         }
+    }
+
+    /// [`DragMoments::add_difference`] of the quadratic part's moments
+    /// alone (`quadratic`), for sums only [`DragMoments::add_quadratic`]
+    /// reads.
+    pub(crate) fn add_quadratic_difference(&mut self, to: &Self, from: &Self) {
         for j in 0..6 {
             for ((m, t), f) in self.quadratic[j]
                 .iter_mut()

@@ -130,9 +130,9 @@ pub(super) struct DragWalk<'a> {
     /// Texel ranges for the kernel, by [`DragWalk::list`].
     pub(super) texels: [Vec<std::ops::Range<usize>>; 8],
     /// Tiles whose every texel adds its skin friction.
-    pub(super) linear: MomentRun,
+    pub(super) linear: MomentRun<true>,
     /// Tiles whose every texel adds `k_q h·w`.
-    pub(super) quadratic: MomentRun,
+    pub(super) quadratic: MomentRun<false>,
 }
 
 impl<'a> DragWalk<'a> {
@@ -256,30 +256,43 @@ impl<'a> DragWalk<'a> {
     }
 }
 
-/// Drag moments of runs of consecutive tiles, from the running sums.
+/// Drag moments of runs of consecutive tiles, from the running sums: the
+/// skin friction's (`LINEAR`, which [`DragMoments::add_linear`] reads) or
+/// the quadratic part's (which [`DragMoments::add_quadratic`] reads), the
+/// other part left at zero.
 #[derive(Default)]
-pub(super) struct MomentRun {
+pub(super) struct MomentRun<const LINEAR: bool> {
     open: Option<std::ops::Range<usize>>,
     sum: DragMoments,
 }
 
-impl MomentRun {
+impl<const LINEAR: bool> MomentRun<LINEAR> {
     /// Adds `tiles`, extending the open run where they follow it.
     fn push(&mut self, prefix: &[DragMoments], tiles: std::ops::Range<usize>) {
         match self.open.as_mut() {
             Some(open) if open.end == tiles.start => open.end = tiles.end,
             _ => {
                 if let Some(done) = self.open.replace(tiles) {
-                    self.sum.add_difference(&prefix[done.end], &prefix[done.start]);
+                    self.add(prefix, done);
                 }
             }
+        }
+    }
+
+    /// Adds the moments of a finished run.
+    fn add(&mut self, prefix: &[DragMoments], done: std::ops::Range<usize>) {
+        let (to, from) = (&prefix[done.end], &prefix[done.start]);
+        if LINEAR {
+            self.sum.add_linear_difference(to, from);
+        } else {
+            self.sum.add_quadratic_difference(to, from);
         }
     }
 
     /// The sums of every tile pushed.
     fn close(mut self, prefix: &[DragMoments]) -> DragMoments {
         if let Some(done) = self.open.take() {
-            self.sum.add_difference(&prefix[done.end], &prefix[done.start]);
+            self.add(prefix, done);
         }
         self.sum
     }
