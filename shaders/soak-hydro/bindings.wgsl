@@ -42,7 +42,8 @@ struct Body {
     // xyz: angular velocity (rad/s); w: quadratic drag coefficient.
     angular_velocity: vec4<f32>,
     // x: linear skin friction (N s/m per m^2); y: 1 when drag is wanted;
-    // z: 1 when Archimedes' slope sum is wanted (a surface that is not a plane).
+    // z: 1 when Archimedes' slope sum is wanted (a surface that is not a plane);
+    // w: the atlas' mean thickness 3V/A (m, 0 where it encloses no volume).
     drag: vec4<f32>,
     // x: surface kind; y: first wave / first height sample / first patch
     // coefficient; z: wave count / samples along x / patch cells along x;

@@ -14,7 +14,8 @@
 // (K = [[Kvv, Kvw], [Kvwᵀ, Kww]] is symmetric; d2a = Σ (d²/2) A and
 // wrs = Σ w ρ × s are Archimedes' torque sums, `BuoyancySums::d2a` and
 // `SlopeSums` of hydrostatics.rs, as are ayr = Σ A_y r_y and
-// shallow = Σ ln min(d/δ, 1), δ the bounding radius; those three only in
+// shallow = Σ ln min(d/δ, 1), δ the mean thickness at most the bounding
+// radius (`deep_scale` of hydrostatics/frame.rs); those three only in
 // Archimedes mode under a surface that is not a plane.)
 
 const SLOTS: u32 = 12u;
@@ -55,7 +56,10 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) l
     let rho = b.linear_velocity.w;
     let cd = b.angular_velocity.w;
     let linear = b.drag.x;
-    let delta = sqrt(bitcast<f32>(radii[b.slot.x]));
+    var delta = sqrt(bitcast<f32>(radii[b.slot.x]));
+    if (b.drag.w > 0.0) {
+        delta = min(delta, b.drag.w);
+    }
 
     // Twelve accumulators indexed by constants only, so compilers keep them in registers.
     var acc: array<vec4<f32>, 12>;

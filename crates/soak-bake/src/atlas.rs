@@ -64,6 +64,10 @@ pub struct Atlas {
     /// The first triangle of the caps of an open mesh ([`crate::cap_openings`]).
     #[serde(default)]
     pub(crate) first_opening: Option<u32>,
+    /// [`Atlas::mean_thickness`], computed when first asked for (and again
+    /// after a [`Atlas::refresh`]); not stored.
+    #[serde(skip)]
+    pub(crate) mean_thickness: std::sync::OnceLock<f64>,
 }
 
 /// Rounded-free summary of an atlas: counts and the integral invariants.
@@ -252,6 +256,32 @@ impl Atlas {
             .sum()
     }
 
+    /// Mean thickness `3 V / A`, m: the enclosed volume over a third of the
+    /// area (a sphere's radius; a slab's or a rod's width, however long),
+    /// computed once (O(texels)) and kept until a [`Atlas::refresh`]. Zero
+    /// where the samples enclose no volume (`V ≤ 0`, or no area).
+    ///
+    /// ```
+    /// use nalgebra::Point3;
+    /// use soak_bake::{Atlas, BakeOptions, builtin};
+    /// let mesh = builtin::cuboid(100.0, 1.0, 1.0);
+    /// let mut rod = Atlas::bake(&mesh, BakeOptions::square(64))?;
+    /// // 3 · 100 m³ / 402 m²: the rod's width, not its length.
+    /// assert!((rod.mean_thickness() - 300.0 / 402.0).abs() < 1e-3);
+    /// // Twice as wide and tall: 3 · 400 m³ / 808 m², once refreshed.
+    /// let wider: Vec<_> = mesh.positions.iter().map(|p| Point3::new(p.x, 2.0 * p.y, 2.0 * p.z)).collect();
+    /// rod.refresh(&wider)?;
+    /// assert!((rod.mean_thickness() - 1200.0 / 808.0).abs() < 1e-3);
+    /// # Ok::<(), soak_bake::BakeError>(())
+    /// ```
+    pub fn mean_thickness(&self) -> f64 {
+        *self.mean_thickness.get_or_init(|| {
+            let (volume, area) = (self.volume(), self.area());
+            let t = 3.0 * volume / area;
+            if volume > 0.0 && t.is_finite() { t } else { 0.0 }
+        })
+    }
+
     /// Enclosed volume by the divergence theorem, `(1/3) Σ x_i·A_i`, m³.
     pub fn volume(&self) -> f64 {
         self.local_positions
@@ -337,6 +367,7 @@ impl Atlas {
             })
             .reduce(|| 0.0, f64::max);
         self.bounding_radius = radius2.sqrt();
+        self.mean_thickness = std::sync::OnceLock::new();
         Ok(())
     }
 

@@ -255,6 +255,7 @@ pub(crate) fn bake_unchecked(mesh: &Mesh, options: BakeOptions) -> Atlas {
         vertex_count: mesh.positions.len(),
         bounding_radius: radius2.sqrt(),
         first_opening: mesh.first_opening_triangle(),
+        mean_thickness: std::sync::OnceLock::new(),
     }
 }
 

@@ -776,10 +776,11 @@ fn sampled_volume(atlas: &Atlas, water: &Water, pose: &Isometry3<f64>) -> (f64, 
 /// sampling error of `∮ h n_y dA`, which is zero for a closed surface: a
 /// 200:1 rod at 32² (one centroid sample per long triangle) pitched across
 /// a cliff's step as tall as its length sums a volume 9 % over its own.
-/// Once every texel is deeper than its bounding radius, Archimedes' force
-/// takes the rod's volume, `2 × 0.01 × 0.01` m³; where the last texel has
-/// only just gone under, it takes the sum as it is (no jump), and in
-/// between it moves from one to the other.
+/// Once every texel is deeper than its mean thickness `3V/A` (its width,
+/// not its half length), Archimedes' force takes the rod's volume,
+/// `2 × 0.01 × 0.01` m³; where the last texel has only just gone under, it
+/// takes the sum as it is (no jump), and in between it moves from one to
+/// the other.
 #[test]
 fn deep_under_a_step_archimedes_takes_the_enclosed_volume() {
     let mesh = builtin::cuboid(2.0, 0.01, 0.01);
@@ -808,11 +809,18 @@ fn deep_under_a_step_archimedes_takes_the_enclosed_volume() {
         f.submerged_volume
     );
     assert!((f.buoyancy.force.y - RHO * G * exact).abs() < 1e-6 * RHO * G * exact);
-    // Just under: the last texel 10⁻⁹ r under its surface.
+    // The depth past which a texel is deep: the rod's width (3V/A =
+    // 0.0075 m), not its half length.
+    let delta = atlas.mean_thickness();
+    assert!(
+        (delta - 3.0 * exact / 0.0802).abs() < 1e-3 * delta && delta < 0.01 * r,
+        "δ = {delta} m"
+    );
+    // Just under: the last texel 10⁻⁹ δ under its surface.
     let (_, at_zero) = sampled_volume(&atlas, &water, &posed(0.0));
-    let y = at_zero - 1e-9 * r;
+    let y = at_zero - 1e-9 * delta;
     let (sum, shallowest) = sampled_volume(&atlas, &water, &posed(y));
-    assert!(shallowest > 0.0 && shallowest < 1e-8 * r, "{shallowest}");
+    assert!(shallowest > 0.0 && shallowest < 1e-8 * delta, "{shallowest}");
     let f = at(&atlas, &water, posed(y), &HydroOptions::default());
     assert!(f.deep < 1e-8, "just under: φ = {}", f.deep);
     assert!(
@@ -821,9 +829,9 @@ fn deep_under_a_step_archimedes_takes_the_enclosed_volume() {
         f.submerged_volume
     );
     // In between, the volume lies between the two and φ grows with depth.
-    let mut last = 0.0;
+    let (mut last, mut between) = (0.0, 0);
     for k in 1..10 {
-        let pose = posed(y - 0.2 * r * k as f64);
+        let pose = posed(y - 0.2 * delta * k as f64);
         let (sum, _) = sampled_volume(&atlas, &water, &pose);
         let f = at(&atlas, &water, pose, &HydroOptions::default());
         assert!(
@@ -838,7 +846,12 @@ fn deep_under_a_step_archimedes_takes_the_enclosed_volume() {
             f.submerged_volume
         );
         last = f.deep;
+        between += usize::from(f.deep > 0.0 && f.deep < 1.0);
     }
+    assert!(
+        between > 0 && last == 1.0,
+        "φ = {last} at 1.8 δ, {between} steps in between"
+    );
     // Partly dry, and under a plane, the sum is taken as it is.
     let f = at(&atlas, &water, posed(0.0), &HydroOptions::default());
     assert_eq!(f.deep, 0.0);

@@ -194,7 +194,7 @@ impl GpuHydro {
                     drag.map_or(0.0, |d| d.linear) as f32,
                     if drag.is_some() { 1.0 } else { 0.0 },
                     if slope_sums { 1.0 } else { 0.0 },
-                    0.0,
+                    entry.thickness as f32,
                 ],
                 slot: [b.atlas.0, 0, 0, 0],
                 ..Body::default()
@@ -211,8 +211,10 @@ impl GpuHydro {
                 com,
                 plane,
                 texels: entry.len,
-                // The kernel takes the bounding radius itself (`shallow`).
+                // The kernel takes the bounding radius and the thickness
+                // itself (`shallow`).
                 depth_scale: 0.0,
+                deep_scale: 0.0,
             });
             let first = partials;
             for s in &entry.segments {

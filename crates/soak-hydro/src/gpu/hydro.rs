@@ -65,6 +65,10 @@ pub(crate) struct Entry {
     /// Radius of a sphere about the origin that holds every texel, m: the
     /// atlas's, or after a deformation one that holds every vertex.
     pub radius: f64,
+    /// The atlas' mean thickness ([`Atlas::mean_thickness`]) as uploaded,
+    /// m: with the radius, the depth past which a texel counts as deep
+    /// (`deep_scale`; a deformation keeps the uploaded one).
+    pub thickness: f64,
     pub len: usize,
     pub segments: Vec<Segment>,
     pub deformable: Option<Deformable>,
@@ -380,6 +384,7 @@ impl GpuHydro {
             self.atlases.push(Entry {
                 origin: atlas.origin(),
                 radius: atlas.bounding_radius(),
+                thickness: atlas.mean_thickness(),
                 len: n,
                 segments,
                 deformable,

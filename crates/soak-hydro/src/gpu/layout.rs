@@ -63,7 +63,8 @@ pub struct Body {
     /// xyz: angular velocity (rad/s); w: quadratic drag coefficient.
     pub angular_velocity: [f32; 4],
     /// x: linear skin friction (N s/m per m²); y: 1 when drag is wanted;
-    /// z: 1 when Archimedes' slope sum is wanted.
+    /// z: 1 when Archimedes' slope sum is wanted; w: the atlas' mean
+    /// thickness (m, 0 where it encloses no volume).
     pub drag: [f32; 4],
     /// x: surface kind (`SURFACE_*`); y: first wave, first height sample
     /// or first patch coefficient; z: wave count, samples along x or patch

@@ -259,7 +259,7 @@ fn general_sums<S: TexelSurface>(
                 if archimedes {
                     let slope = surface.slope(&p, t, &hint);
                     s.b.slope
-                        .add(&(p - frame.com), r.y, &aw, d, slope, frame.depth_scale);
+                        .add(&(p - frame.com), r.y, &aw, d, slope, frame.deep_scale);
                 }
                 if let Some(drag) = &options.drag {
                     let rc = p - frame.com;
@@ -294,7 +294,7 @@ pub(crate) fn patch_sums(
         ow: frame.ow,
         com: frame.com - frame.ow,
         top: patch.height_bounds(t).map_or(f64::INFINITY, |(_, hi)| hi),
-        delta: frame.depth_scale,
+        delta: frame.deep_scale,
         patch,
         archimedes: options.buoyancy == BuoyancyMode::Archimedes,
     };

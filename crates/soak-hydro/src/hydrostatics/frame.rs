@@ -20,9 +20,22 @@ pub(crate) struct Frame {
     pub com: Vector3<f64>,
     pub plane: Option<(Vector3<f64>, f64)>,
     pub texels: usize,
-    /// Depth past which a texel counts as deep (the bounding radius), m:
-    /// see [`deep_volume`](super::deep_volume::deep_volume).
+    /// The body's bounding radius, m: the scale of the sea's tile
+    /// tolerance ([`SEA_TILE_TOLERANCE`](crate::SEA_TILE_TOLERANCE)).
     pub depth_scale: f64,
+    /// Depth past which a texel counts as deep, `δ` of
+    /// [`deep_volume`](super::deep_volume::deep_volume), m: [`deep_scale`].
+    pub deep_scale: f64,
+}
+
+/// The depth `δ` past which a texel of `atlas` counts as deep under a
+/// surface that is not a plane, m: the atlas' mean thickness `3V/A`
+/// ([`Atlas::mean_thickness`]), at most its bounding radius (which it is
+/// where the samples enclose no volume). For a compact body the two are
+/// alike; a rod's or a slab's thickness is its width, not its length.
+pub(crate) fn deep_scale(atlas: &Atlas) -> f64 {
+    let (t, r) = (atlas.mean_thickness(), atlas.bounding_radius());
+    if t > 0.0 { t.min(r) } else { r }
 }
 
 impl Frame {
@@ -50,6 +63,7 @@ impl Frame {
             plane,
             texels: atlas.len(),
             depth_scale: atlas.bounding_radius(),
+            deep_scale: deep_scale(atlas),
         }
     }
 

@@ -133,7 +133,7 @@ impl TiledAtlas {
             com: frame.com - frame.ow,
             top,
             tolerance: SEA_TILE_TOLERANCE * frame.depth_scale,
-            delta: frame.depth_scale,
+            delta: frame.deep_scale,
             archimedes,
             patch,
         };
@@ -142,7 +142,7 @@ impl TiledAtlas {
             ow: frame.ow,
             com: c.com,
             top,
-            delta: frame.depth_scale,
+            delta: frame.deep_scale,
             patch,
             archimedes,
         };

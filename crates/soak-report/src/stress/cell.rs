@@ -24,19 +24,27 @@ use super::settling::{Motion, settle};
 
 /// Run length of a cell: 30 natural times, at least 60 steps, at most
 /// `max_steps`; in the sea also two periods of the longer wave, so that the
-/// last half of the run holds one whole period, at most `10 max_steps`.
+/// last half of the run holds one whole period, where those are at most
+/// `30 max_steps` (else `10 max_steps`).
 fn step_count(size: f64, dt: f64, max_steps: usize, sea_period: Option<f64>) -> usize {
     let tau = (size / G).sqrt();
     let cap = max_steps.max(60);
     let run = ((30.0 * tau / dt).ceil() as usize).clamp(60, cap);
     match sea_period {
-        Some(period) => run.max(((2.0 * period / dt).ceil() as usize).min(10 * cap)),
+        Some(period) => {
+            // Two periods where 30 times the cap holds them (at 60 Hz, the
+            // kilometre's waves, 60–75 s long); where even that would not
+            // (at 240 Hz), the window is a part of a period whatever the
+            // run, and ten times the cap is spent.
+            let two = (2.0 * period / dt).ceil() as usize;
+            run.max(if two <= 30 * cap { two } else { 10 * cap })
+        }
         None => run,
     }
 }
 
 /// Runs one cell on its baked mesh `f`, for at most `max_steps` steps (a
-/// sea cell up to ten times that, for two wave periods), with buoyancy in
+/// sea cell up to 30 times that, for two wave periods), with buoyancy in
 /// `mode`.
 pub(crate) fn run_cell(
     cell: &Cell,
@@ -206,6 +214,9 @@ pub(crate) fn run_cell(
     let e0 = energy(&world, &soak);
     let mut e_max = e0;
 
+    // Where the water the body moves through is read: the centroid of
+    // each of its atlas' tiles, weighted by the tile's area (object frame).
+    let hull = hull_points(&f.atlas);
     let mut fraction_sum = 0.0;
     let mut centre_depth_sum = 0.0;
     let mut vy_sum = 0.0;
@@ -235,10 +246,15 @@ pub(crate) fn run_cell(
         }
         if k >= half {
             fraction_sum += body.forces().submerged_volume / f.volume;
-            let com = convert::pose(rb.position()) * body.mass_properties().center_of_mass;
+            let pose = convert::pose(rb.position());
+            let com = pose * body.mass_properties().center_of_mass;
             centre_depth_sum += soak.water().surface.depth(&com, soak.time()) / size;
             vy_sum += rb.linvel().y as f64;
-            vy_water_sum += rb.linvel().y as f64 - soak.water().surface.velocity(&com, soak.time()).y;
+            let water_vy = hull
+                .iter()
+                .map(|(p, w)| w * soak.water().surface.velocity(&(pose * p), soak.time()).y)
+                .sum::<f64>();
+            vy_water_sum += rb.linvel().y as f64 - water_vy;
             window += 1;
         }
         if k % sample_every == 0 || k + 1 == steps {
@@ -274,7 +290,7 @@ pub(crate) fn run_cell(
     // The vertical velocity the settling checks take: in the sea, whose
     // orbits carry a body up and down with the water wherever drag acts,
     // the mean over the last half, the lesser of its own and of the one
-    // relative to the water at its centre of mass (a run can be a fraction
+    // relative to the water around it (`hull_points`: a run can be a fraction
     // of the waves' period at the largest scales, and the water the body
     // sinks through can rise with the wave meanwhile; deep under the
     // waves, where the water hardly moves, the two are one); over a static
@@ -373,4 +389,28 @@ pub(crate) fn run_cell(
         pass: failures.is_empty(),
         failures,
     })
+}
+
+/// The centroids of `atlas`' tiles (object frame, m), each with its share
+/// of the area: where the water a body moves through is read, and how
+/// much each reading counts. The water's velocity at the centre of mass
+/// alone is not the water's around a body as long as a wave is (a rod a
+/// quarter wavelength long meets a vertical velocity a tenth lower on
+/// average than at its middle).
+fn hull_points(atlas: &soak_bake::Atlas) -> Vec<(nalgebra::Point3<f64>, f64)> {
+    let areas = atlas.areas();
+    let total: f64 = areas.iter().map(|&a| f64::from(a)).sum();
+    atlas
+        .tiles()
+        .iter()
+        .filter_map(|t| {
+            let (mut sum, mut area) = (nalgebra::Vector3::zeros(), 0.0);
+            for i in t.range() {
+                let a = f64::from(areas[i]);
+                sum += a * atlas.position(i).coords;
+                area += a;
+            }
+            (area > 0.0).then(|| (nalgebra::Point3::from(sum / area), area / total))
+        })
+        .collect()
 }

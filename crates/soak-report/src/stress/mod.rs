@@ -50,7 +50,8 @@ pub struct StressOptions {
     /// Atlas resolution, texels per side (32 in the published matrix).
     pub resolution: u32,
     /// Most steps per cell (150 for the quick matrix, 300 for the full
-    /// one); a sea cell runs up to ten times that, for two wave periods.
+    /// one); a sea cell runs up to 30 times that, for two wave periods
+    /// (ten times where even 30 would not hold them).
     pub max_steps: usize,
     /// Cells run at once, each on a thread of its own.
     pub threads: usize,
