@@ -28,8 +28,8 @@ use super::sums::BuoyancySums;
 /// `ρ_w g |E|`, so a body that sinks far gains at most `ρ_w g |E| δ` from
 /// it. The thickness, not the bounding radius: a 200:1 rod's `E` is its
 /// long faces' sampling error, a few parts in a hundred of its volume at
-/// 32², and taken as far down as its half length it held a neutral rod a
-/// kilometre long up under a storm sea whose troughs are hundreds of
+/// 32², and taken as far down as its half length it held a neutral rod 2 km
+/// long up under a storm sea whose troughs are hundreds of
 /// metres deep; its width bounds the excursion by the same `ρ_w g |E|`
 /// over a two-hundredth of the depth.
 ///
