@@ -8,7 +8,8 @@
 //! per texel and tiled, and on the swell (sampled) with and without drag
 //! (tiled, the fluid's velocity read once per tile and at every texel;
 //! and with the drag over a 64² bake of the same mesh),
-//! at 1024² and 128²; the boat at 1024², per texel and tiled; the sphere
+//! at 1024² and 128²; the scaling bench's box at 128² with and without
+//! drag (and over a 32² drag bake); the boat at 1024², per texel and tiled; the sphere
 //! at 2048², beyond the cache; a step of the interactive wave surface; a
 //! spectral sea's tile evaluated at one time.
 
@@ -244,6 +245,54 @@ fn small(c: &mut Criterion) {
     g.finish();
 }
 
+/// The scaling bench's box (1.0 × 0.6 × 0.8 m, 128², solid at half the
+/// water's density) at its floating draft, slightly turned and moving
+/// slowly on calm water, as the bench's bodies float: without drag, with
+/// drag over its own texels and over a 32² bake of its mesh (where a
+/// world of such bodies spends its drag).
+fn bench_box(c: &mut Criterion) {
+    let mesh = builtin::cuboid(1.0, 0.6, 0.8);
+    let (atlas, mass) = baked(&mesh, 128);
+    let tiled = TiledAtlas::new(&atlas);
+    let coarse = DragTexels::bake(&mesh, 32).unwrap();
+    let state = BodyState {
+        linear_velocity: Vector3::new(0.01, 0.02, -0.005),
+        angular_velocity: Vector3::new(0.01, -0.02, 0.03),
+        ..BodyState::at_rest(Isometry3::from_parts(
+            Vector3::zeros().into(),
+            UnitQuaternion::from_euler_angles(0.05, 0.1, 0.02),
+        ))
+    };
+    let water = Water::calm(0.0);
+    let still = HydroOptions::default();
+    let drag = HydroOptions {
+        drag: Some(Drag {
+            coefficient: 0.8,
+            linear: 20.0,
+        }),
+        ..still
+    };
+    let mut g = c.benchmark_group("box_128");
+    g.bench_function("tiled", |b| {
+        b.iter(|| {
+            tiled
+                .evaluate(&atlas, &water, &state, &mass, 0.0, &still)
+                .unwrap()
+        })
+    });
+    g.bench_function("tiled_drag", |b| {
+        b.iter(|| tiled.evaluate(&atlas, &water, &state, &mass, 0.0, &drag).unwrap())
+    });
+    g.bench_function("tiled_drag_texels_32", |b| {
+        b.iter(|| {
+            tiled
+                .evaluate_with_drag(&atlas, &coarse, &water, &state, &mass, 0.0, &drag)
+                .unwrap()
+        })
+    });
+    g.finish();
+}
+
 /// The per-texel pass against the streaming read at 2048², where the atlas
 /// (about 90 MB) no longer fits a processor's cache and the floor is the
 /// memory's bandwidth; at 1024² (about 22 MB) it is the last-level cache's.
@@ -333,5 +382,14 @@ fn spectral(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, hydro, small, boat, beyond_the_cache, waves, spectral);
+criterion_group!(
+    benches,
+    hydro,
+    small,
+    bench_box,
+    boat,
+    beyond_the_cache,
+    waves,
+    spectral
+);
 criterion_main!(benches);
