@@ -68,6 +68,9 @@ pub struct Atlas {
     /// after a [`Atlas::refresh`]); not stored.
     #[serde(skip)]
     pub(crate) mean_thickness: std::sync::OnceLock<f64>,
+    /// The factor of [`Atlas::coarsened`]; 0 (or 1) for a baked atlas.
+    #[serde(default)]
+    pub(crate) coarsening: u32,
 }
 
 /// Rounded-free summary of an atlas: counts and the integral invariants.
@@ -318,7 +321,18 @@ impl Atlas {
     /// barycentrics and area vectors from the new triangle areas. O(texels),
     /// no rasterisation. UV coverage, and so the texel count per triangle,
     /// stays that of the bake.
+    ///
+    /// # Errors
+    /// [`BakeError::VertexCountMismatch`], [`BakeError::NonFiniteRefresh`],
+    /// and [`BakeError::CoarsenedRefresh`] for a coarsened atlas (whose
+    /// samples are not on single triangles: refresh the baked atlas and
+    /// coarsen it again).
     pub fn refresh(&mut self, positions: &[Point3<f64>]) -> Result<(), BakeError> {
+        if self.coarsening > 1 {
+            return Err(BakeError::CoarsenedRefresh {
+                factor: self.coarsening,
+            });
+        }
         if positions.len() != self.vertex_count {
             return Err(BakeError::VertexCountMismatch {
                 given: positions.len(),

@@ -325,6 +325,19 @@ pub enum BakeError {
         /// The vertex.
         vertex: usize,
     },
+    /// A coarsening factor of zero or more than 256 texels.
+    #[error("coarsening factor {factor} is outside 1..=256")]
+    Coarsening {
+        /// The factor asked for.
+        factor: u32,
+    },
+    /// A refresh of a coarsened atlas, whose samples are not on single
+    /// triangles: refresh the baked atlas and coarsen it again.
+    #[error("refresh of an atlas coarsened by {factor}: refresh the baked atlas and coarsen it again")]
+    CoarsenedRefresh {
+        /// The atlas' coarsening factor.
+        factor: u32,
+    },
 }
 
 /// Writing an atlas image failed.

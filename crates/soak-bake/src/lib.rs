@@ -4,6 +4,7 @@
 // layout can change without changing the API.
 mod atlas;
 mod bake;
+mod coarsen;
 mod columns;
 mod error;
 mod export;

@@ -48,6 +48,11 @@ pub struct Args {
     /// size's whole, and the memory counts every world of the size)
     #[arg(long)]
     pub interleave: bool,
+    /// Sum the drag columns' drag over each atlas coarsened by this
+    /// factor (K × K texels merged into one drag texel) rather than over
+    /// its own texels
+    #[arg(long, value_name = "K")]
+    pub drag_coarsening: Option<u32>,
 }
 
 /// A water of the bench by its label.
@@ -79,6 +84,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     options.gpu = args.gpu;
     options.gpu_max_bodies = args.gpu_max_bodies;
     options.interleave = args.interleave;
+    options.drag_coarsening = args.drag_coarsening;
     let report = scaling::run(&options, |m| {
         eprintln!(
             "{:>6} bodies, {:<34} {:>10} per step ({} steps, setup {})",

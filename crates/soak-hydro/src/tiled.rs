@@ -34,6 +34,12 @@ use self::drag::DragWalk;
 pub use self::drag::{DragTexels, evaluate_with_drag};
 pub use self::sea::SEA_TILE_TOLERANCE;
 
+/// Texels (the body's and its drag texels' together) up to which
+/// [`TiledAtlas::evaluate_with_drag`] runs its two evaluations one after
+/// the other rather than side by side: a 128² body's two take a few
+/// microseconds, about what handing one to another thread costs.
+const SIDE_BY_SIDE: usize = 32_768;
+
 /// Moments of one tile's texels, relative to the atlas origin.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TileMoments {
@@ -393,17 +399,24 @@ impl TiledAtlas {
             drag: None,
             ..*options
         };
-        // The two side by side: the body's buoyancy takes the threads the
-        // drag leaves it (each sums in a fixed order whatever the threads).
-        let mut both = par_map(2, |i| match i {
+        let run = |i: usize| match i {
             0 => self.evaluation(atlas, water, state, mass, t, &still, true),
             _ => drag
                 .tiled
                 .evaluation(&drag.atlas, water, state, mass, t, options, false),
-        })
-        .into_iter();
-        let (Some(body), Some(coarse)) = (both.next(), both.next()) else {
-            unreachable!("two evaluations")
+        };
+        // Two evaluations of a few thousand texels each cost less than
+        // handing one to another thread; larger ones run side by side, the
+        // body's buoyancy taking the threads the drag leaves it (each sums
+        // in a fixed order whatever the threads).
+        let (body, coarse) = if atlas.len() + drag.atlas.len() <= SIDE_BY_SIDE {
+            (run(0), run(1))
+        } else {
+            let mut both = par_map(2, run).into_iter();
+            let (Some(body), Some(coarse)) = (both.next(), both.next()) else {
+                unreachable!("two evaluations")
+            };
+            (body, coarse)
         };
         let (body, coarse) = (body?, coarse?);
         Ok(finish(

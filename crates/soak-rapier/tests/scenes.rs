@@ -293,10 +293,11 @@ fn resolution_auto_picks_the_side_for_the_tolerance() {
 }
 
 /// `drag_resolution` sums a body's drag over a second, coarser bake of its
-/// mesh, shared by the bodies of one mesh: a sphere coasting across calm
-/// water slows as it does with the drag over its own texels (within 1 %
-/// of its speed after 2 s), and the key is refused without `drag` or out
-/// of range, named with its line.
+/// mesh, `drag_coarsening` over its own atlas' blocks merged, each shared
+/// by the bodies of one mesh: a sphere coasting across calm water slows
+/// as it does with the drag over its own texels (within 1 % of its speed
+/// after 2 s), and the keys are refused without `drag`, out of range or
+/// together, named with their line.
 #[test]
 fn drag_resolution_sums_the_drag_over_a_coarser_bake() {
     let scene = |body: &str| {
@@ -320,31 +321,62 @@ fn drag_resolution_sums_the_drag_over_a_coarser_bake() {
     let own = speeds(drag);
     let coarse = speeds(&format!("{drag}drag_resolution = 48\n"));
     assert!(own[0] < 1.0, "the drag slows the sphere: {own:?}");
+    let merged = speeds(&format!("{drag}drag_coarsening = 4\n"));
     for (o, c) in own.iter().zip(&coarse) {
         assert!((o - c).abs() < 1e-2 * o, "own {own:?}, coarse {coarse:?}");
     }
-    // The two bodies of one mesh share one bake of drag texels.
-    let loaded = LoadedScene::from_str(
-        &scene(&format!("{drag}drag_resolution = 48\n")),
-        std::path::Path::new("."),
-    )
-    .unwrap();
-    let sim = Simulation::from_scene(&loaded).unwrap();
-    let texels: Vec<_> = sim
-        .soak
-        .bodies()
-        .iter()
-        .map(|b| b.effects().drag_texels.clone().unwrap())
-        .collect();
-    assert!(std::sync::Arc::ptr_eq(&texels[0], &texels[1]));
-    for (body, message, at) in [
-        ("drag_resolution = 64\n", "applies only to a body with `drag`", 11),
-        (&*format!("{drag}drag_resolution = 0\n"), "outside", 12),
+    for (o, c) in own.iter().zip(&merged) {
+        assert!((o - c).abs() < 1e-2 * o, "own {own:?}, coarsened {merged:?}");
+    }
+    // The two bodies of one mesh share one set of drag texels.
+    for key in ["drag_resolution = 48", "drag_coarsening = 4"] {
+        let loaded =
+            LoadedScene::from_str(&scene(&format!("{drag}{key}\n")), std::path::Path::new(".")).unwrap();
+        let sim = Simulation::from_scene(&loaded).unwrap();
+        let texels: Vec<_> = sim
+            .soak
+            .bodies()
+            .iter()
+            .map(|b| b.effects().drag_texels.clone().unwrap())
+            .collect();
+        assert!(std::sync::Arc::ptr_eq(&texels[0], &texels[1]), "{key}");
+    }
+    for (body, named, message, at) in [
+        (
+            "drag_resolution = 64\n",
+            "drag_resolution",
+            "applies only to a body with `drag`",
+            11,
+        ),
+        (
+            &*format!("{drag}drag_resolution = 0\n"),
+            "drag_resolution",
+            "outside",
+            12,
+        ),
+        (
+            "drag_coarsening = 4\n",
+            "drag_coarsening",
+            "applies only to a body with `drag`",
+            11,
+        ),
+        (
+            &*format!("{drag}drag_coarsening = 0\n"),
+            "drag_coarsening",
+            "outside",
+            12,
+        ),
+        (
+            &*format!("{drag}drag_resolution = 64\ndrag_coarsening = 4\n"),
+            "drag_coarsening",
+            "not both",
+            13,
+        ),
     ] {
         let e = LoadedScene::from_str(&scene(body), std::path::Path::new(".")).unwrap_err();
         let msg = e.to_string();
         assert!(
-            msg.contains("bodies[0].drag_resolution") && msg.contains(message),
+            msg.contains(&format!("bodies[0].{named}")) && msg.contains(message),
             "{msg}"
         );
         assert!(

@@ -13,6 +13,9 @@ use super::*;
 pub struct DragTexels {
     pub(super) atlas: Atlas,
     pub(super) tiled: TiledAtlas,
+    /// For texels coarsened from a body's atlas: that atlas (a refresh
+    /// refreshes it and coarsens it again) and the factor.
+    source: Option<(std::sync::Arc<Atlas>, u32)>,
 }
 
 impl DragTexels {
@@ -20,7 +23,34 @@ impl DragTexels {
     /// tiles.
     pub fn new(atlas: Atlas) -> Self {
         let tiled = TiledAtlas::new(&atlas);
-        Self { atlas, tiled }
+        Self {
+            atlas,
+            tiled,
+            source: None,
+        }
+    }
+
+    /// The default merging factor of [`DragTexels::coarsened`]: 4 × 4
+    /// texels of a body's atlas per drag texel (a 128² body's drag over
+    /// a 32² grid, a 1024² body's over 256²).
+    pub const COARSENING: u32 = 4;
+
+    /// The drag texels of `atlas` (the body's own, baked) coarsened by
+    /// `factor`: each `factor`² block of its texels merged into one
+    /// ([`Atlas::coarsened`]), in tiles of [`DragTexels::TILE_SIZE`]
+    /// merged texels. Made from the atlas rather than the mesh, they are
+    /// as few as the blocks whatever the mesh's triangle count (a bake of
+    /// a mesh of `n` triangles keeps `n` texels or more), and follow the
+    /// body's atlas through [`DragTexels::refresh`].
+    ///
+    /// # Errors
+    /// Those of [`Atlas::coarsened`].
+    pub fn coarsened(atlas: std::sync::Arc<Atlas>, factor: u32) -> Result<Self, soak_bake::BakeError> {
+        let coarse = atlas.coarsened(factor, Self::TILE_SIZE)?;
+        Ok(Self {
+            source: Some((atlas, factor)),
+            ..Self::new(coarse)
+        })
     }
 
     /// The tile side of [`DragTexels::bake`], texels: half the default,
@@ -48,13 +78,23 @@ impl DragTexels {
     }
 
     /// Follows a deforming mesh, as [`Atlas::refresh`] (new vertex
-    /// positions, object frame, m, same topology).
+    /// positions, object frame, m, same topology); coarsened texels
+    /// refresh the atlas they were made from and are coarsened again.
     ///
     /// # Errors
     /// Those of [`Atlas::refresh`].
     pub fn refresh(&mut self, positions: &[nalgebra::Point3<f64>]) -> Result<(), soak_bake::BakeError> {
-        self.atlas.refresh(positions)?;
-        self.tiled = TiledAtlas::new(&self.atlas);
+        match &self.source {
+            Some((source, factor)) => {
+                let mut source = Atlas::clone(source);
+                source.refresh(positions)?;
+                *self = Self::coarsened(source.into(), *factor)?;
+            }
+            None => {
+                self.atlas.refresh(positions)?;
+                self.tiled = TiledAtlas::new(&self.atlas);
+            }
+        }
         Ok(())
     }
 

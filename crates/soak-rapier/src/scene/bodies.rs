@@ -155,6 +155,14 @@ pub struct BodySpec {
     /// about 1 % for a fraction of its cost. Needs `drag`; the buoyancy
     /// stays the body's own atlas'. Absent: the body's own texels.
     pub drag_resolution: Option<u32>,
+    /// Sum the drag over the body's own atlas coarsened by this factor:
+    /// each `k × k` block of its texels merged into one drag texel (see
+    /// [`soak_hydro::DragTexels::coarsened`]; 4 takes a 128² body's drag
+    /// to a 32² grid), made once per atlas and shared by its bodies. Unlike
+    /// `drag_resolution`, as few texels as the blocks whatever the mesh's
+    /// triangle count. Needs `drag`; not with `drag_resolution`; the
+    /// buoyancy stays the body's own atlas'. Absent: the body's own texels.
+    pub drag_coarsening: Option<u32>,
     /// Contacts.
     #[serde(default)]
     pub collider: ColliderSpec,

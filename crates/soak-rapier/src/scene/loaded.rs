@@ -406,6 +406,21 @@ impl LoadedScene {
                 }
                 _ => {}
             }
+            match b.drag_coarsening {
+                Some(k) if k == 0 || k > 256 => {
+                    return Err(self.invalid(&key("drag_coarsening"), format!("{k} is outside 1..=256")));
+                }
+                Some(_) if b.drag.is_none() => {
+                    return Err(self.invalid(&key("drag_coarsening"), "applies only to a body with `drag`"));
+                }
+                Some(_) if b.drag_resolution.is_some() => {
+                    return Err(self.invalid(
+                        &key("drag_coarsening"),
+                        "give `drag_coarsening` or `drag_resolution`, not both",
+                    ));
+                }
+                _ => {}
+            }
             match b.mass {
                 MassSpec::Solid { density } => positive(&key("mass.density"), density)?,
                 MassSpec::Shell { areal_density } => positive(&key("mass.areal_density"), areal_density)?,

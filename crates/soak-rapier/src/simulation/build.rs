@@ -171,6 +171,7 @@ impl Simulation {
         let mut holes = Vec::new();
         let mut atlases: HashMap<AtlasKey, (Arc<Atlas>, u32)> = HashMap::new();
         let mut drag_bakes: HashMap<(String, bool, u32), Arc<DragTexels>> = HashMap::new();
+        let mut coarsened: HashMap<(usize, u32), Arc<DragTexels>> = HashMap::new();
         type RadiationKey = (String, bool, u64, [u64; 3]);
         // Bodies floating on a sea of known waves radiate unless told not
         // to; where bodies make their own waves, they make them there.
@@ -337,7 +338,26 @@ impl Simulation {
                             }
                         }
                     }
-                    None => None,
+                    None => match b.drag_coarsening {
+                        // Coarsened from the body's atlas, shared with it.
+                        Some(k) => {
+                            // The atlases map keeps every shared atlas alive,
+                            // so its address names it for the build.
+                            let key = (Arc::as_ptr(&atlas) as usize, k);
+                            match coarsened.get(&key) {
+                                Some(known) => Some(Arc::clone(known)),
+                                None => {
+                                    let made = Arc::new(
+                                        DragTexels::coarsened(Arc::clone(&atlas), k)
+                                            .map_err(|e| body_err(format!("drag texels: {e}")))?,
+                                    );
+                                    coarsened.insert(key, Arc::clone(&made));
+                                    Some(made)
+                                }
+                            }
+                        }
+                        None => None,
+                    },
                 };
                 let added_mass = b
                     .added_mass

@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions, builtin};
-use soak_hydro::{Drag, MassModel, Water};
+use soak_hydro::{Drag, DragTexels, MassModel, Water};
 use soak_rapier::soak_seakeeping::{FloatingBody, RadiationModel};
 use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakError, radiation_settings};
 
@@ -42,6 +42,9 @@ pub struct Fleet {
     pub masses: [f64; 2],
     /// Baking both, ms.
     pub bake_ms: f64,
+    /// The box's and the sphere's drag texels, when the drag is summed
+    /// over their atlases coarsened ([`Fleet::coarsen_drag`]).
+    pub drag_texels: Option<[Arc<DragTexels>; 2]>,
     /// The sphere's mesh (its radiation is baked from it).
     sphere_mesh: soak_bake::Mesh,
     /// The box's and the sphere's radiation, baked when first asked for
@@ -71,6 +74,7 @@ impl Fleet {
             volumes,
             masses: volumes.map(|v| v * DENSITY),
             bake_ms,
+            drag_texels: None,
             sphere_mesh,
             radiation: std::sync::OnceLock::new(),
         })
@@ -111,6 +115,23 @@ impl Fleet {
             let _ = self.radiation.set(made);
         }
         Ok(self.radiation.get().expect("set above")[i % 2].clone())
+    }
+
+    /// Sums the drag of every body over its atlas coarsened by `factor`.
+    ///
+    /// # Errors
+    /// A factor out of range.
+    pub fn coarsen_drag(&mut self, factor: u32) -> Result<(), ScalingError> {
+        let coarsen = |atlas: &Arc<Atlas>, name: &'static str| {
+            DragTexels::coarsened(atlas.clone(), factor)
+                .map(Arc::new)
+                .map_err(|source| ScalingError::Bake { mesh: name, source })
+        };
+        self.drag_texels = Some([
+            coarsen(&self.box_atlas, "box")?,
+            coarsen(&self.sphere_atlas, "sphere")?,
+        ]);
+        Ok(())
     }
 
     /// The atlas of body `i`.
@@ -182,7 +203,12 @@ fn build(
     let effects = |i: usize| -> Result<Effects, ScalingError> {
         Ok(match column.variant {
             Variant::RapierAlone | Variant::Buoyancy => Effects::buoyancy(),
-            Variant::BuoyancyDrag => Effects::buoyancy().with_drag(DRAG),
+            Variant::BuoyancyDrag => match &fleet.drag_texels {
+                Some(texels) => Effects::buoyancy()
+                    .with_drag(DRAG)
+                    .with_drag_texels(texels[i % 2].clone()),
+                None => Effects::buoyancy().with_drag(DRAG),
+            },
             Variant::BuoyancyRadiation => {
                 let water = height.as_ref().expect("the generator's columns have a water");
                 Effects::buoyancy().with_radiation(fleet.radiation(i, water)?)
@@ -400,7 +426,10 @@ pub fn run(
         return Err(ScalingError::Sizes(options.sizes.clone()));
     }
     let start = Instant::now();
-    let fleet = Fleet::bake(options.resolution, options.sphere_segments)?;
+    let mut fleet = Fleet::bake(options.resolution, options.sphere_segments)?;
+    if let Some(k) = options.drag_coarsening {
+        fleet.coarsen_drag(k)?;
+    }
     let mut notes = vec![
         "Rapier alone: the same bodies and masses without the generator; with no water they fall freely (no contacts)."
             .to_string(),

@@ -246,6 +246,11 @@ pub struct ScalingOptions {
     /// setup counts every world of the size at once.
     #[serde(default)]
     pub interleave: bool,
+    /// Sum the drag columns' drag over each atlas coarsened by this factor
+    /// ([`soak_hydro::DragTexels::coarsened`], made once per mesh) rather
+    /// than over its own texels. `None`: the own texels.
+    #[serde(default)]
+    pub drag_coarsening: Option<u32>,
 }
 
 impl ScalingOptions {
@@ -264,6 +269,7 @@ impl ScalingOptions {
             gpu_max_bodies: 1_000,
             waters: WaterKind::ALL.to_vec(),
             interleave: false,
+            drag_coarsening: None,
         }
     }
 

@@ -97,7 +97,7 @@ fn header(report: &ScalingReport) -> String {
     format!(
         "soak bench: step time (median) of a Rapier world of N floating bodies, half boxes and half spheres, \
          {r}² atlases ({tb} and {ts} texels), density 500, 2 m apart, dt = 1/60 s; {settle} steps to settle, \
-         then {min}–{max} timed steps (about {budget} s) per case; {threads} threads; {secs:.0} s in all",
+         then {min}–{max} timed steps (about {budget} s) per case; {threads} threads; {secs:.0} s in all{coarse}",
         r = o.resolution,
         tb = count(report.texels.0),
         ts = count(report.texels.1),
@@ -107,6 +107,10 @@ fn header(report: &ScalingReport) -> String {
         budget = o.budget_s,
         threads = report.threads,
         secs = report.seconds,
+        coarse = match o.drag_coarsening {
+            Some(k) => format!("; drag over the atlases coarsened by {k} ({k} × {k} texels merged)"),
+            None => String::new(),
+        },
     )
 }
 
