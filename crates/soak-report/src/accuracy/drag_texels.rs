@@ -1,7 +1,8 @@
 //! The drag-texel rows: what summing a body's drag over a coarser bake of
-//! its mesh ([`DragTexels`]) costs in accuracy and saves in time, against
-//! the drag over the body's own texels (the reference), per drag
-//! resolution, for bodies moving on calm water and through the swell.
+//! its mesh, or over its own atlas coarsened ([`DragTexels`]), costs in
+//! accuracy and saves in time, against the drag over the body's own
+//! texels (the reference), per drag resolution, for bodies moving on calm
+//! water and through the swell.
 
 use std::hint::black_box;
 
@@ -22,8 +23,13 @@ pub struct DragTexelRow {
     pub mesh: String,
     /// The body's atlas side (its buoyancy), texels.
     pub resolution: u32,
-    /// The drag bake's side, texels.
+    /// The drag bake's side, texels (for a coarsened atlas, the atlas'
+    /// side over the factor).
     pub drag_resolution: u32,
+    /// The factor the body's own atlas was coarsened by for its drag
+    /// ([`DragTexels::coarsened`]); `None` for a bake of the mesh.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coarsening: Option<u32>,
     /// Texels of the drag bake (at least one per triangle).
     pub drag_texels: usize,
     /// Worst relative difference of the drag (force, and torque over the
@@ -74,8 +80,9 @@ fn drag_difference(got: &HydroForces, want: &HydroForces, radius: f64) -> f64 {
 }
 
 /// The drag-texel rows for the sphere, the box and the boat at
-/// `resolution`, their drag over bakes at 32², 64², 128² and 256²; `runs`
-/// timed samples per path.
+/// `resolution`, their drag over bakes at 32², 64², 128² and 256², then
+/// over their atlas coarsened to the same sides; `runs` timed samples per
+/// path.
 pub(super) fn drag_texel_rows(resolution: u32, runs: usize) -> Result<Vec<DragTexelRow>, AccuracyError> {
     let calm = Water::calm(0.0);
     let sea = swell()?;
@@ -94,7 +101,7 @@ pub(super) fn drag_texel_rows(resolution: u32, runs: usize) -> Result<Vec<DragTe
     };
     let mut rows = Vec::new();
     for (name, mesh, h) in meshes {
-        let atlas = Atlas::bake(&mesh, BakeOptions::square(resolution))?;
+        let atlas = std::sync::Arc::new(Atlas::bake(&mesh, BakeOptions::square(resolution))?);
         let tiled = TiledAtlas::new(&atlas);
         let mass = MassModel::Solid { density: DENSITY }.mass_properties(&atlas)?;
         let radius = atlas.bounding_radius();
@@ -106,8 +113,14 @@ pub(super) fn drag_texel_rows(resolution: u32, runs: usize) -> Result<Vec<DragTe
                 .collect::<Result<Vec<_>, _>>()
         };
         let (own_calm, own_sea) = (own(&calm)?, own(&sea)?);
-        for drag_resolution in [32, 64, 128, 256].into_iter().filter(|&n| n < resolution) {
-            let coarse = DragTexels::bake(&mesh, drag_resolution)?;
+        let sides = [32, 64, 128, 256].into_iter().filter(|&n| n < resolution);
+        let bakes = sides.clone().map(|n| (n, None));
+        let coarsened = sides.map(|n| (n, Some(resolution / n)));
+        for (drag_resolution, coarsening) in bakes.chain(coarsened) {
+            let coarse = match coarsening {
+                None => DragTexels::bake(&mesh, drag_resolution)?,
+                Some(k) => DragTexels::coarsened(atlas.clone(), k)?,
+            };
             let worst = |water: &Water, reference: &[HydroForces]| -> Result<f64, AccuracyError> {
                 let mut worst = 0.0f64;
                 for ((s, t), want) in poses.iter().zip(reference) {
@@ -140,6 +153,7 @@ pub(super) fn drag_texel_rows(resolution: u32, runs: usize) -> Result<Vec<DragTe
                 mesh: name.to_string(),
                 resolution,
                 drag_resolution,
+                coarsening,
                 drag_texels: coarse.atlas().len(),
                 calm_error,
                 sea_error,
@@ -158,7 +172,7 @@ pub(super) fn drag_texel_cells(rows: &[DragTexelRow]) -> Vec<[String; 10]> {
         [
             "mesh",
             "atlas",
-            "drag bake",
+            "drag texels from",
             "drag texels",
             "drag err: calm",
             "swell",
@@ -173,7 +187,10 @@ pub(super) fn drag_texel_cells(rows: &[DragTexelRow]) -> Vec<[String; 10]> {
         all.push([
             r.mesh.clone(),
             format!("{}²", r.resolution),
-            format!("{}²", r.drag_resolution),
+            match r.coarsening {
+                None => format!("{}²", r.drag_resolution),
+                Some(k) => format!("atlas by {k} ({}²)", r.drag_resolution),
+            },
             format!("{}", r.drag_texels),
             format!("{:.1e}", r.calm_error),
             format!("{:.1e}", r.sea_error),

@@ -124,7 +124,7 @@ pub fn text_table(report: &Report) -> String {
         s.push_str(&aligned(&sea_cells(&report.spectral), false));
     }
     if !report.drag_texels.is_empty() {
-        s.push_str("\ndrag over a coarser bake of the mesh against the drag over the body's own texels (worst of six moving poses)\n");
+        s.push_str("\ndrag over a coarser bake of the mesh or the atlas coarsened, against the drag over the body's own texels (worst of six moving poses)\n");
         s.push_str(&aligned(&drag_texel_cells(&report.drag_texels), true));
     }
     s.push_str(&format!("{:.1} s in total\n", report.seconds));
@@ -158,13 +158,16 @@ given nodes per shortest wavelength (1.75 m), as on the swell.\n\n";
 
 /// What the drag-texel rows are, before their table.
 const DRAG_TEXELS_INTRO: &str = "## Drag over a coarser bake\n\n\
-Each body's drag summed over a second bake of its mesh (`DragTexels`, the scene key `drag_resolution`) \
-rather than over its own atlas, which keeps its buoyancy: the worst relative difference of the drag \
+Each body's drag summed over a second bake of its mesh (`DragTexels::bake`, the scene key \
+`drag_resolution`), or over its own atlas coarsened (`DragTexels::coarsened`, the scene key \
+`drag_coarsening`: each k × k block of texels merged into one, \"atlas by k\"), rather than over its \
+own atlas' texels, which keep its buoyancy: the worst relative difference of the drag \
 (force, and torque over the bounding radius) from the drag over the body's own texels, over six \
 poses at the surface moving at about 0.75 m/s and turning at 0.5 rad/s (C_d = 0.8, skin friction \
 20 N·s/m³), on calm water and on the two-wave swell; and the tiled evaluation's time on calm water \
 without drag, with the drag over its own texels and with the drag over the bake, the last over the \
-first as the ratio. A bake takes at least one texel per triangle (the sphere's 4,096).\n\n";
+first as the ratio. A bake takes at least one texel per triangle (the sphere's 4,096); a coarsened atlas one per \
+block.\n\n";
 
 /// Rows as a markdown table, the header first; the first `left` columns
 /// left-aligned.
