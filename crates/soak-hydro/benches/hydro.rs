@@ -248,8 +248,8 @@ fn small(c: &mut Criterion) {
 /// The scaling bench's box (1.0 × 0.6 × 0.8 m, 128², solid at half the
 /// water's density) at its floating draft, slightly turned and moving
 /// slowly on calm water, as the bench's bodies float: without drag, with
-/// drag over its own texels and over a 32² bake of its mesh (where a
-/// world of such bodies spends its drag).
+/// drag over its own texels, over a 32² bake of its mesh and over its
+/// atlas coarsened by 4 (where a world of such bodies spends its drag).
 fn bench_box(c: &mut Criterion) {
     let mesh = builtin::cuboid(1.0, 0.6, 0.8);
     let (atlas, mass) = baked(&mesh, 128);
@@ -287,6 +287,14 @@ fn bench_box(c: &mut Criterion) {
         b.iter(|| {
             tiled
                 .evaluate_with_drag(&atlas, &coarse, &water, &state, &mass, 0.0, &drag)
+                .unwrap()
+        })
+    });
+    let merged = DragTexels::coarsened(atlas.clone().into(), DragTexels::COARSENING).unwrap();
+    g.bench_function("tiled_drag_coarsened_4", |b| {
+        b.iter(|| {
+            tiled
+                .evaluate_with_drag(&atlas, &merged, &water, &state, &mass, 0.0, &drag)
                 .unwrap()
         })
     });
