@@ -30,7 +30,11 @@ pub struct Effects {
     pub drag: Option<Drag>,
     /// The texels the drag is summed over, when not the body's own atlas':
     /// a coarser bake of the same mesh ([`DragTexels::bake`], e.g. 64² for
-    /// a 1024² body), shared by the bodies of one mesh. The buoyancy stays
+    /// a 1024² body), or the body's atlas coarsened
+    /// ([`DragTexels::coarsened`], e.g. by 4: one drag texel per 4 × 4 of
+    /// its texels, whatever the mesh's triangle count), shared by the
+    /// bodies of one mesh (a set per body is no faster than the body's own
+    /// texels: the sets no longer stay in cache). The buoyancy stays
     /// the body's own atlas'. On the CPU backends only: the GPU backend
     /// sums the drag over the body's own texels (there a texel costs
     /// little). `None`: the body's own texels.
@@ -174,7 +178,7 @@ impl Effects {
     }
 
     /// The same effects with the drag summed over `texels` (a bake of the
-    /// body's mesh; see [`Effects::drag_texels`]).
+    /// body's mesh, or its atlas coarsened; see [`Effects::drag_texels`]).
     ///
     /// # Example
     /// ```
