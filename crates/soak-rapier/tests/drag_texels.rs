@@ -1,5 +1,6 @@
 //! Drag texels in a Rapier world: refused when baked from another mesh,
-//! and following a deforming mesh like the body's own atlas.
+//! and following a deforming mesh like the body's own atlas (baked, or
+//! coarsened from it).
 
 use nalgebra::{Point3, Vector3};
 use rapier3d::prelude::*;
@@ -75,4 +76,63 @@ fn drag_texels_follow_a_deforming_mesh() {
         (deformed.force - want.force).norm() < 1e-4 * want.force.norm(),
         "{deformed:?} against {want:?}"
     );
+}
+
+/// A body's drag over its atlas coarsened by 4 (the drag texels made from
+/// the very atlas it registers), its drag then within a few percent of
+/// the drag over its own texels; deformed to 1.2 times its size, the
+/// coarsened texels follow (coarsened again from the refreshed atlas):
+/// its drag is that of a body baked from the larger sphere, coarsened.
+#[test]
+fn coarsened_drag_texels_follow_a_deforming_mesh() {
+    let mesh = builtin::sphere(0.5, 32, 16);
+    let body = |mesh: &Mesh, coarsen: bool| {
+        let mut world = PhysicsWorld::new();
+        world.integration_parameters.dt = 1.0 / 60.0;
+        let handle = world
+            .bodies
+            .insert(RigidBodyBuilder::dynamic().linvel(Vector::new(1.0, 0.0, 0.0)));
+        let atlas = std::sync::Arc::new(Atlas::bake(mesh, BakeOptions::square(128)).unwrap());
+        let mut effects = Effects::buoyancy().with_drag(DRAG);
+        if coarsen {
+            effects = effects.with_drag_texels(DragTexels::coarsened(atlas.clone(), 4).unwrap().into());
+        }
+        let mut soak = ForceGenerator::new(Water::calm(0.0));
+        let id = soak
+            .register(
+                &mut world.bodies,
+                &world.colliders,
+                handle,
+                BodyDesc {
+                    name: "buoy".into(),
+                    atlas,
+                    mass_model: MassModel::Solid { density: 500.0 },
+                    effects,
+                },
+            )
+            .unwrap();
+        (world, soak, id)
+    };
+    let drag = |(mut w, mut soak, id): (PhysicsWorld, ForceGenerator, SoakId)| {
+        soak.step(&mut w).unwrap();
+        soak.body(id).unwrap().forces().drag_explicit
+    };
+    let own = drag(body(&mesh, false));
+    let coarse = drag(body(&mesh, true));
+    assert!(own.force.norm() > 1.0, "{own:?}");
+    assert!(
+        (coarse.force - own.force).norm() < 3e-2 * own.force.norm(),
+        "{coarse:?} against {own:?}"
+    );
+
+    let grown: Vec<Point3<f64>> = mesh.positions.iter().map(|p| p * 1.2).collect();
+    let (mut w, mut soak, id) = body(&mesh, true);
+    soak.deform(id, &grown, &mut w.bodies, &w.colliders).unwrap();
+    let deformed = drag((w, soak, id));
+    let want = drag(body(&mesh.clone().map_positions(|p| p * 1.2), true));
+    assert!(
+        (deformed.force - want.force).norm() < 1e-4 * want.force.norm(),
+        "{deformed:?} against {want:?}"
+    );
+    assert!((deformed.force - coarse.force).norm() > 0.1 * coarse.force.norm());
 }
