@@ -358,6 +358,39 @@ mod tests {
         assert_eq!(next as usize, coarse.len());
     }
 
+    /// Hard cases: an atlas of centroid samples only (4,096 triangles at
+    /// 8²), 1000:1 slivers, and scales from a millimetre to a kilometre:
+    /// every merged sample finite, the area and the area vector kept, a
+    /// factor larger than the texture one sample per piece of surface.
+    #[test]
+    fn hard_cases_stay_finite_and_keep_the_area() {
+        let cases = [
+            (builtin::sphere(0.5, 64, 32), 8),
+            (builtin::cuboid(100.0, 0.1, 0.1), 64),
+            (builtin::cuboid(1e-3, 6e-4, 8e-4), 128),
+            (builtin::cuboid(1e3, 6e2, 8e2), 128),
+            (builtin::sphere(1e3, 32, 16), 128),
+        ];
+        for (mesh, n) in cases {
+            let fine = baked(&mesh, n);
+            for k in [2, 8, 256] {
+                let coarse = fine.coarsened(k, 4).unwrap();
+                assert!(!coarse.is_empty() && coarse.len() <= fine.len());
+                for i in 0..coarse.len() {
+                    let (p, a, area) = sample(&coarse, i);
+                    assert!(p.iter().chain(a.iter()).all(|v| v.is_finite()) && area.is_finite());
+                }
+                let area = fine.area();
+                assert!(
+                    (coarse.area() - area).abs() < 1e-6 * area,
+                    "{} at {n}² by {k}",
+                    mesh.name
+                );
+                assert!((coarse.area_vector_sum() - fine.area_vector_sum()).norm() < 1e-6 * area);
+            }
+        }
+    }
+
     /// Factors out of range and refreshing a coarsened atlas are refused.
     #[test]
     fn bad_factors_and_refreshes_are_refused() {
