@@ -95,6 +95,17 @@ fn worst(b: &Body, drag: &DragTexels, water: &Water, t: f64, states: &[BodyState
     worst
 }
 
+/// `drag`'s worst difference from `b`'s own drag on calm water and on the
+/// swell, printed; a message when it reaches `tolerance`.
+fn compare(name: &str, b: &Body, drag: &DragTexels, height: f64, tolerance: f64) -> Option<String> {
+    let states = states(height);
+    let calm = worst(b, drag, &Water::calm(0.0), 0.0, &states);
+    let sea = worst(b, drag, &swell(), 2.3, &states);
+    println!("{name}: calm {calm:.2e}, swell {sea:.2e}");
+    (calm.max(sea) >= tolerance)
+        .then(|| format!("{name}: calm {calm:.2e}, swell {sea:.2e} (tolerance {tolerance:.0e})"))
+}
+
 /// The drag over coarse drag texels against the drag over the body's own
 /// 512² texels, on calm water and on the swell, with the buoyancy
 /// unchanged: within 2 % for the sphere and 1 % for the box at 64² (about
@@ -112,15 +123,7 @@ fn coarse_drag_texels_stay_close_to_the_bodys_own() {
         let b = body(&mesh, 512);
         let drag = DragTexels::bake(&mesh, coarse).unwrap();
         assert!(drag.atlas().len() < b.atlas.len() / 10, "{name}");
-        let states = states(height);
-        let calm = worst(&b, &drag, &Water::calm(0.0), 0.0, &states);
-        let sea = worst(&b, &drag, &swell(), 2.3, &states);
-        println!("{name}: calm {calm:.2e}, swell {sea:.2e}");
-        if calm.max(sea) >= tolerance {
-            failed.push(format!(
-                "{name}: calm {calm:.2e}, swell {sea:.2e} (tolerance {tolerance:.0e})"
-            ));
-        }
+        failed.extend(compare(name, &b, &drag, height, tolerance));
     }
     assert!(failed.is_empty(), "{failed:?}");
 }
@@ -237,19 +240,12 @@ fn coarsened_drag_texels_stay_close_to_the_bodys_own() {
             drag.atlas().len() * (k * k / 2) as usize <= b.atlas.len(),
             "{name}"
         );
-        let states = states(height);
-        let calm = worst(&b, &drag, &Water::calm(0.0), 0.0, &states);
-        let sea = worst(&b, &drag, &swell(), 2.3, &states);
-        println!(
-            "{name} {n}² by {k} ({} texels of {}): calm {calm:.2e}, swell {sea:.2e}",
+        let name = format!(
+            "{name} {n}² by {k} ({} texels of {})",
             drag.atlas().len(),
             b.atlas.len()
         );
-        if calm.max(sea) >= tolerance {
-            failed.push(format!(
-                "{name} {n}² by {k}: calm {calm:.2e}, swell {sea:.2e} (tolerance {tolerance:.0e})"
-            ));
-        }
+        failed.extend(compare(&name, &b, &drag, height, tolerance));
     }
     assert!(failed.is_empty(), "{failed:?}");
 }

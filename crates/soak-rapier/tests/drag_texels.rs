@@ -2,6 +2,8 @@
 //! and following a deforming mesh like the body's own atlas (baked, or
 //! coarsened from it).
 
+use std::sync::Arc;
+
 use nalgebra::{Point3, Vector3};
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
@@ -16,6 +18,21 @@ const DRAG: Drag = Drag {
 /// A world with one sphere half under calm water moving at 1 m/s, its drag
 /// over `texels`.
 fn world(mesh: &Mesh, texels: DragTexels) -> (PhysicsWorld, ForceGenerator, Result<SoakId, SoakError>) {
+    let atlas = Atlas::bake(mesh, BakeOptions::square(128)).unwrap().into();
+    world_of(
+        atlas,
+        Effects::buoyancy()
+            .with_drag(DRAG)
+            .with_drag_texels(texels.into()),
+    )
+}
+
+/// A world with one body of `atlas` half under calm water moving at 1 m/s,
+/// with `effects`.
+fn world_of(
+    atlas: Arc<Atlas>,
+    effects: Effects,
+) -> (PhysicsWorld, ForceGenerator, Result<SoakId, SoakError>) {
     let mut world = PhysicsWorld::new();
     world.integration_parameters.dt = 1.0 / 60.0;
     let handle = world
@@ -28,11 +45,9 @@ fn world(mesh: &Mesh, texels: DragTexels) -> (PhysicsWorld, ForceGenerator, Resu
         handle,
         BodyDesc {
             name: "buoy".into(),
-            atlas: Atlas::bake(mesh, BakeOptions::square(128)).unwrap().into(),
+            atlas,
             mass_model: MassModel::Solid { density: 500.0 },
-            effects: Effects::buoyancy()
-                .with_drag(DRAG)
-                .with_drag_texels(texels.into()),
+            effects,
         },
     );
     (world, soak, id)
@@ -87,31 +102,13 @@ fn drag_texels_follow_a_deforming_mesh() {
 fn coarsened_drag_texels_follow_a_deforming_mesh() {
     let mesh = builtin::sphere(0.5, 32, 16);
     let body = |mesh: &Mesh, coarsen: bool| {
-        let mut world = PhysicsWorld::new();
-        world.integration_parameters.dt = 1.0 / 60.0;
-        let handle = world
-            .bodies
-            .insert(RigidBodyBuilder::dynamic().linvel(Vector::new(1.0, 0.0, 0.0)));
-        let atlas = std::sync::Arc::new(Atlas::bake(mesh, BakeOptions::square(128)).unwrap());
+        let atlas = Arc::new(Atlas::bake(mesh, BakeOptions::square(128)).unwrap());
         let mut effects = Effects::buoyancy().with_drag(DRAG);
         if coarsen {
             effects = effects.with_drag_texels(DragTexels::coarsened(atlas.clone(), 4).unwrap().into());
         }
-        let mut soak = ForceGenerator::new(Water::calm(0.0));
-        let id = soak
-            .register(
-                &mut world.bodies,
-                &world.colliders,
-                handle,
-                BodyDesc {
-                    name: "buoy".into(),
-                    atlas,
-                    mass_model: MassModel::Solid { density: 500.0 },
-                    effects,
-                },
-            )
-            .unwrap();
-        (world, soak, id)
+        let (world, soak, id) = world_of(atlas, effects);
+        (world, soak, id.unwrap())
     };
     let drag = |(mut w, mut soak, id): (PhysicsWorld, ForceGenerator, SoakId)| {
         soak.step(&mut w).unwrap();
