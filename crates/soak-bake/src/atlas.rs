@@ -68,9 +68,10 @@ pub struct Atlas {
     /// after a [`Atlas::refresh`]); not stored.
     #[serde(skip)]
     pub(crate) mean_thickness: std::sync::OnceLock<f64>,
-    /// The factor of [`Atlas::coarsened`]; 0 (or 1) for a baked atlas.
+    /// The factor of [`Atlas::coarsened`] (the product over nested
+    /// coarsenings); `None` for a baked atlas.
     #[serde(default)]
-    pub(crate) coarsening: u32,
+    pub(crate) coarsening: Option<u32>,
 }
 
 /// Rounded-free summary of an atlas: counts and the integral invariants.
@@ -328,10 +329,8 @@ impl Atlas {
     /// samples are not on single triangles: refresh the baked atlas and
     /// coarsen it again).
     pub fn refresh(&mut self, positions: &[Point3<f64>]) -> Result<(), BakeError> {
-        if self.coarsening > 1 {
-            return Err(BakeError::CoarsenedRefresh {
-                factor: self.coarsening,
-            });
+        if let Some(factor) = self.coarsening {
+            return Err(BakeError::CoarsenedRefresh { factor });
         }
         if positions.len() != self.vertex_count {
             return Err(BakeError::VertexCountMismatch {

@@ -256,7 +256,7 @@ pub(crate) fn bake_unchecked(mesh: &Mesh, options: BakeOptions) -> Atlas {
         bounding_radius: radius2.sqrt(),
         first_opening: mesh.first_opening_triangle(),
         mean_thickness: std::sync::OnceLock::new(),
-        coarsening: 1,
+        coarsening: None,
     }
 }
 

@@ -71,6 +71,12 @@ impl Cluster {
 
     fn add(&mut self, atlas: &Atlas, i: usize) {
         let (p, a, area) = sample(atlas, i);
+        let norm = a.norm();
+        if self.normal == Vector3::zeros() && norm > 0.0 {
+            // A seed without area has no normal: the first member with
+            // area seeds the cluster, so the fold rule applies to the rest.
+            (self.normal, self.seed, self.side) = (a / norm, p, area.sqrt());
+        }
         self.moment += area * p;
         self.positions += p;
         self.area_vector += a;
@@ -117,7 +123,12 @@ impl Atlas {
     /// smooth surface integrals such as drag, made once per mesh. Its
     /// samples are not on single triangles, so it does not follow a
     /// deforming mesh: [`Atlas::refresh`] the baked atlas and coarsen it
-    /// again.
+    /// again. Its texel coordinates are its blocks' (the baked texel's
+    /// over `factor`), its width and height the baked ones over `factor`
+    /// rounded up; each sample's triangle and barycentrics are those of
+    /// its largest member, and [`Atlas::texels_per_triangle`] counts
+    /// those. It is a sampling for surface integrals, not a body's atlas
+    /// for wetting, flooding, export or a deforming GPU upload.
     ///
     /// # Errors
     /// [`BakeError::Coarsening`] for a `factor` of zero or more than 256,
@@ -178,7 +189,7 @@ impl Atlas {
             bounding_radius: 0.0,
             first_opening: self.first_opening,
             mean_thickness: std::sync::OnceLock::new(),
-            coarsening: factor,
+            coarsening: Some(self.coarsening().unwrap_or(1).saturating_mul(factor)),
         };
         let mut radius2 = 0.0f64;
         let mut clusters: Vec<Cluster> = Vec::new();
@@ -234,10 +245,13 @@ impl Atlas {
         Ok(atlas)
     }
 
-    /// The factor this atlas was coarsened by ([`Atlas::coarsened`]); 1
-    /// for a baked atlas.
-    pub fn coarsening(&self) -> u32 {
-        self.coarsening.max(1)
+    /// The factor this atlas was coarsened by ([`Atlas::coarsened`]; the
+    /// product of the factors of nested coarsenings); `None` for a baked
+    /// atlas. A coarsened atlas does not [`Atlas::refresh`], even by 1 (which
+    /// merges a triangle's centroid sample with the sample sharing its
+    /// texel).
+    pub fn coarsening(&self) -> Option<u32> {
+        self.coarsening
     }
 }
 
@@ -277,7 +291,7 @@ mod tests {
             for k in [1, 2, 4, 8, 16] {
                 let coarse = fine.coarsened(k, 4).unwrap();
                 assert!(coarse.len() <= fine.len());
-                assert_eq!(coarse.coarsening(), k);
+                assert_eq!(coarse.coarsening(), Some(k));
                 let area = fine.area();
                 assert!((coarse.area() - area).abs() < 1e-6 * area, "k {k}");
                 assert!((coarse.area_vector_sum() - fine.area_vector_sum()).norm() < 1e-6 * area);
@@ -294,9 +308,10 @@ mod tests {
         }
     }
 
-    /// Blocks of the box's UV map hold faces side by side (folded over an
-    /// edge, or apart on the mesh): no merged sample mixes two faces, so
-    /// every one is flat (`|A| = a`) and lies on the box's surface.
+    /// Blocks of the box's UV map hold faces side by side: no merged sample
+    /// mixes two faces (each face has its own normal, so the fold rule
+    /// decides), so every one is flat (`|A| = a`) and lies on the box's
+    /// surface.
     #[test]
     fn faces_are_not_merged_across_folds_or_charts() {
         let h = [0.5, 0.3, 0.4];
@@ -316,8 +331,9 @@ mod tests {
         }
     }
 
-    /// A cap of an opening and the walls are never merged: the coarsened
-    /// caps' area is the baked caps'.
+    /// The coarsened caps' area is the baked caps' and the walls' the
+    /// walls' (on this open box the cap faces away from every wall, so the
+    /// fold rule keeps them apart as well as the caps' own rule).
     #[test]
     fn caps_stay_apart_from_the_walls() {
         let mesh = cap_openings(&builtin::open_box(1.0, 0.6, 0.8)).unwrap();
@@ -333,6 +349,52 @@ mod tests {
         assert!(caps(&fine) > 0.1);
         assert!((caps(&coarse) - caps(&fine)).abs() < 1e-6 * caps(&fine));
         assert!((coarse.wall_area() - fine.wall_area()).abs() < 1e-6 * fine.wall_area());
+    }
+
+    /// Two pieces of surface facing alike in one block of texels but far
+    /// apart on the mesh (as two charts of a UV map side by side) are not
+    /// merged: every other column of a box's texels moved 50 m along x,
+    /// every merged sample lies on the box or on its moved copy, none
+    /// between.
+    #[test]
+    fn pieces_apart_on_the_mesh_are_not_merged() {
+        let mut atlas = baked(&builtin::cuboid(1.0, 0.6, 0.8), 64);
+        let [x, _, _] = atlas.local_positions.columns_mut();
+        for (x, t) in x.iter_mut().zip(&atlas.texels) {
+            if t[0] % 2 == 1 {
+                *x += 50.0;
+            }
+        }
+        let coarse = atlas.coarsened(8, 4).unwrap();
+        assert!((coarse.area() - atlas.area()).abs() < 1e-6 * atlas.area());
+        for i in 0..coarse.len() {
+            let p = sample(&coarse, i).0;
+            let on = |dx: f64| (p.x - dx).abs() <= 0.5 + 1e-4;
+            assert!(on(0.0) || on(50.0), "sample {i} at {p:?}");
+        }
+    }
+
+    /// A sample without area (a triangle collapsed by a refresh) seeding a
+    /// block does not open the block to every normal: the first member
+    /// with area seeds it. A thin plate in one block, its first sample
+    /// made arealess: the top and the bottom, a millimetre apart, stay
+    /// apart (every merged sample flat).
+    #[test]
+    fn an_arealess_seed_keeps_the_fold_rule() {
+        let mut atlas = baked(&builtin::cuboid(1.0, 1e-3, 1.0), 64);
+        for c in atlas.area_vectors.columns_mut() {
+            c[0] = 0.0;
+        }
+        atlas.areas[0] = 0.0;
+        let coarse = atlas.coarsened(64, 4).unwrap();
+        for i in 0..coarse.len() {
+            let (_, a, area) = sample(&coarse, i);
+            assert!(
+                a.norm() > (1.0 - 1e-5) * area,
+                "sample {i}: |A| {} < a {area}",
+                a.norm()
+            );
+        }
     }
 
     /// Tiles are runs of samples in one `tile_size`² block of the coarse
@@ -396,7 +458,7 @@ mod tests {
     fn bad_factors_and_refreshes_are_refused() {
         let mesh = builtin::cuboid(1.0, 0.6, 0.8);
         let fine = baked(&mesh, 32);
-        assert_eq!(fine.coarsening(), 1);
+        assert_eq!(fine.coarsening(), None);
         assert_eq!(
             fine.coarsened(0, 4).unwrap_err(),
             BakeError::Coarsening { factor: 0 }
@@ -410,6 +472,18 @@ mod tests {
         assert_eq!(
             coarse.refresh(&mesh.positions).unwrap_err(),
             BakeError::CoarsenedRefresh { factor: 2 }
+        );
+        // Nested, the factors multiply; by 1, it is still coarsened.
+        let mut nested = coarse.coarsened(1, 4).unwrap().coarsened(3, 4).unwrap();
+        assert_eq!(nested.coarsening(), Some(6));
+        assert_eq!(
+            nested.refresh(&mesh.positions).unwrap_err(),
+            BakeError::CoarsenedRefresh { factor: 6 }
+        );
+        let mut by_one = fine.coarsened(1, 4).unwrap();
+        assert_eq!(
+            by_one.refresh(&mesh.positions).unwrap_err(),
+            BakeError::CoarsenedRefresh { factor: 1 }
         );
     }
 }

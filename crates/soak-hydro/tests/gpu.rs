@@ -899,6 +899,11 @@ fn deformation_on_the_gpu_matches_refresh() {
         gpu.upload_deformable(&b.atlas, &b.mesh.triangles[1..]),
         Err(GpuHydroError::Triangles { .. })
     ));
+    let coarse = b.atlas.coarsened(4, 4).unwrap();
+    assert_eq!(
+        gpu.upload_deformable(&coarse, &b.mesh.triangles),
+        Err(GpuHydroError::Coarsened { factor: 4 })
+    );
 }
 
 // ---------------------------------------------------------------- limits and failures

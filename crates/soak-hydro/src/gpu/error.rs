@@ -81,6 +81,13 @@ pub enum GpuHydroError {
         /// Vertices of the baked mesh.
         vertices: usize,
     },
+    /// A deformable upload of a coarsened atlas ([`soak_bake::Atlas::coarsened`]),
+    /// whose samples are not on single triangles: upload the baked atlas.
+    #[error("a deformable atlas must be baked, not coarsened (by {factor})")]
+    Coarsened {
+        /// The atlas' coarsening factor.
+        factor: u32,
+    },
     /// Deformation was asked of an atlas uploaded without its triangles.
     #[error("atlas {0:?} was uploaded without triangles; use GpuHydro::upload_deformable")]
     NotDeformable(GpuAtlasId),

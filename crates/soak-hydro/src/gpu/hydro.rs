@@ -304,7 +304,9 @@ impl GpuHydro {
 
     /// Uploads an atlas with the triangles (vertex indices) of the mesh it
     /// was baked from, so [`GpuHydro::deform`] can move its texels on the
-    /// device. `triangles` are `Mesh::triangles` of that mesh.
+    /// device. `triangles` are `Mesh::triangles` of that mesh. A coarsened
+    /// atlas is refused ([`GpuHydroError::Coarsened`]): its samples are not
+    /// on single triangles.
     pub fn upload_deformable(
         &mut self,
         atlas: &Atlas,
@@ -316,6 +318,9 @@ impl GpuHydro {
             triangles: atlas.triangle_count(),
             vertices: atlas.vertex_count(),
         };
+        if let Some(factor) = atlas.coarsening() {
+            return Err(GpuHydroError::Coarsened { factor });
+        }
         if triangles.len() != atlas.triangle_count() {
             return Err(bad(triangles.len(), "count given"));
         }

@@ -30,7 +30,8 @@ pub struct DragTexelRow {
     /// ([`DragTexels::coarsened`]); `None` for a bake of the mesh.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub coarsening: Option<u32>,
-    /// Texels of the drag bake (at least one per triangle).
+    /// Drag texels (a bake's at least one per triangle; a coarsened
+    /// atlas' one per block and piece of surface).
     pub drag_texels: usize,
     /// Worst relative difference of the drag (force, and torque over the
     /// bounding radius) from the drag over the body's own texels, over
