@@ -298,6 +298,28 @@ fn bench_box(c: &mut Criterion) {
                 .unwrap()
         })
     });
+    // The same box afloat on the world bench's JONSWAP sea (H_s 2 m, T_p
+    // 8 s), its patch sampled in each evaluation (the tile's fields at
+    // that time evaluated once, before the timing).
+    let sea = Water::spectral(&SeaSpectrum::jonswap(2.0, 8.0), 0).unwrap();
+    let t = 30.0;
+    let afloat = BodyState {
+        pose: Isometry3::from_parts(
+            Vector3::new(0.0, sea.surface.height(0.0, 0.0, t), 0.0).into(),
+            state.pose.rotation,
+        ),
+        ..state
+    };
+    g.bench_function("jonswap_tiled", |b| {
+        b.iter(|| tiled.evaluate(&atlas, &sea, &afloat, &mass, t, &still).unwrap())
+    });
+    g.bench_function("jonswap_drag_coarsened_4", |b| {
+        b.iter(|| {
+            tiled
+                .evaluate_with_drag(&atlas, &merged, &sea, &afloat, &mass, t, &drag)
+                .unwrap()
+        })
+    });
     g.finish();
 }
 
