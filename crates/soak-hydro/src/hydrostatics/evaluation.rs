@@ -370,14 +370,7 @@ pub(crate) fn sample_patch_around(
     }
     let spacing = length / per;
     let centre = state.pose * origin;
-    // The body's footprint, rounded out to whole cells, and at least two
-    // cells a side: the patch's edge nodes take their twists to second
-    // order as its inner ones do (from three nodes), so no margin of nodes
-    // around the footprint is needed. A margin of one spacing, as before,
-    // moved no error of `soak accuracy`'s sea rows at the default sampling
-    // beyond its second digit, and took the bench's box (bounding radius
-    // 0.71 m) on its JONSWAP sea (0.78 m spacing) from 9 nodes to 25.
-    let reach = radius.max(0.75 * spacing);
+    let reach = radius + spacing;
     // A body so large against the waves that its patch would need more
     // nodes than a patch holds is read exactly rather than more coarsely.
     if 2.0 * reach / spacing > (MAX_PATCH_NODES - 1) as f64 {

@@ -24,7 +24,7 @@ pub const MAX_PATCH_NODES: usize = 256;
 ///
 /// Inside the rectangle [`Surface::height`] and [`Surface::slope`] are those
 /// of the bicubic Hermite interpolant of the sampled heights, slopes and
-/// twists (`∂²f/∂x∂z`, by differences of the slopes to second order); outside it the
+/// twists (`∂²f/∂x∂z`, by central differences of the slopes); outside it the
 /// nearest edge cell's polynomial is read at the nearest point of the
 /// rectangle. The time argument of the [`Surface`] methods is ignored: the
 /// patch is the surface at the time it was sampled.
@@ -282,19 +282,10 @@ impl SurfacePatch {
         let sx: Vec<f64> = sampled.iter().map(|s| s.slope[0]).collect();
         let sz: Vec<f64> = sampled.iter().map(|s| s.slope[1]).collect();
         // Twists `∂²f/∂x∂z`: central differences of the slopes (one-sided
-        // at the edges, from three nodes where there are three), the mean
-        // of the two mixed derivatives.
+        // at the edges), the mean of the two mixed derivatives.
         let diff = |f: &[f64], k: usize, i: usize, count: usize, stride: usize| -> f64 {
             match (i > 0, i + 1 < count) {
                 (true, true) => (f[k + stride] - f[k - stride]) / (2.0 * spacing),
-                // Second order at the edges too where there are three
-                // nodes along the axis.
-                (false, true) if count > 2 => {
-                    (4.0 * f[k + stride] - 3.0 * f[k] - f[k + 2 * stride]) / (2.0 * spacing)
-                }
-                (true, false) if count > 2 => {
-                    (3.0 * f[k] - 4.0 * f[k - stride] + f[k - 2 * stride]) / (2.0 * spacing)
-                }
                 (false, true) => (f[k + stride] - f[k]) / spacing,
                 (true, false) => (f[k] - f[k - stride]) / spacing,
                 (false, false) => 0.0,
