@@ -20,7 +20,7 @@ use soak_hydro::reference::{self, ClipPlane};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, DragTexels, Gerstner, GerstnerWave, HydroOptions, InteractiveWaves,
     MassModel, MassProperties, SeaSampling, SeaSpectrum, SeaVelocity, SpectralSea, TiledAtlas, Water,
-    WaveRegion, evaluate, streaming_read,
+    WaveRegion, evaluate, sampled_water, streaming_read,
 };
 
 /// `mesh` baked at `n`², and the mass properties of a solid of half the
@@ -312,6 +312,15 @@ fn bench_box(c: &mut Criterion) {
     };
     g.bench_function("jonswap_tiled", |b| {
         b.iter(|| tiled.evaluate(&atlas, &sea, &afloat, &mass, t, &still).unwrap())
+    });
+    // Its two parts: sampling the patch (25 nodes, each the choppy map
+    // inverted), and the evaluation on the sampled patch.
+    g.bench_function("jonswap_patch", |b| {
+        b.iter(|| sampled_water(&atlas, &sea, &afloat, t, &still).unwrap())
+    });
+    let patch = sampled_water(&atlas, &sea, &afloat, t, &still).unwrap().unwrap();
+    g.bench_function("jonswap_on_patch", |b| {
+        b.iter(|| tiled.evaluate(&atlas, &patch, &afloat, &mass, t, &still).unwrap())
     });
     g.bench_function("jonswap_drag_coarsened_4", |b| {
         b.iter(|| {
