@@ -6,7 +6,7 @@
 
 use nalgebra::Vector3;
 use serde::Serialize;
-use soak_hydro::{SeaSampling, SeaVelocity, Water};
+use soak_hydro::{SeaBand, SeaSampling, SeaVelocity, Water};
 use soak_wet::Environment;
 
 use crate::body::{SoakBody, shared_tiles};
@@ -77,6 +77,7 @@ pub struct Driver<H> {
     pub(crate) backend: Backend,
     pub(crate) sea: SeaSampling,
     pub(crate) sea_velocity: SeaVelocity,
+    pub(crate) sea_band: SeaBand,
     pub(crate) time: f64,
     pub(crate) steps: u64,
     pub(crate) firewall: Firewall,
@@ -113,6 +114,7 @@ impl<H: Handle> Driver<H> {
             backend: Backend::default(),
             sea: SeaSampling::default(),
             sea_velocity: SeaVelocity::default(),
+            sea_band: SeaBand::default(),
             time: 0.0,
             steps: 0,
             firewall: Firewall::default(),
@@ -189,6 +191,22 @@ impl<H: Handle> Driver<H> {
     /// [`Driver::with_sea_velocity`]).
     pub fn sea_velocity(&self) -> SeaVelocity {
         self.sea_velocity
+    }
+
+    /// The same driver with each body reading the waves of a sampled sea
+    /// that `band` keeps: all of them (the default), or with
+    /// [`SeaBand::BodyLengths`] only those long against the body (the
+    /// shorter ones average out over its hull; a spectral sea then reads
+    /// a coarser tile). See [`SeaBand`] for the cut-off.
+    pub fn with_sea_band(mut self, band: SeaBand) -> Self {
+        self.sea_band = band;
+        self
+    }
+
+    /// Which of a sea's waves the bodies read (see
+    /// [`Driver::with_sea_band`]).
+    pub fn sea_band(&self) -> SeaBand {
+        self.sea_band
     }
 
     /// The same driver with interactive waves on its water (see

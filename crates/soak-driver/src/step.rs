@@ -102,6 +102,7 @@ impl<H: Handle> Driver<H> {
             density: self.water.density,
             sea: self.sea,
             sea_velocity: self.sea_velocity,
+            sea_band: self.sea_band,
         };
         let mut work: Vec<(usize, BodyState)> = Vec::new();
         // What the engine said of each body in `work`, in the same order.
@@ -840,6 +841,7 @@ struct SharedOptions {
     density: f64,
     sea: soak_hydro::SeaSampling,
     sea_velocity: soak_hydro::SeaVelocity,
+    sea_band: soak_hydro::SeaBand,
 }
 
 impl SharedOptions {
@@ -854,6 +856,7 @@ impl SharedOptions {
             dt: self.dt,
             sea: self.sea,
             sea_velocity: self.sea_velocity,
+            sea_band: self.sea_band,
             added_mass: dragged
                 .then(|| self.added_mass(b, &state.pose.rotation))
                 .flatten(),

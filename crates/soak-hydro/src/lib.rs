@@ -33,7 +33,7 @@ pub use self::error::{HydroError, WaterError};
 pub use self::hydrostatics::body_state::BodyState;
 pub use self::hydrostatics::evaluation::{evaluate, sampled_water, streaming_read};
 pub use self::hydrostatics::forces::{HydroForces, Wrench};
-pub use self::hydrostatics::options::{BuoyancyMode, Drag, HydroOptions, SeaSampling, SeaVelocity};
+pub use self::hydrostatics::options::{BuoyancyMode, Drag, HydroOptions, SeaBand, SeaSampling, SeaVelocity};
 pub use self::mass::{
     MassModel, MassProperties, PrincipalInertia, VolumeMoments, inertia_from_second_moment, parallel_axis,
     shell, volume_moments,

@@ -501,6 +501,7 @@ fn parity(
                     dt: 1.0 / 60.0,
                     sea,
                     sea_velocity: SeaVelocity::PerTexel,
+                    sea_band: soak_hydro::SeaBand::Full,
                     added_mass: None,
                 };
                 (water, state, options)

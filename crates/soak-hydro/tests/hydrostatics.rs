@@ -8,7 +8,7 @@ use soak_bake::{Atlas, BakeOptions, Mesh, builtin, load_mesh};
 use soak_hydro::reference::{self, ClipPlane, analytic};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HydroForces, HydroOptions, MassModel,
-    MassProperties, Plane, SeaSampling, SeaVelocity, TiledAtlas, Water, evaluate,
+    MassProperties, Plane, SeaBand, SeaSampling, SeaVelocity, TiledAtlas, Water, evaluate,
 };
 
 const RHO: f64 = 1000.0;
@@ -20,6 +20,7 @@ const PRESSURE: HydroOptions = HydroOptions {
     dt: 1.0 / 60.0,
     sea: SeaSampling::PerWavelength(SeaSampling::DEFAULT_PER_WAVELENGTH),
     sea_velocity: SeaVelocity::PerTile,
+    sea_band: SeaBand::Full,
     added_mass: None,
 };
 

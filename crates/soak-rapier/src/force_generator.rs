@@ -8,7 +8,7 @@ use std::ops::{Deref, DerefMut};
 use nalgebra::Point3;
 use rapier3d::prelude::{ColliderSet, IntegrationParameters, PhysicsWorld, RigidBodyHandle, RigidBodySet};
 use soak_driver::{Backend, BodyDesc, Driver, SoakId, StepParams, WaveCoupling};
-use soak_hydro::{MassModel, MassProperties, SeaSampling, SeaVelocity, Water};
+use soak_hydro::{MassModel, MassProperties, SeaBand, SeaSampling, SeaVelocity, Water};
 
 use crate::bodies::{RapierBodies, RapierBodiesRef};
 use crate::convert;
@@ -130,6 +130,14 @@ impl ForceGenerator {
     pub fn with_sea_velocity(self, velocity: SeaVelocity) -> Self {
         Self {
             driver: self.driver.with_sea_velocity(velocity),
+        }
+    }
+
+    /// The same generator with each body reading the waves of a sampled
+    /// sea that `band` keeps (see [`Driver::with_sea_band`]).
+    pub fn with_sea_band(self, band: SeaBand) -> Self {
+        Self {
+            driver: self.driver.with_sea_band(band),
         }
     }
 

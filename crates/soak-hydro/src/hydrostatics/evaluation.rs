@@ -322,7 +322,8 @@ pub(crate) fn patch_sums(
 
 /// The water's surface sampled once over the footprint of a body at
 /// `state` (its bounding sphere's, one node spacing wider), as
-/// [`HydroOptions::sea`] asks: `None` when it asks for the exact read, the
+/// [`HydroOptions::sea`] asks, with the waves [`HydroOptions::sea_band`]
+/// asks for (all of them, or a band long against the body): `None` when it asks for the exact read, the
 /// surface has no [`Surface::sampling_length`] (planes, height fields,
 /// surfaces of your own), or the body is so large against the waves that
 /// its patch would need more than [`MAX_PATCH_NODES`] nodes a side. With drag, the fluid's velocity is sampled too,
@@ -358,7 +359,13 @@ pub(crate) fn sample_patch_around(
     if !matches!(water.surface.kind(t), SurfaceKind::General) {
         return Ok(None);
     }
-    let Some(length) = water.surface.sampling_length(t) else {
+    // The waves the body reads: all, or a band of them long against it.
+    let surface = match options.sea_band.wavelength(radius)? {
+        Some(wavelength) => water.surface.band_limited(wavelength),
+        None => None,
+    }
+    .unwrap_or(&*water.surface);
+    let Some(length) = surface.sampling_length(t) else {
         return Ok(None);
     };
     if !(per.is_finite() && per > 0.0) {
@@ -381,12 +388,7 @@ pub(crate) fn sample_patch_around(
     let r = radius;
     let velocity = options.drag.map(|_| (centre.y - r, centre.y + r));
     Ok(Some(SurfacePatch::sample(
-        &*water.surface,
-        t,
-        min,
-        max,
-        spacing,
-        velocity,
+        surface, t, min, max, spacing, velocity,
     )?))
 }
 

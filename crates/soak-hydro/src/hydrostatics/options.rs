@@ -63,6 +63,11 @@ pub struct HydroOptions {
     /// footprint and interpolated.
     #[serde(default)]
     pub sea: SeaSampling,
+    /// Which of a sampled sea's waves the body reads: all of them (the
+    /// default), or only those long against the body
+    /// ([`SeaBand::BodyLengths`]).
+    #[serde(default)]
+    pub sea_band: SeaBand,
     /// Where the tiled path ([`TiledAtlas`](crate::TiledAtlas)) reads the
     /// fluid's velocity for the drag under a sampled sea: once per tile
     /// (the default) or at every texel.
@@ -131,6 +136,61 @@ pub enum SeaSampling {
     PerWavelength(f64),
 }
 
+/// Which of a sea's waves a body reads where the sea is sampled over its
+/// footprint ([`SeaSampling::PerWavelength`]).
+///
+/// A wave much shorter than a body pushes its hull up under each crest and
+/// lets it down under each trough: over the hull its push largely cancels
+/// (the net heave force of a wave of length `λ` on a wall-sided body of
+/// length `L` is `sinc(π L / λ)` times a short body's, zero at `L = λ`, at
+/// most `λ / (π L)` beyond). Reading only the waves at least a few body
+/// lengths long keeps what moves the body and samples the surface on a
+/// coarser grid: a large body on a spectral sea reads fewer nodes, and
+/// more of its tiles take their closed forms.
+///
+/// The cut-off: with [`SeaBand::BodyLengths`]`(r)` a body of bounding
+/// diameter `D` reads every wave at least `r D` long, and the shorter
+/// waves down to the longest of them that the surface can drop as a band
+/// ([`Surface::band_limited`](crate::Surface::band_limited)): a
+/// [`SpectralSurface`](crate::SpectralSurface) drops its modes shorter
+/// than `2^L` times its tile's shortest wave, for the largest `L` that
+/// keeps every wave of `r D` or longer (so the waves it drops are at
+/// least half as long as `r D`'s cut-off and no longer). Other surfaces
+/// are read whole. `soak accuracy`'s band rows give the error against the
+/// whole sea. The exact read ([`SeaSampling::Exact`]) reads the whole sea
+/// whatever this says.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SeaBand {
+    /// Every wave: the reference.
+    #[default]
+    Full,
+    /// Only the waves at least this many times the body's bounding
+    /// diameter long are sure to be read (see [`SeaBand`] for which
+    /// shorter ones are).
+    BodyLengths(f64),
+}
+
+impl SeaBand {
+    /// The shortest wave the body must read (m), for a body of bounding
+    /// radius `radius` (m): `None` for the whole sea.
+    ///
+    /// # Errors
+    /// [`WaterError::Parameter`](crate::WaterError::Parameter)
+    /// (`"sea band body lengths"`) when the ratio is not finite and
+    /// positive.
+    pub fn wavelength(&self, radius: f64) -> Result<Option<f64>, crate::WaterError> {
+        match *self {
+            Self::Full => Ok(None),
+            Self::BodyLengths(r) if r.is_finite() && r > 0.0 => Ok(Some(2.0 * r * radius)),
+            Self::BodyLengths(r) => Err(crate::WaterError::Parameter {
+                name: "sea band body lengths",
+                value: r,
+            }),
+        }
+    }
+}
+
 impl SeaSampling {
     /// The default: 16 nodes per shortest wavelength.
     pub const DEFAULT_PER_WAVELENGTH: f64 = 16.0;
@@ -149,6 +209,7 @@ impl Default for HydroOptions {
             drag: None,
             dt: 1.0 / 60.0,
             sea: SeaSampling::default(),
+            sea_band: SeaBand::default(),
             sea_velocity: SeaVelocity::default(),
             added_mass: None,
         }

@@ -1,12 +1,12 @@
 //! A [`SpectralSea`] as a water surface: the tile evaluated once per time
 //! for every reader, the choppy map inverted between its nodes.
 
-use std::sync::{Arc, RwLock};
+use std::sync::{Arc, OnceLock, RwLock};
 
 use nalgebra::{Point3, Vector3};
 
 use super::surface::{fill_nodes, node_at};
-use super::{SeaFields, SpectralSea, Surface, SurfaceNode};
+use super::{SEA_CELLS, SeaFields, SpectralSea, Surface, SurfaceNode};
 
 /// A spectral sea as a [`Surface`], repeating with its tile's period.
 ///
@@ -37,6 +37,10 @@ pub struct SpectralSurface {
     mean_wavenumber: f64,
     /// The fields of the last times read, oldest first.
     fields: RwLock<Vec<Arc<SeaFields>>>,
+    /// The sea without its shorter waves, built on the first read that
+    /// asks for it ([`Surface::band_limited`]): entry `L − 1` on a grid of
+    /// `cells / 2^L` nodes a side, down to 8.
+    bands: Vec<OnceLock<SpectralSurface>>,
 }
 
 impl Clone for SpectralSurface {
@@ -61,11 +65,42 @@ impl SpectralSurface {
             energy += a2;
             weighted += a2 * k[0].hypot(k[1]);
         }
+        let levels = (sea.cells / *SEA_CELLS.start()).max(1).ilog2() as usize;
         Self {
             mean_wavenumber: if energy > 0.0 { weighted / energy } else { 0.0 },
             sea,
             fields: RwLock::new(Vec::new()),
+            bands: (0..levels).map(|_| OnceLock::new()).collect(),
         }
+    }
+
+    /// The sea without its waves of `2^level` cells of its tile or shorter
+    /// ([`SpectralSea::low_pass`] to `cells / 2^level` nodes a side), as a
+    /// surface, built on the first call and kept; `None` for level 0 (the
+    /// sea itself) or past the coarsest grid (8 nodes a side).
+    pub fn band(&self, level: usize) -> Option<&SpectralSurface> {
+        let slot = self.bands.get(level.checked_sub(1)?)?;
+        Some(slot.get_or_init(|| {
+            let sea = self
+                .sea
+                .low_pass(self.sea.cells >> level)
+                .expect("a band's grid is a power of two within the sea's");
+            SpectralSurface::new(sea)
+        }))
+    }
+
+    /// The band [`Surface::band_limited`] reads for waves at least
+    /// `wavelength` (m) long: the coarsest level whose shortest wave
+    /// (`2^level` times the tile's, two of its cells) is at most
+    /// `wavelength`; 0 (the whole sea) when even the first level's is
+    /// longer.
+    pub fn band_level(&self, wavelength: f64) -> usize {
+        let shortest = 2.0 * self.sea.size / self.sea.cells as f64;
+        let mut level = 0;
+        while level < self.bands.len() && shortest * (1u64 << (level + 1)) as f64 <= wavelength {
+            level += 1;
+        }
+        level
     }
 
     /// The sea.
@@ -187,9 +222,23 @@ impl Surface for SpectralSurface {
         });
     }
 
-    /// Evaluates the tile at `t` (its seven transforms in parallel).
+    /// Evaluates the tile at `t` (its seven transforms in parallel), and
+    /// those of the bands read before.
     fn prepare(&self, t: f64) {
         let _ = self.fields(t);
+        for band in self.bands.iter().filter_map(OnceLock::get) {
+            band.prepare(t);
+        }
+    }
+
+    /// The sea on the coarsest grid whose shortest wave is at most
+    /// `wavelength` ([`SpectralSurface::band_level`]): the modes shorter
+    /// than two of its cells dropped, the rest as they are.
+    fn band_limited(&self, wavelength: f64) -> Option<&dyn Surface> {
+        if !wavelength.is_finite() {
+            return None;
+        }
+        self.band(self.band_level(wavelength)).map(|b| b as &dyn Surface)
     }
 
     fn velocity_under(&self, p: &Point3<f64>, t: f64, height: f64, _hint: &[f64; 2]) -> Vector3<f64> {

@@ -588,6 +588,39 @@ impl SpectralSea {
         Ok(self)
     }
 
+    /// The same sea without its waves of two cells of a `cells` grid or
+    /// shorter: the modes of wavenumber `|k| < π cells / size` (wavelength
+    /// longer than `2 size / cells`), each with its amplitude and phase,
+    /// realised on a tile of `cells` nodes a side (the coarsest grid that
+    /// holds them). A body over which the shorter waves average out reads
+    /// it at a fraction of the cost ([`SeaBand`](crate::SeaBand)).
+    ///
+    /// # Errors
+    /// [`WaterError::Parameter`] (`"band cells"`) when `cells` is not a
+    /// power of two within [`SEA_CELLS`] or is more than the sea's own.
+    pub fn low_pass(&self, cells: usize) -> Result<Self, WaterError> {
+        if !(cells.is_power_of_two() && SEA_CELLS.contains(&cells) && cells <= self.cells) {
+            return Err(WaterError::Parameter {
+                name: "band cells",
+                value: cells as f64,
+            });
+        }
+        let (n, c) = (self.cells, cells);
+        // |k| < π c / size ⇔ n² + l² < (c/2)², in units of 2π/size.
+        let limit = (c / 2) as i64 * (c / 2) as i64;
+        let mut amplitudes = vec![Complex::default(); c * c];
+        for (i, a) in self.amplitudes.iter().enumerate() {
+            let (nx, nz) = (signed(i % n, n), signed(i / n, n));
+            if nx * nx + nz * nz < limit {
+                let (ix, iz) = (nx.rem_euclid(c as i64) as usize, nz.rem_euclid(c as i64) as usize);
+                amplitudes[iz * c + ix] = *a;
+            }
+        }
+        let mut sea = Self::of_amplitudes(self.level, self.size, c, self.gravity, amplitudes);
+        sea.choppiness = self.choppiness;
+        Ok(sea)
+    }
+
     /// The complex amplitude of mode `(n, l)`, m (0 outside the grid).
     pub fn amplitude(&self, n: i64, l: i64) -> Complex<f64> {
         let c = self.cells as i64;

@@ -104,6 +104,17 @@ pub trait Surface: Send + Sync {
         None
     }
 
+    /// The surface without some of its waves shorter than `wavelength` (m),
+    /// for a body over whose hull they average out
+    /// ([`SeaBand`](crate::SeaBand)): never without a wave at least that
+    /// long. `None` (the default) when the surface drops none: read it
+    /// whole. A [`SpectralSurface`](super::SpectralSurface) answers with
+    /// its sea on a coarser grid.
+    fn band_limited(&self, wavelength: f64) -> Option<&dyn Surface> {
+        let _ = wavelength;
+        None
+    }
+
     /// The concrete surface, for backends that handle known surfaces
     /// natively (the GPU evaluates [`Plane`], [`Gerstner`](super::Gerstner),
     /// [`HeightField`](super::HeightField) and [`Unbounded`] itself). `None`

@@ -9,7 +9,8 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions};
 use soak_hydro::{
-    AddedMass, DragTexels, Gerstner, HeightField, MassModel, Plane, SpectralSurface, Unbounded, Water,
+    AddedMass, DragTexels, Gerstner, HeightField, MassModel, Plane, SeaBand, SpectralSurface, Unbounded,
+    Water,
 };
 
 use super::{SimBody, Simulation};
@@ -145,7 +146,16 @@ impl Simulation {
         let mut soak = ForceGenerator::new(water_of(loaded)?)
             .with_backend(scene.backend)
             .with_sea_sampling(scene.water.sampling.unwrap_or_default())
-            .with_sea_velocity(scene.water.velocity.unwrap_or_default());
+            .with_sea_velocity(scene.water.velocity.unwrap_or_default())
+            .with_sea_band(match scene.water.band {
+                None => SeaBand::Full,
+                Some(r) if r.is_finite() && r > 0.0 => SeaBand::BodyLengths(r),
+                Some(r) => {
+                    return Err(
+                        loaded.invalid("water.band", format!("{r}: a positive number of body lengths"))
+                    );
+                }
+            });
         if let Some(waves) = scene.waves {
             soak = soak
                 .with_waves(waves)
