@@ -27,6 +27,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod band;
 mod cases;
 mod drag_texels;
 mod error;
@@ -37,6 +38,7 @@ mod sea;
 mod table;
 mod timing;
 
+pub use band::BandRow;
 pub use drag_texels::DragTexelRow;
 pub use error::AccuracyError;
 pub use figures::{cost_figure, sphere_figure, write_figures};

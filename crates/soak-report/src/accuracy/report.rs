@@ -128,6 +128,9 @@ pub struct Report {
     /// The same on a short, steep spectral sea ([`super::short_sea`]):
     /// the sampled read against the exact inversion of its choppy map.
     pub spectral: Vec<super::sea::SeaRow>,
+    /// A band of the spectral sea's waves read against every wave, per
+    /// cut-off.
+    pub band: Vec<super::band::BandRow>,
     /// The drag over coarser bakes against the drag over the body's own
     /// texels, per drag resolution.
     pub drag_texels: Vec<super::drag_texels::DragTexelRow>,

@@ -101,7 +101,7 @@ pub fn swell() -> Result<Water, AccuracyError> {
 }
 
 /// Six poses across the swell, at several places, heights, tilts and times.
-fn poses() -> Vec<(BodyState, f64)> {
+pub(super) fn poses() -> Vec<(BodyState, f64)> {
     (0..6)
         .map(|k| {
             let k = k as f64;

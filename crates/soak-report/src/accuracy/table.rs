@@ -3,6 +3,7 @@
 use std::path::Path;
 
 use super::drag_texels::drag_texel_cells;
+use super::band::band_cells;
 use super::sea::sea_cells;
 
 use super::report::{Report, Row};
@@ -123,6 +124,10 @@ pub fn text_table(report: &Report) -> String {
         s.push_str("\non a short JONSWAP sea (Hs 0.5 m, Tp 3 s): sampled read against the exact inversion (worst of six poses)\n");
         s.push_str(&aligned(&sea_cells(&report.spectral), false));
     }
+    if !report.band.is_empty() {
+        s.push_str("\non the same sea, a band of its waves against every wave (`SeaBand::BodyLengths`, worst of six poses)\n");
+        s.push_str(&aligned(&band_cells(&report.band), false));
+    }
     if !report.drag_texels.is_empty() {
         s.push_str("\ndrag over a coarser bake of the mesh or the atlas coarsened, against the drag over the body's own texels (worst of six moving poses)\n");
         s.push_str(&aligned(&drag_texel_cells(&report.drag_texels), true));
@@ -155,6 +160,17 @@ its shortest wave 1.75 m, shorter than the boat), the same six poses. The refere
 inversion of the sea's choppy map at every texel (`SeaSampling::Exact`: Newton's method on the \
 tile's interpolated fields); the sampled read samples that surface over the body's footprint at the \
 given nodes per shortest wavelength (1.75 m), as on the swell.\n\n";
+
+/// What the band rows are, before their table.
+const BAND_INTRO: &str = "## A band of the sea's waves\n\n\
+The boat and a 10 m barge on the same spectral sea, reading only a band of its waves \
+(`SeaBand::BodyLengths(r)`: every wave at least `r` bounding diameters long is read; the sea drops \
+its modes shorter than `2^L` times its shortest wave, 1.75 m, for the largest `L` that keeps them, \
+and is read on a grid of `128 / 2^L` cells) against the same body reading every wave, both sampled \
+at 16 nodes per shortest wavelength read, the same six poses (the barge's spread out to its size). \
+Errors are the worst over the poses, of the volume (and so the force) over the body's volume and \
+of the centre of buoyancy and Archimedes' torque (over ρgV) over the bounding diameter; the times \
+are the tiled path's per evaluation, sampling included.\n\n";
 
 /// What the drag-texel rows are, before their table.
 const DRAG_TEXELS_INTRO: &str = "## Drag over a coarser bake\n\n\
@@ -285,6 +301,11 @@ pub fn markdown(report: &Report, path: &Path) -> String {
     if !report.spectral.is_empty() {
         s.push_str(SPECTRAL_INTRO);
         s.push_str(&markdown_rows(&sea_cells(&report.spectral), 2));
+        s.push('\n');
+    }
+    if !report.band.is_empty() {
+        s.push_str(BAND_INTRO);
+        s.push_str(&markdown_rows(&band_cells(&report.band), 4));
         s.push('\n');
     }
     if !report.drag_texels.is_empty() {
