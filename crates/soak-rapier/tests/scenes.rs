@@ -257,6 +257,32 @@ fn sea_velocity_is_read_and_refused_on_a_plane() {
 }
 
 #[test]
+fn a_band_of_the_sea_is_read_and_checked() {
+    let sea = "[water]\nkind = \"spectrum\"\nsignificant_height = 1.0\npeak_period = 5.0\n";
+    let scene = LoadedScene::from_str(sea, std::path::Path::new(".")).unwrap();
+    let sim = Simulation::from_scene(&scene).unwrap();
+    assert_eq!(sim.soak.sea_band(), soak_hydro::SeaBand::Full, "the default");
+    let band = format!("{sea}band = 0.5\n");
+    let scene = LoadedScene::from_str(&band, std::path::Path::new(".")).unwrap();
+    let sim = Simulation::from_scene(&scene).unwrap();
+    assert_eq!(sim.soak.sea_band(), soak_hydro::SeaBand::BodyLengths(0.5));
+    for bad in ["0.0", "-1.0", "nan"] {
+        let text = format!("{sea}band = {bad}\n");
+        let e = LoadedScene::from_str(&text, std::path::Path::new(".")).unwrap_err();
+        assert!(matches!(e, SceneError::Invalid { line: 5, .. }), "{bad}: {e}");
+        assert!(e.to_string().contains("water.band"), "{e}");
+    }
+    // A plane or a Gerstner sea has no band to drop: refused.
+    for other in [
+        "[water]\nkind = \"plane\"\nband = 0.5\n",
+        "[water]\nkind = \"gerstner\"\nwaves = [{ amplitude = 0.3, wavelength = 8.0, direction_deg = 0.0, steepness = 0.5 }]\nband = 0.5\n",
+    ] {
+        let e = LoadedScene::from_str(other, std::path::Path::new(".")).unwrap_err();
+        assert!(e.to_string().contains("water.band"), "{e}");
+    }
+}
+
+#[test]
 fn resolution_auto_picks_the_side_for_the_tolerance() {
     let scene = |body: &str| {
         format!(

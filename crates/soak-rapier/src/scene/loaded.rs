@@ -294,6 +294,15 @@ impl LoadedScene {
             w.velocity.is_some(),
             &[WaterKind::Gerstner, WaterKind::Spectrum],
         )?;
+        only("band", w.band.is_some(), &[WaterKind::Spectrum])?;
+        if let Some(r) = w.band
+            && !(r.is_finite() && r > 0.0)
+        {
+            return Err(self.invalid(
+                "water.band",
+                format!("must be a positive number of body lengths, not {r}"),
+            ));
+        }
         for (key, present) in [
             ("spectrum", w.spectrum.is_some()),
             ("significant_height", w.significant_height.is_some()),

@@ -23,6 +23,8 @@
 //! #   tile = 800.0               # m, default eight peak wavelengths
 //! #   cells = 128                # a power of two
 //! #   choppiness = 1.0           # horizontal displacement, 0 to 1
+//! #   band = 0.5                 # each body reads the waves ≥ 0.5 of its bounding diameter long and
+//! #                              # the shorter ones dropped as a band (`SeaBand`); default: every wave
 //!
 //! [[bodies]]
 //! name = "buoy"

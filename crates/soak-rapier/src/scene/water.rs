@@ -89,9 +89,9 @@ pub struct WaterSpec {
     /// default: once per tile of each body's atlas) or `"per_texel"` (at
     /// every texel: the reference).
     pub velocity: Option<SeaVelocity>,
-    /// The waves of a sampled sea each body reads: only those at least
-    /// this many times its bounding diameter long are sure to be read, and
-    /// a spectral sea drops its shorter waves as a band (see
+    /// The waves of the spectral sea each body reads: only those at least
+    /// this many times its bounding diameter long are sure to be read, the
+    /// shorter ones dropped as a band (see
     /// [`SeaBand`](soak_hydro::SeaBand)); a positive number. Default: every
     /// wave.
     pub band: Option<f64>,

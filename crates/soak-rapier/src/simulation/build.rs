@@ -147,15 +147,7 @@ impl Simulation {
             .with_backend(scene.backend)
             .with_sea_sampling(scene.water.sampling.unwrap_or_default())
             .with_sea_velocity(scene.water.velocity.unwrap_or_default())
-            .with_sea_band(match scene.water.band {
-                None => SeaBand::Full,
-                Some(r) if r.is_finite() && r > 0.0 => SeaBand::BodyLengths(r),
-                Some(r) => {
-                    return Err(
-                        loaded.invalid("water.band", format!("{r}: a positive number of body lengths"))
-                    );
-                }
-            });
+            .with_sea_band(scene.water.band.map_or(SeaBand::Full, SeaBand::BodyLengths));
         if let Some(waves) = scene.waves {
             soak = soak
                 .with_waves(waves)

@@ -95,7 +95,8 @@ pub(super) fn band_rows(resolution: u32, runs: usize) -> Result<Vec<BandRow>, Ac
                 let b: HydroForces = evaluate(&atlas, &water, state, &mass, *t, &options)?;
                 errors[0] = errors[0].max((b.submerged_volume - e.submerged_volume).abs() / volume);
                 errors[1] = errors[1].max((b.center_of_buoyancy - e.center_of_buoyancy).norm() / diameter);
-                errors[2] = errors[2].max((b.buoyancy.torque - e.buoyancy.torque).norm() / (weight * diameter));
+                errors[2] =
+                    errors[2].max((b.buoyancy.torque - e.buoyancy.torque).norm() / (weight * diameter));
             }
             let (state, t) = poses[0];
             let patch = sampled_water(&atlas, &water, &state, t, &options)?;

@@ -2,8 +2,8 @@
 
 use std::path::Path;
 
-use super::drag_texels::drag_texel_cells;
 use super::band::band_cells;
+use super::drag_texels::drag_texel_cells;
 use super::sea::sea_cells;
 
 use super::report::{Report, Row};
