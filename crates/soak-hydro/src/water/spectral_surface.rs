@@ -117,11 +117,15 @@ impl SpectralSurface {
         if let Some(f) = find(&self.fields.read().unwrap_or_else(|e| e.into_inner())) {
             return f;
         }
+        // Evaluated outside the lock: the transforms run on the thread
+        // pool, and a thread waiting for them may take up another read of
+        // this surface, which must not find the lock held. Two first reads
+        // at once may both evaluate it; the first kept is shared.
+        let f = Arc::new(self.sea.fields(t));
         let mut kept = self.fields.write().unwrap_or_else(|e| e.into_inner());
         if let Some(f) = find(&kept) {
             return f;
         }
-        let f = Arc::new(self.sea.fields(t));
         if kept.len() >= Self::KEPT {
             kept.remove(0);
         }
