@@ -45,7 +45,7 @@ pub use self::tiled::{
 pub use self::water::{
     AIR_DENSITY, DEFAULT_SEA_CELLS, Gerstner, GerstnerWave, HeightField, MAX_PATCH_NODES, ParticleJet, Plane,
     SEA_CELLS, STANDARD_GRAVITY, SeaFields, SeaMode, SeaSpectrum, SpectralSea, SpectralSurface,
-    SpectrumShape, Surface, SurfaceKind, SurfacePatch, Unbounded, WATER_DENSITY, Water,
+    SpectrumShape, Surface, SurfaceKind, SurfaceNode, SurfacePatch, Unbounded, WATER_DENSITY, Water,
 };
 pub use self::water_plane::{WaterPlane, water_plane};
 pub use self::waves::{InteractiveWaves, MAX_WAVE_CELLS, WaveHeights, WaveRegion, WavesState};

@@ -483,6 +483,41 @@ fn the_surface_inverts_the_choppy_map_as_the_exact_sums_do() {
 }
 
 #[test]
+fn the_nodes_twists_are_the_surfaces_mixed_derivative() {
+    use soak_hydro::{SpectralSurface, Surface, SurfaceNode};
+    // A choppy wind sea; nodes across several of its cells: each node's
+    // twist against central differences of the surface's own slope, both
+    // ways round (the surface the twist belongs to is the interpolated
+    // one, so the differences agree to their own error).
+    let spectrum = SeaSpectrum::jonswap(1.0, 5.0);
+    let size = spectrum.default_tile(G);
+    let sea = SpectralSea::realize(&spectrum, 0.3, size, 64, 11, G)
+        .unwrap()
+        .with_choppiness(0.8)
+        .unwrap();
+    let surface = SpectralSurface::new(sea);
+    assert!(surface.node_twists());
+    let (origin, spacing, nodes) = ([-13.0, 7.0], 0.61, [9, 7]);
+    let (t, e, h) = (2.5, 1e-4, [0.0, 0.0]);
+    let mut out = vec![SurfaceNode::default(); nodes[0] * nodes[1]];
+    surface.sample_nodes(t, origin, spacing, nodes, &mut out);
+    let mut largest: f64 = 0.0;
+    for (k, node) in out.iter().enumerate() {
+        let x = origin[0] + (k % nodes[0]) as f64 * spacing;
+        let z = origin[1] + (k / nodes[0]) as f64 * spacing;
+        let sxz = (surface.slope(x, z + e, t, &h)[0] - surface.slope(x, z - e, t, &h)[0]) / (2.0 * e);
+        let szx = (surface.slope(x + e, z, t, &h)[1] - surface.slope(x - e, z, t, &h)[1]) / (2.0 * e);
+        let twist = node.twist.expect("a spectral sea gives its nodes' twists");
+        largest = largest.max(twist.abs());
+        assert!(
+            (twist - sxz).abs() < 1e-6 && (twist - szx).abs() < 1e-6,
+            "node {k}: twist {twist} against {sxz} and {szx}"
+        );
+    }
+    assert!(largest > 1e-3, "the twists are not all flat: {largest}");
+}
+
+#[test]
 fn one_mode_read_as_a_surface_is_the_gerstner_surface() {
     use soak_hydro::{SpectralSurface, Surface};
     // 16 cells a wavelength along x: the interpolated surface against the

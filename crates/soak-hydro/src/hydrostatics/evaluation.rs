@@ -377,7 +377,10 @@ pub(crate) fn sample_patch_around(
     }
     let spacing = length / per;
     let centre = state.pose * origin;
-    let reach = radius + spacing;
+    // A surface that gives its nodes' twists is sampled over the
+    // footprint alone; otherwise one spacing wider, so that the nodes
+    // under the body take central differences of the slopes.
+    let reach = radius + if surface.node_twists() { 0.0 } else { spacing };
     // A body so large against the waves that its patch would need more
     // nodes than a patch holds is read exactly rather than more coarsely.
     if 2.0 * reach / spacing > (MAX_PATCH_NODES - 1) as f64 {

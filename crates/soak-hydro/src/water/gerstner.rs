@@ -232,6 +232,46 @@ impl Gerstner {
     }
 }
 
+impl Gerstner {
+    /// The surface's twist `∂²f/∂x∂z` (1/m) above the particle at rest
+    /// position `(x0, z0)`, whose `jet` and surface slope `s` are known.
+    ///
+    /// With `J` the Jacobian of the particle's horizontal position over its
+    /// rest position and `g` its height's gradient, `s = J⁻¹ g`, so the
+    /// surface's second derivatives are `J⁻¹ B J⁻¹` with the columns of `B`
+    /// `∂g/∂a_k − (∂J/∂a_k) s` (`a` the rest position): one more pass over
+    /// the waves.
+    fn twist(&self, jet: &Jet, x0: f64, z0: f64, t: f64, s: [f64; 2]) -> f64 {
+        let [jxx, jxz, jzz] = jet.jacobian;
+        let det = jxx * jzz - jxz * jxz;
+        if det.abs() < 1e-12 {
+            return 0.0;
+        }
+        // B[r][k]: row r (x, z), column k (the derivative along a_x, a_z).
+        let mut b = [[0.0; 2]; 2];
+        for w in &self.cache {
+            let th = w.k * (w.dir.x * x0 + w.dir.y * z0) - w.omega * t + w.phase;
+            let (sn, cs) = th.sin_cos();
+            let d = [w.dir.x, w.dir.y];
+            // ∂g/∂a_k = −A k² cos θ d d_k; ∂J/∂a_k = Q A k² sin θ d dᵀ d_k.
+            let ds = d[0] * s[0] + d[1] * s[1];
+            let e = w.k * w.k * (-w.a * cs - w.qa * sn * ds);
+            for (r, row) in b.iter_mut().enumerate() {
+                for (k, out) in row.iter_mut().enumerate() {
+                    *out += e * d[r] * d[k];
+                }
+            }
+        }
+        // J⁻¹ (symmetric).
+        let inv = [[jzz / det, -jxz / det], [-jxz / det, jxx / det]];
+        let mul = |p: &[[f64; 2]; 2], q: &[[f64; 2]; 2]| -> [[f64; 2]; 2] {
+            std::array::from_fn(|r| std::array::from_fn(|c| p[r][0] * q[0][c] + p[r][1] * q[1][c]))
+        };
+        let h = mul(&mul(&inv, &b), &inv);
+        0.5 * (h[0][1] + h[1][0])
+    }
+}
+
 /// A Gerstner particle's horizontal position (m), the symmetric Jacobian
 /// `[xx, xz, zz]` of that position over its rest position, and the gradient
 /// of its height over its rest position.
@@ -317,6 +357,11 @@ impl Surface for Gerstner {
         jet.slope()
     }
 
+    /// Every node's twist, in closed form.
+    fn node_twists(&self) -> bool {
+        true
+    }
+
     /// One inversion per node: the last of Newton's iterations, within
     /// its tolerance of the rest position, gives the height and the slope
     /// there (the general path inverts, then reads the particle and its
@@ -333,10 +378,12 @@ impl Surface for Gerstner {
             let (x0, z0, jet) = self.invert(x, z, t, *hint);
             *hint = [x - x0, z - z0];
             let jet = jet.unwrap_or_else(|| self.jet(x0, z0, t));
+            let slope = jet.slope();
             SurfaceNode {
                 height: jet.height,
-                slope: jet.slope(),
+                slope,
                 hint: *hint,
+                twist: Some(self.twist(&jet, x0, z0, t, slope)),
             }
         });
     }
@@ -439,6 +486,16 @@ mod tests {
                     "node {k} at t = {t}: {:?} against {:?}",
                     node.slope,
                     [dx, dz]
+                );
+                // The twist against differences of the exact slope, both
+                // ways round.
+                let h = [0.0, 0.0];
+                let sxz = (sea.slope(x, z + e, t, &h)[0] - sea.slope(x, z - e, t, &h)[0]) / (2.0 * e);
+                let szx = (sea.slope(x + e, z, t, &h)[1] - sea.slope(x - e, z, t, &h)[1]) / (2.0 * e);
+                let twist = node.twist.expect("a Gerstner sea gives its nodes' twists");
+                assert!(
+                    (twist - sxz).abs() < 1e-6 && (twist - szx).abs() < 1e-6,
+                    "node {k} at t = {t}: twist {twist} against {sxz} and {szx}"
                 );
             }
         }

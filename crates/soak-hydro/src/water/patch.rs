@@ -24,7 +24,8 @@ pub const MAX_PATCH_NODES: usize = 256;
 ///
 /// Inside the rectangle [`Surface::height`] and [`Surface::slope`] are those
 /// of the bicubic Hermite interpolant of the sampled heights, slopes and
-/// twists (`∂²f/∂x∂z`, by central differences of the slopes); outside it the
+/// twists (`∂²f/∂x∂z`: the surface's own where it gives them, otherwise
+/// central differences of the slopes); outside it the
 /// nearest edge cell's polynomial is read at the nearest point of the
 /// rectangle. The time argument of the [`Surface`] methods is ignored: the
 /// patch is the surface at the time it was sampled.
@@ -281,8 +282,9 @@ impl SurfacePatch {
         let h: Vec<f64> = sampled.iter().map(|s| s.height).collect();
         let sx: Vec<f64> = sampled.iter().map(|s| s.slope[0]).collect();
         let sz: Vec<f64> = sampled.iter().map(|s| s.slope[1]).collect();
-        // Twists `∂²f/∂x∂z`: central differences of the slopes (one-sided
-        // at the edges), the mean of the two mixed derivatives.
+        // Twists `∂²f/∂x∂z`: the surface's own where it gives them at
+        // every node, otherwise central differences of the slopes
+        // (one-sided at the edges), the mean of the two mixed derivatives.
         let diff = |f: &[f64], k: usize, i: usize, count: usize, stride: usize| -> f64 {
             match (i > 0, i + 1 < count) {
                 (true, true) => (f[k + stride] - f[k - stride]) / (2.0 * spacing),
@@ -291,14 +293,21 @@ impl SurfacePatch {
                 (false, false) => 0.0,
             }
         };
-        let mut twist = vec![0.0; n];
-        for j in 0..nodes[1] {
-            for i in 0..nodes[0] {
-                let k = j * nodes[0] + i;
-                twist[k] = 0.5 * (diff(&sx, k, j, nodes[1], nodes[0]) + diff(&sz, k, i, nodes[0], 1));
-            }
-        }
-        for (name, values) in [("patch height", &h), ("patch slope", &sx), ("patch slope", &sz)] {
+        let twist: Vec<f64> = match sampled.iter().map(|s| s.twist).collect::<Option<Vec<f64>>>() {
+            Some(exact) => exact,
+            None => (0..n)
+                .map(|k| {
+                    let (i, j) = (k % nodes[0], k / nodes[0]);
+                    0.5 * (diff(&sx, k, j, nodes[1], nodes[0]) + diff(&sz, k, i, nodes[0], 1))
+                })
+                .collect(),
+        };
+        for (name, values) in [
+            ("patch height", &h),
+            ("patch slope", &sx),
+            ("patch slope", &sz),
+            ("patch twist", &twist),
+        ] {
             if let Some(v) = values.iter().find(|v| !v.is_finite()) {
                 return Err(WaterError::Parameter { name, value: *v });
             }

@@ -203,6 +203,11 @@ impl Surface for SpectralSurface {
         (height - p.y, v)
     }
 
+    /// Every node's twist, from the tile's interpolants.
+    fn node_twists(&self) -> bool {
+        true
+    }
+
     /// The tile looked up once for every node; each node's inversion
     /// starts from the displacement of the one before it, and gives the
     /// slope with the height.
@@ -218,10 +223,16 @@ impl Surface for SpectralSurface {
         fill_nodes(origin, spacing, nodes, out, |x, z, hint| {
             let (rest, (p, jac, g)) = f.invert(x, z, *hint);
             *hint = [x - rest[0], z - rest[1]];
+            let slope = slope_through(&jac, &g);
             SurfaceNode {
                 height: p[1],
-                slope: slope_through(&jac, &g),
+                slope,
                 hint: *hint,
+                twist: Some(twist_through(
+                    &jac,
+                    slope,
+                    &f.second_derivatives(rest[0], rest[1]),
+                )),
             }
         });
     }
@@ -317,6 +328,34 @@ impl Surface for SpectralSurface {
     fn as_any(&self) -> Option<&dyn std::any::Any> {
         Some(self)
     }
+}
+
+/// The surface's twist `∂²f/∂x∂z` (1/m) where the choppy map's Jacobian
+/// is `j` (`j[r][c] = ∂x_r/∂a_c`, `a` the rest position) and the surface's
+/// slope `s`, from the second derivatives over the rest position of the
+/// elevation and the displacements along x and z (`[aa_xx, aa_xz, aa_zz]`
+/// each): `s = J⁻ᵀ g`, so the surface's second derivatives are
+/// `J⁻ᵀ M J⁻¹` with `M_rk = ∂²η/∂a_r∂a_k − Σ_c s_c ∂²D_c/∂a_r∂a_k` (flat
+/// where the map folds).
+fn twist_through(j: &[[f64; 2]; 2], s: [f64; 2], second: &[[f64; 3]; 3]) -> f64 {
+    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+    if det.abs() < 1e-12 {
+        return 0.0;
+    }
+    let inv = [[j[1][1] / det, -j[0][1] / det], [-j[1][0] / det, j[0][0] / det]];
+    let sym = |h: &[f64; 3]| [[h[0], h[1]], [h[1], h[2]]];
+    let (eta, dx, dz) = (sym(&second[0]), sym(&second[1]), sym(&second[2]));
+    let m: [[f64; 2]; 2] =
+        std::array::from_fn(|r| std::array::from_fn(|k| eta[r][k] - s[0] * dx[r][k] - s[1] * dz[r][k]));
+    // H = J⁻ᵀ M J⁻¹: (J⁻ᵀ)[r][c] = inv[c][r].
+    let h: [[f64; 2]; 2] = std::array::from_fn(|r| {
+        std::array::from_fn(|c| {
+            (0..2)
+                .map(|p| (0..2).map(|q| inv[p][r] * m[p][q] * inv[q][c]).sum::<f64>())
+                .sum()
+        })
+    });
+    0.5 * (h[0][1] + h[1][0])
 }
 
 /// The surface's slope `s = J⁻ᵀ g` from the choppy map's Jacobian `j` and

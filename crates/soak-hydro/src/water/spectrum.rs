@@ -412,6 +412,64 @@ impl SeaFields {
         out.map(|(value, [ddu, ddv])| (value, [ddu / d, ddv / d]))
     }
 
+    /// The second derivatives over the rest position `[∂²/∂x₀², ∂²/∂x₀∂z₀,
+    /// ∂²/∂z₀²]` (1/m for the elevation's, likewise the displacements') of
+    /// the bicubic Hermite interpolants of the elevation and of the
+    /// displacement along x and z at rest position `(x0, z0)` (m).
+    pub(crate) fn second_derivatives(&self, x0: f64, z0: f64) -> [[f64; 3]; 3] {
+        let n = self.cells;
+        let d = self.size / n as f64;
+        let ([ix, iz], [u, v]) = self.cell(x0, z0);
+        // Cubic Hermite basis on [0, 1] (value at 0, value at 1, slope at
+        // 0, slope at 1), its first and its second derivatives.
+        let basis = |t: f64| {
+            let t2 = t * t;
+            (
+                [
+                    2.0 * t2 * t - 3.0 * t2 + 1.0,
+                    -2.0 * t2 * t + 3.0 * t2,
+                    t2 * t - 2.0 * t2 + t,
+                    t2 * t - t2,
+                ],
+                [
+                    6.0 * t2 - 6.0 * t,
+                    -6.0 * t2 + 6.0 * t,
+                    3.0 * t2 - 4.0 * t + 1.0,
+                    3.0 * t2 - 2.0 * t,
+                ],
+                [12.0 * t - 6.0, -12.0 * t + 6.0, 6.0 * t - 4.0, 6.0 * t - 2.0],
+            )
+        };
+        let ((bu, du, eu), (bv, dv, ev)) = (basis(u), basis(v));
+        let [hx, hz] = &self.height_gradient;
+        let [dxx, dxz, dzz] = &self.displacement_gradient;
+        let [txz, tdx, tdz] = &self.twist;
+        let fields: [[&[f64]; 4]; 3] = [
+            [&self.height, hx, hz, txz],
+            [&self.displacement[0], dxx, dxz, tdx],
+            [&self.displacement[1], dxz, dzz, tdz],
+        ];
+        let mut out = [[0.0; 3]; 3];
+        for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            let i = ((iz + b) % n) * n + (ix + a) % n;
+            // The corner's four basis products' uu, uv and vv derivatives.
+            let pair = |p: &[f64; 4], q: &[f64; 4]| {
+                [p[a] * q[b], p[a + 2] * q[b], p[a] * q[b + 2], p[a + 2] * q[b + 2]]
+            };
+            let (wuu, wuv, wvv) = (pair(&eu, &bv), pair(&du, &dv), pair(&bu, &ev));
+            for ([f, fx, fz, fxz], o) in fields.iter().zip(out.iter_mut()) {
+                // Derivatives over the rest position, in cells.
+                let c = [f[i], fx[i] * d, fz[i] * d, fxz[i] * d * d];
+                let dot = |w: &[f64; 4]| c[0] * w[0] + c[1] * w[1] + c[2] * w[2] + c[3] * w[3];
+                o[0] += dot(&wuu);
+                o[1] += dot(&wuv);
+                o[2] += dot(&wvv);
+            }
+        }
+        let d2 = d * d;
+        out.map(|o| o.map(|x| x / d2))
+    }
+
     /// The surface particle at rest at any `(x0, z0)` (m; the fields'
     /// bicubic Hermite interpolants between the nodes): where it is (m),
     /// the Jacobian `[[∂x/∂x₀, ∂x/∂z₀], [∂z/∂x₀, ∂z/∂z₀]]` of its

@@ -46,6 +46,11 @@ pub struct SurfaceNode {
     pub slope: [f64; 2],
     /// The hint a [`Surface::probe`] at the node leaves.
     pub hint: [f64; 2],
+    /// The surface's twist `∂²f/∂x∂z` at the node (1/m), where the
+    /// surface gives it ([`Surface::node_twists`]); `None` and a
+    /// [`SurfacePatch`](super::SurfacePatch) takes differences of its
+    /// nodes' slopes.
+    pub twist: Option<f64>,
 }
 
 /// How the hydrostatics may treat a surface.
@@ -167,6 +172,14 @@ pub trait Surface: Send + Sync {
         let _ = t;
     }
 
+    /// Whether [`Surface::sample_nodes`] gives every node its twist
+    /// ([`SurfaceNode::twist`]): a patch of such a surface then needs no
+    /// nodes beyond the region it covers (the twists at its edges are
+    /// not differences of slopes across them). The default is `false`.
+    fn node_twists(&self) -> bool {
+        false
+    }
+
     /// Heights and slopes at the nodes of a square grid at time `t` (s):
     /// node `(i, j)` at `(origin[0] + i spacing, origin[1] + j spacing)`
     /// (m), stored at `j nodes[0] + i` of `out` (its length
@@ -188,6 +201,7 @@ pub trait Surface: Send + Sync {
                 height,
                 slope: self.slope(x, z, t, hint),
                 hint: *hint,
+                twist: None,
             }
         });
     }

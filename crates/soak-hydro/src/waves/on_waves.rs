@@ -58,6 +58,8 @@ impl crate::Surface for OnWaves<'_> {
             let (h, s) = self.waves.field(x, z, |i, j| self.cell_value(i, j));
             node.height += h;
             node.slope = [node.slope[0] + s[0], node.slope[1] + s[1]];
+            // The waves' twist is not sampled: the patch takes differences.
+            node.twist = None;
         }
     }
 
