@@ -120,7 +120,7 @@ fn flotsam_drifts_along_the_swell_not_against_it() {
 /// as the sine wave above; spreading 20 about +x): a ball of 5 cm with
 /// drag and pressure buoyancy drifts along the sea within 20 % of its
 /// Stokes drift at the surface (`SpectralSurface::stokes_drift`, 0.055
-/// m/s; 0.90 of it measured), averaged over 60 s; a ball of 10 cm drifts
+/// m/s; 0.86 of it measured), averaged over 60 s; a ball of 10 cm drifts
 /// along it faster (1.5 times: the pressure of the sea's short waves on
 /// its hull, a wave drift force, pushes it on), within a factor 2.
 #[test]

@@ -321,7 +321,8 @@ pub(crate) fn patch_sums(
 }
 
 /// The water's surface sampled once over the footprint of a body at
-/// `state` (its bounding sphere's, one node spacing wider), as
+/// `state` (its bounding sphere's; one node spacing wider where the
+/// surface does not give its nodes' twists, [`Surface::node_twists`]), as
 /// [`HydroOptions::sea`] asks, with the waves [`HydroOptions::sea_band`]
 /// asks for (all of them, or a band long against the body): `None` when it asks for the exact read, the
 /// surface has no [`Surface::sampling_length`] (planes, height fields,
