@@ -313,8 +313,9 @@ fn bench_box(c: &mut Criterion) {
     g.bench_function("jonswap_tiled", |b| {
         b.iter(|| tiled.evaluate(&atlas, &sea, &afloat, &mass, t, &still).unwrap())
     });
-    // Its two parts: sampling the patch (25 nodes, each the choppy map
-    // inverted), and the evaluation on the sampled patch.
+    // Its two parts: sampling the patch (9 nodes over the box's bounding
+    // disc, each the choppy map inverted and its twist taken), and the
+    // evaluation on the sampled patch.
     g.bench_function("jonswap_patch", |b| {
         b.iter(|| sampled_water(&atlas, &sea, &afloat, t, &still).unwrap())
     });
