@@ -341,6 +341,21 @@ impl SeaFields {
         ([ix, iz], [u, v])
     }
 
+    /// The fields the bicubic Hermite interpolants are made of: per
+    /// interpolated field (the elevation, the displacement along x and
+    /// along z) its values, its gradient along x and z and its twist at
+    /// the nodes.
+    fn interpolated(&self) -> [[&[f64]; 4]; 3] {
+        let [hx, hz] = &self.height_gradient;
+        let [dxx, dxz, dzz] = &self.displacement_gradient;
+        let [txz, tdx, tdz] = &self.twist;
+        [
+            [&self.height, hx, hz, txz],
+            [&self.displacement[0], dxx, dxz, tdx],
+            [&self.displacement[1], dxz, dzz, tdz],
+        ]
+    }
+
     /// The bicubic Hermite interpolants of the elevation and of the
     /// displacement along x and z (their values, gradients and twists at
     /// the nodes) at rest position `(x0, z0)` (m, taken into the tile):
@@ -350,34 +365,8 @@ impl SeaFields {
         let n = self.cells;
         let d = self.size / n as f64;
         let ([ix, iz], [u, v]) = self.cell(x0, z0);
-        // Cubic Hermite basis on [0, 1]: value at 0, value at 1, slope at
-        // 0, slope at 1; and their derivatives.
-        let basis = |t: f64| {
-            let (t2, t3) = (t * t, t * t * t);
-            (
-                [
-                    2.0 * t3 - 3.0 * t2 + 1.0,
-                    -2.0 * t3 + 3.0 * t2,
-                    t3 - 2.0 * t2 + t,
-                    t3 - t2,
-                ],
-                [
-                    6.0 * t2 - 6.0 * t,
-                    -6.0 * t2 + 6.0 * t,
-                    3.0 * t2 - 4.0 * t + 1.0,
-                    3.0 * t2 - 2.0 * t,
-                ],
-            )
-        };
-        let ((bu, du), (bv, dv)) = (basis(u), basis(v));
-        let [hx, hz] = &self.height_gradient;
-        let [dxx, dxz, dzz] = &self.displacement_gradient;
-        let [txz, tdx, tdz] = &self.twist;
-        let fields: [[&[f64]; 4]; 3] = [
-            [&self.height, hx, hz, txz],
-            [&self.displacement[0], dxx, dxz, tdx],
-            [&self.displacement[1], dxz, dzz, tdz],
-        ];
+        let ((bu, du, _), (bv, dv, _)) = (hermite_basis(u), hermite_basis(v));
+        let fields = self.interpolated();
         let mut out = [(0.0, [0.0; 2]); 3];
         for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
             let i = ((iz + b) % n) * n + (ix + a) % n;
@@ -420,35 +409,8 @@ impl SeaFields {
         let n = self.cells;
         let d = self.size / n as f64;
         let ([ix, iz], [u, v]) = self.cell(x0, z0);
-        // Cubic Hermite basis on [0, 1] (value at 0, value at 1, slope at
-        // 0, slope at 1), its first and its second derivatives.
-        let basis = |t: f64| {
-            let t2 = t * t;
-            (
-                [
-                    2.0 * t2 * t - 3.0 * t2 + 1.0,
-                    -2.0 * t2 * t + 3.0 * t2,
-                    t2 * t - 2.0 * t2 + t,
-                    t2 * t - t2,
-                ],
-                [
-                    6.0 * t2 - 6.0 * t,
-                    -6.0 * t2 + 6.0 * t,
-                    3.0 * t2 - 4.0 * t + 1.0,
-                    3.0 * t2 - 2.0 * t,
-                ],
-                [12.0 * t - 6.0, -12.0 * t + 6.0, 6.0 * t - 4.0, 6.0 * t - 2.0],
-            )
-        };
-        let ((bu, du, eu), (bv, dv, ev)) = (basis(u), basis(v));
-        let [hx, hz] = &self.height_gradient;
-        let [dxx, dxz, dzz] = &self.displacement_gradient;
-        let [txz, tdx, tdz] = &self.twist;
-        let fields: [[&[f64]; 4]; 3] = [
-            [&self.height, hx, hz, txz],
-            [&self.displacement[0], dxx, dxz, tdx],
-            [&self.displacement[1], dxz, dzz, tdz],
-        ];
+        let ((bu, du, eu), (bv, dv, ev)) = (hermite_basis(u), hermite_basis(v));
+        let fields = self.interpolated();
         let mut out = [[0.0; 3]; 3];
         for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
             let i = ((iz + b) % n) * n + (ix + a) % n;
@@ -843,6 +805,27 @@ impl SpectralSea {
             velocity: [vx, vy, vz],
         }
     }
+}
+
+/// The cubic Hermite basis on [0, 1] at `t` (value at 0, value at 1,
+/// slope at 0, slope at 1), its first and its second derivatives.
+fn hermite_basis(t: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
+    let (t2, t3) = (t * t, t * t * t);
+    (
+        [
+            2.0 * t3 - 3.0 * t2 + 1.0,
+            -2.0 * t3 + 3.0 * t2,
+            t3 - 2.0 * t2 + t,
+            t3 - t2,
+        ],
+        [
+            6.0 * t2 - 6.0 * t,
+            -6.0 * t2 + 6.0 * t,
+            3.0 * t2 - 4.0 * t + 1.0,
+            3.0 * t2 - 2.0 * t,
+        ],
+        [12.0 * t - 6.0, -12.0 * t + 6.0, 6.0 * t - 4.0, 6.0 * t - 2.0],
+    )
 }
 
 /// One mode at the time of [`SpectralSea::fields`]: `A e^{−iωt}` (m), `k`

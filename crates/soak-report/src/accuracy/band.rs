@@ -6,15 +6,13 @@
 use std::hint::black_box;
 
 use serde::Serialize;
-use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
+use soak_bake::{Mesh, builtin};
 use soak_hydro::{
-    HydroForces, HydroOptions, MassModel, SeaBand, SpectralSurface, Surface, SurfacePatch, TiledAtlas,
-    evaluate, sampled_water,
+    HydroForces, HydroOptions, SeaBand, SpectralSurface, Surface, SurfacePatch, evaluate, sampled_water,
 };
 
 use super::AccuracyError;
-use super::cases::DENSITY;
-use super::sea::{poses, short_sea};
+use super::sea::{Baked, poses, short_sea};
 use super::timing::per_call_ms;
 
 /// One mesh at one cut-off.
@@ -64,11 +62,13 @@ pub(super) fn band_rows(resolution: u32, runs: usize) -> Result<Vec<BandRow>, Ac
     ];
     let mut rows = Vec::new();
     for (name, mesh) in meshes {
-        let atlas = Atlas::bake(&mesh, BakeOptions::square(resolution))?;
-        let tiled = TiledAtlas::new(&atlas);
-        let mass = MassModel::Solid { density: DENSITY }.mass_properties(&atlas)?;
-        let volume = mesh.volume();
-        let diameter = 2.0 * atlas.bounding_radius();
+        let Baked {
+            atlas,
+            tiled,
+            mass,
+            volume,
+            diameter,
+        } = Baked::new(&mesh, resolution)?;
         let weight = water.density * water.gravity * volume;
         let whole = HydroOptions::default();
         // The poses of the sea rows, the barge's scaled to its size.

@@ -136,6 +136,33 @@ pub(super) fn spectral_rows(resolution: u32, runs: usize) -> Result<Vec<SeaRow>,
     rows_on(&short_sea()?, resolution, runs)
 }
 
+/// A mesh baked for the sea's rows: its atlas and tiles, its mass (solid,
+/// [`DENSITY`]), its volume (m³) and its bounding diameter (m).
+pub(super) struct Baked {
+    pub atlas: Atlas,
+    pub tiled: TiledAtlas,
+    pub mass: soak_hydro::MassProperties,
+    pub volume: f64,
+    pub diameter: f64,
+}
+
+impl Baked {
+    /// `mesh` baked at `resolution`².
+    pub fn new(mesh: &Mesh, resolution: u32) -> Result<Self, AccuracyError> {
+        let atlas = Atlas::bake(mesh, BakeOptions::square(resolution))?;
+        let tiled = TiledAtlas::new(&atlas);
+        let mass = MassModel::Solid { density: DENSITY }.mass_properties(&atlas)?;
+        let diameter = 2.0 * atlas.bounding_radius();
+        Ok(Self {
+            atlas,
+            tiled,
+            mass,
+            volume: mesh.volume(),
+            diameter,
+        })
+    }
+}
+
 /// The sea rows on `water`.
 fn rows_on(water: &Water, resolution: u32, runs: usize) -> Result<Vec<SeaRow>, AccuracyError> {
     let calm = Water::calm(0.0);
@@ -146,11 +173,13 @@ fn rows_on(water: &Water, resolution: u32, runs: usize) -> Result<Vec<SeaRow>, A
     ];
     let mut rows = Vec::new();
     for (name, mesh) in meshes {
-        let atlas = Atlas::bake(&mesh, BakeOptions::square(resolution))?;
-        let tiled = TiledAtlas::new(&atlas);
-        let mass = MassModel::Solid { density: DENSITY }.mass_properties(&atlas)?;
-        let volume = mesh.volume();
-        let diameter = 2.0 * atlas.bounding_radius();
+        let Baked {
+            atlas,
+            tiled,
+            mass,
+            volume,
+            diameter,
+        } = Baked::new(&mesh, resolution)?;
         let weight = water.density * water.gravity * volume;
         let exact = HydroOptions {
             sea: SeaSampling::Exact,
