@@ -475,6 +475,7 @@ impl TiledAtlas {
                 &frame,
                 patch,
                 archimedes,
+                buoyancy,
                 drag_frame.as_ref().map(|(f, _)| f),
                 options.sea_velocity,
             ) {

@@ -12,7 +12,7 @@ use super::frame::{Frame, texel};
 use super::options::{BuoyancyMode, Drag, HydroOptions, SeaSampling};
 use super::planar_kernel::{PlanarTexels, add_planar_ranges};
 use super::sea_drag::{SeaDragFrame, SeaDragSums, sea_drag_range};
-use super::sea_kernel::{self, SeaFrame, add_sea_range};
+use super::sea_kernel::{self, SeaFrame, SeaRead, add_sea_range};
 use super::sums::{BuoyancySums, DragAcc, DragSums, TexelDrag};
 use crate::error::{HydroError, WaterError};
 use crate::mass::{CHUNK, MassProperties, chunked_sum};
@@ -301,7 +301,7 @@ pub(crate) fn patch_sums(
     let Some(drag) = &options.drag else {
         let sums = chunked_sum(atlas.len(), BuoyancySums::default(), |range| {
             let mut s = BuoyancySums::default();
-            add_sea_range(&mut s, atlas, range, &sea, None);
+            add_sea_range(&mut s, atlas, range, &sea, None, SeaRead::Sums, None);
             s
         });
         return (sums, None);
@@ -311,7 +311,15 @@ pub(crate) fn patch_sums(
         let mut s = BuoyancySums::default();
         let mut depths = [0.0; CHUNK];
         let depths = &mut depths[..range.len()];
-        add_sea_range(&mut s, atlas, range.clone(), &sea, Some(depths));
+        add_sea_range(
+            &mut s,
+            atlas,
+            range.clone(),
+            &sea,
+            None,
+            SeaRead::Sums,
+            Some(depths),
+        );
         Both {
             b: s,
             d: sea_drag_range(atlas, range, depths, &drag_frame, None),

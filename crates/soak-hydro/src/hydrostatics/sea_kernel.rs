@@ -15,6 +15,12 @@
 //! multiply-adds, another order of additions, and Archimedes' depth weight
 //! `Σ ln min(d/δ, 1)` taken as the logarithm of a running product,
 //! renormalised before it could underflow).
+//!
+//! A texel range that lies within a disc small against the waves (a tile
+//! of the tiled path) may read the surface from one [`Taylor`] polynomial
+//! about the disc's centre instead of the patch's cells: the cell's
+//! bicubic to third order, a few multiply-adds a texel where the cell's
+//! read gathers and evaluates sixteen coefficients.
 
 use std::ops::Range;
 
@@ -54,15 +60,77 @@ pub(crate) struct SeaFrame<'a> {
     pub archimedes: bool,
 }
 
+/// The patch's surface about one world point `(x₀, z₀)` to third order:
+/// `h₀ + s·Δ + ½ Δᵀ H Δ + ⅙ D³h[Δ, Δ, Δ]` with `Δ = (x − x₀, z − z₀)`,
+/// and its slope `s + H Δ + ½ D³h[Δ, Δ]` (the derivatives those of
+/// [`SurfacePatch::taylor`] at the point).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Taylor {
+    /// The point `(x₀, z₀)`, world, m.
+    pub at: [f64; 2],
+    /// Height there, m.
+    pub h: f64,
+    /// Slope `(∂f/∂x, ∂f/∂z)`.
+    pub slope: [f64; 2],
+    /// `(f_xx, f_xz, f_zz)`, 1/m.
+    pub hess: [f64; 3],
+    /// `(f_xxx, f_xxz, f_xzz, f_zzz)`, 1/m².
+    pub third: [f64; 4],
+}
+
+impl Taylor {
+    /// The polynomial of `patch` about `(x, z)`.
+    pub fn of(patch: &SurfacePatch, x: f64, z: f64) -> Self {
+        let (h, slope, hess, third) = patch.taylor(x, z);
+        Self {
+            at: [x, z],
+            h,
+            slope,
+            hess,
+            third,
+        }
+    }
+
+    /// Height (m) and slope at `(x, z)`, world: the portable form of what
+    /// the kernel reads, and its reference.
+    #[cfg(test)]
+    pub fn height_slope(&self, x: f64, z: f64) -> (f64, [f64; 2]) {
+        let (dx, dz) = (x - self.at[0], z - self.at[1]);
+        let [hxx, hxz, hzz] = self.hess;
+        let [xxx, xxz, xzz, zzz] = self.third;
+        // ½ D³h[Δ, Δ], component by component.
+        let (xx, xz, zz) = (dx * dx, dx * dz, dz * dz);
+        let cx = 0.5 * xxx * xx + xxz * xz + 0.5 * xzz * zz;
+        let cz = 0.5 * xxz * xx + xzz * xz + 0.5 * zzz * zz;
+        let (hx, hz) = (hxx * dx + hxz * dz, hxz * dx + hzz * dz);
+        let [sx, sz] = self.slope;
+        let h = self.h + dx * (sx + 0.5 * hx + cx / 3.0) + dz * (sz + 0.5 * hz + cz / 3.0);
+        (h, [sx + hx + cx, sz + hz + cz])
+    }
+}
+
+/// What [`add_sea_range`] takes of each texel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SeaRead {
+    /// The buoyancy sums (and the depths where asked).
+    Sums,
+    /// The depths alone: nothing is added to the sums.
+    Depths,
+}
+
 /// Adds the submerged texels of `range` to `s`, as the general path adds
-/// them (`add_texel`, and in Archimedes mode the slope sums); where
-/// `depths` is given (as long as `range`) it receives every texel's depth,
-/// `≤ 0` for a dry one. Call only where [`available`].
+/// them (`add_texel`, and in Archimedes mode the slope sums), the surface
+/// read from the patch's cells or, where `taylor` is given, from that
+/// polynomial; where `depths` is given (as long as `range`) it receives
+/// every texel's depth, `≤ 0` for a dry one; with [`SeaRead::Depths`]
+/// nothing else. Call only where [`available`].
 pub(crate) fn add_sea_range(
     s: &mut BuoyancySums,
     atlas: &Atlas,
     range: Range<usize>,
     frame: &SeaFrame,
+    taylor: Option<&Taylor>,
+    read: SeaRead,
     depths: Option<&mut [f64]>,
 ) {
     #[cfg(target_arch = "x86_64")]
@@ -71,16 +139,31 @@ pub(crate) fn add_sea_range(
             // SAFETY: the processor has AVX2 and FMA, checked just above.
             #[allow(unsafe_code)]
             unsafe {
-                if frame.archimedes {
-                    avx2::add::<true>(s, atlas, range, frame, depths)
-                } else {
-                    avx2::add::<false>(s, atlas, range, frame, depths)
+                match (read, frame.archimedes, taylor) {
+                    (SeaRead::Depths, _, None) => {
+                        avx2::add::<false, false, false>(s, atlas, range, frame, None, depths)
+                    }
+                    (SeaRead::Depths, _, t) => {
+                        avx2::add::<false, false, true>(s, atlas, range, frame, t, depths)
+                    }
+                    (SeaRead::Sums, true, None) => {
+                        avx2::add::<true, true, false>(s, atlas, range, frame, None, depths)
+                    }
+                    (SeaRead::Sums, true, t) => {
+                        avx2::add::<true, true, true>(s, atlas, range, frame, t, depths)
+                    }
+                    (SeaRead::Sums, false, None) => {
+                        avx2::add::<true, false, false>(s, atlas, range, frame, None, depths)
+                    }
+                    (SeaRead::Sums, false, t) => {
+                        avx2::add::<true, false, true>(s, atlas, range, frame, t, depths)
+                    }
                 }
             }
             return;
         }
     }
-    let _ = (s, atlas, range, frame, depths);
+    let _ = (s, atlas, range, frame, taylor, read, depths);
     unreachable!("add_sea_range called where AVX2 and FMA are not available");
 }
 
@@ -96,7 +179,7 @@ mod avx2 {
     use nalgebra::Vector3;
     use soak_bake::Atlas;
 
-    use super::{RENORMALISE, SeaFrame};
+    use super::{RENORMALISE, SeaFrame, Taylor};
     use crate::hydrostatics::sums::BuoyancySums;
 
     const LANES: usize = 4;
@@ -148,12 +231,15 @@ mod avx2 {
         shallow: [f64; LANES],
     }
 
+    /// `SUMS`: add the sums (else the depths alone); `TAYLOR`: read the
+    /// surface from `taylor` (given) rather than the patch's cells.
     #[target_feature(enable = "avx2,fma")]
-    pub(super) fn add<const ARCHIMEDES: bool>(
+    pub(super) fn add<const SUMS: bool, const ARCHIMEDES: bool, const TAYLOR: bool>(
         s: &mut BuoyancySums,
         atlas: &Atlas,
         range: Range<usize>,
         frame: &SeaFrame,
+        taylor: Option<&Taylor>,
         mut depths: Option<&mut [f64]>,
     ) {
         let xs = atlas.local_positions().columns(0..atlas.len());
@@ -259,6 +345,46 @@ mod avx2 {
             (h, _mm256_mul_pd(hu, inv_v), _mm256_mul_pd(hv, inv_v))
         };
 
+        // The same from the polynomial about one point (`Taylor`), its
+        // coefficients broadcast once.
+        let t = taylor.copied().unwrap_or(Taylor {
+            at: [0.0; 2],
+            h: 0.0,
+            slope: [0.0; 2],
+            hess: [0.0; 3],
+            third: [0.0; 4],
+        });
+        let [tx, tz, th] = [t.at[0], t.at[1], t.h].map(|v| _mm256_set1_pd(v));
+        let [tsx, tsz] = t.slope.map(|v| _mm256_set1_pd(v));
+        let [hxx, hxz, hzz] = t.hess.map(|v| _mm256_set1_pd(v));
+        let [xxx, xxz, xzz, zzz] = t.third;
+        let [cxx, cxz, czz] = [0.5 * xxx, xxz, 0.5 * xzz].map(|v| _mm256_set1_pd(v));
+        let [dxx, dxz, dzz] = [0.5 * xxz, xzz, 0.5 * zzz].map(|v| _mm256_set1_pd(v));
+        let half = _mm256_set1_pd(0.5);
+        let third = _mm256_set1_pd(1.0 / 3.0);
+        let polynomial = |x: __m256d, z: __m256d| -> (__m256d, __m256d, __m256d) {
+            let dx = _mm256_sub_pd(x, tx);
+            let dz = _mm256_sub_pd(z, tz);
+            let (xx, xz, zz) = (
+                _mm256_mul_pd(dx, dx),
+                _mm256_mul_pd(dx, dz),
+                _mm256_mul_pd(dz, dz),
+            );
+            // ½ D³h[Δ, Δ] and H Δ, component by component.
+            let cx = _mm256_fmadd_pd(czz, zz, _mm256_fmadd_pd(cxz, xz, _mm256_mul_pd(cxx, xx)));
+            let cz = _mm256_fmadd_pd(dzz, zz, _mm256_fmadd_pd(dxz, xz, _mm256_mul_pd(dxx, xx)));
+            let hx = _mm256_fmadd_pd(hxz, dz, _mm256_mul_pd(hxx, dx));
+            let hz = _mm256_fmadd_pd(hzz, dz, _mm256_mul_pd(hxz, dx));
+            let ex = _mm256_fmadd_pd(third, cx, _mm256_fmadd_pd(half, hx, tsx));
+            let ez = _mm256_fmadd_pd(third, cz, _mm256_fmadd_pd(half, hz, tsz));
+            let h = _mm256_fmadd_pd(dz, ez, _mm256_fmadd_pd(dx, ex, th));
+            (
+                h,
+                _mm256_add_pd(tsx, _mm256_add_pd(hx, cx)),
+                _mm256_add_pd(tsz, _mm256_add_pd(hz, cz)),
+            )
+        };
+
         // One group from where `at` finds it; `valid` masks the lanes that
         // hold texels; `out` receives the depths of the lanes.
         let mut group =
@@ -280,12 +406,16 @@ mod avx2 {
                 if _mm256_movemask_pd(below) == 0 {
                     return [-1.0; LANES];
                 }
-                let (h, sx, sz) = surface(p[0], p[2]);
+                let (h, sx, sz) = if TAYLOR {
+                    polynomial(p[0], p[2])
+                } else {
+                    surface(p[0], p[2])
+                };
                 let depth = _mm256_sub_pd(h, p[1]);
                 let taken = _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(depth, zero), below);
                 // A dry lane reports a depth ≤ 0 (above the top: its height over it).
                 let reported = lanes(_mm256_blendv_pd(_mm256_min_pd(depth, zero), depth, taken));
-                if _mm256_movemask_pd(taken) == 0 {
+                if !SUMS || _mm256_movemask_pd(taken) == 0 {
                     return reported;
                 }
                 let d = _mm256_and_pd(depth, taken);
@@ -392,6 +522,9 @@ mod avx2 {
             i += k;
         }
 
+        if !SUMS {
+            return;
+        }
         let sum = |v: __m256d| {
             let l = lanes(v);
             (l[0] + l[1]) + (l[2] + l[3])
@@ -430,14 +563,24 @@ mod tests {
         Gerstner::new(0.0, GerstnerWave::SWELL.to_vec(), 9.81).unwrap()
     }
 
-    /// The plain per-texel sums the general path adds, over `range`.
-    fn plain(atlas: &Atlas, frame: &SeaFrame, range: Range<usize>, depths: &mut Vec<f64>) -> BuoyancySums {
+    /// The plain per-texel sums the general path adds, over `range`, the
+    /// surface read from the patch or from `taylor`.
+    fn plain(
+        atlas: &Atlas,
+        frame: &SeaFrame,
+        range: Range<usize>,
+        taylor: Option<&Taylor>,
+        depths: &mut Vec<f64>,
+    ) -> BuoyancySums {
         let mut s = BuoyancySums::default();
         for i in range {
             let (x, a) = texel(atlas, i);
             let r = frame.rot * x;
             let p = frame.ow + r;
-            let (h, slope) = frame.patch.height_slope(p.x, p.z);
+            let (h, slope) = match taylor {
+                Some(t) => t.height_slope(p.x, p.z),
+                None => frame.patch.height_slope(p.x, p.z),
+            };
             let d = h - p.y;
             depths.push(d);
             if p.y < frame.top && d > 0.0 {
@@ -452,8 +595,11 @@ mod tests {
     }
 
     /// The kernel against the plain sums, for the boat cut by the swell,
-    /// wholly under it and in the air, in both modes, over ranges of every
-    /// length modulo the lanes (a short last group).
+    /// wholly under it and in the air, in both modes, the surface read
+    /// from the patch's cells and from a polynomial about a point near the
+    /// boat, over ranges of every length modulo the lanes (a short last
+    /// group); and reading the depths alone, the same depths and nothing
+    /// added.
     #[test]
     fn the_sea_kernel_adds_what_the_plain_sums_add() {
         if !available() {
@@ -490,12 +636,40 @@ mod tests {
                     patch: &patch,
                     archimedes,
                 };
-                for len in [atlas.len(), atlas.len() - 1, atlas.len() - 2, atlas.len() - 3] {
+                let near = Taylor::of(&patch, ow.x + 0.3, ow.z - 0.2);
+                for (len, taylor) in [
+                    (atlas.len(), None),
+                    (atlas.len() - 1, None),
+                    (atlas.len() - 2, Some(&near)),
+                    (atlas.len() - 3, Some(&near)),
+                ] {
                     let mut want_depths = Vec::new();
-                    let want = plain(&atlas, &frame, 0..len, &mut want_depths);
+                    let want = plain(&atlas, &frame, 0..len, taylor, &mut want_depths);
+                    let mut alone = BuoyancySums::default();
+                    let mut alone_depths = vec![0.0; len];
+                    add_sea_range(
+                        &mut alone,
+                        &atlas,
+                        0..len,
+                        &frame,
+                        taylor,
+                        SeaRead::Depths,
+                        Some(&mut alone_depths),
+                    );
+                    assert_eq!(alone.count, 0, "the depths alone add nothing");
+                    assert_eq!(alone.vol, 0.0, "the depths alone add nothing");
                     let mut got = BuoyancySums::default();
                     let mut depths = vec![0.0; len];
-                    add_sea_range(&mut got, &atlas, 0..len, &frame, Some(&mut depths));
+                    add_sea_range(
+                        &mut got,
+                        &atlas,
+                        0..len,
+                        &frame,
+                        taylor,
+                        SeaRead::Sums,
+                        Some(&mut depths),
+                    );
+                    assert_eq!(depths, alone_depths, "the same depths, summed or not");
                     assert_eq!(got.count, want.count, "y {y}");
                     let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-12 * scale.max(1e-300);
                     let vs = |a: &Vector3<f64>, b: &Vector3<f64>, scale: f64| {

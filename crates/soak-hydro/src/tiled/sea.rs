@@ -42,7 +42,7 @@ use crate::hydrostatics::drag_kernel::DragMoments;
 use crate::hydrostatics::frame::Frame;
 use crate::hydrostatics::options::SeaVelocity;
 use crate::hydrostatics::sea_drag::{LinearFluid, SeaDragFrame, SeaDragSums, sea_drag_range};
-use crate::hydrostatics::sea_kernel::{self, SeaFrame, add_sea_range};
+use crate::hydrostatics::sea_kernel::{self, SeaFrame, SeaRead, Taylor, add_sea_range};
 use crate::hydrostatics::sums::{BuoyancySums, SlopeSums};
 use crate::parallel::par_map;
 use crate::water::{Surface, SurfacePatch};
@@ -82,6 +82,9 @@ struct SeaTiles<'a> {
     tolerance: f64,
     delta: f64,
     archimedes: bool,
+    /// Whether the buoyancy is summed (else the tiles are classified for
+    /// the drag alone).
+    buoyancy: bool,
     patch: &'a SurfacePatch,
 }
 
@@ -108,13 +111,17 @@ impl TiledAtlas {
     /// where the sea kernel is not available, or where every tile is under
     /// water and some in closed form lie within the depth scale of the
     /// surface (Archimedes' deep-volume weight then needs every texel's
-    /// depth): take the per-texel path then.
+    /// depth): take the per-texel path then. Without `buoyancy` the tiles
+    /// are classified and the texels' depths read for the drag alone, and
+    /// the buoyancy sums returned are zero.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn sea_sums(
         &self,
         atlas: &Atlas,
         frame: &Frame,
         patch: &SurfacePatch,
         archimedes: bool,
+        buoyancy: bool,
         drag: Option<&SeaDragFrame>,
         detail: SeaVelocity,
     ) -> Option<(BuoyancySums, Option<SeaDragSums>, TileCounts)> {
@@ -135,8 +142,10 @@ impl TiledAtlas {
             tolerance: SEA_TILE_TOLERANCE * frame.depth_scale,
             delta: frame.deep_scale,
             archimedes,
+            buoyancy,
             patch,
         };
+        let read = if buoyancy { SeaRead::Sums } else { SeaRead::Depths };
         let sea = SeaFrame {
             rot,
             ow: frame.ow,
@@ -185,42 +194,45 @@ impl TiledAtlas {
                     let range = m.range.0 as usize..m.range.1 as usize;
                     match self.sea_tile(&c, ti, &mut part) {
                         SeaTile::Dry => {}
-                        SeaTile::Texels => texels.push(range, tile_fluid(ti)),
+                        SeaTile::Texels(taylor) => texels.push(range, tile_fluid(ti), taylor),
                         SeaTile::Closed => match (drag, tile_fluid(ti)) {
                             // The tile's drag in closed form where its
                             // texels all face the flow alike.
                             (Some(d), Some((_, fluid))) => {
                                 if !self.add_tile_drag(&mut part.drag, ti, d, &fluid) {
-                                    closed.push(range, Some((ti, fluid)));
+                                    closed.push(range, Some((ti, fluid)), None);
                                 }
                             }
-                            (Some(_), None) => closed.push(range, None),
+                            (Some(_), None) => closed.push(range, None, None),
                             (None, _) => {}
                         },
                     }
                 }
             }
             let Some(drag) = drag else {
-                for (r, _) in texels.0 {
-                    add_sea_range(&mut part.world, atlas, r, &sea, None);
+                for (span, taylor, _) in texels.calls() {
+                    add_sea_range(&mut part.world, atlas, span, &sea, taylor, read, None);
                 }
                 return part;
             };
             // The drag kernel takes the kernel's depths where it read them,
             // and every texel of a tile in closed form as submerged.
             let mut depths = Vec::new();
-            // The kernel over runs of consecutive ranges, as without drag;
-            // the drag over each range of the run, with its depths.
-            let mut rest = &texels.0[..];
-            while let Some((first, _)) = rest.first() {
-                let len = 1 + rest.windows(2).take_while(|w| w[0].0.end == w[1].0.start).count();
-                let (run, next) = rest.split_at(len);
-                rest = next;
-                let span = first.start..run[len - 1].0.end;
+            // The kernel's calls as without drag (the same sums to the
+            // bit); the drag over each range of a call, with its depths.
+            for (span, taylor, members) in texels.calls() {
                 depths.clear();
                 depths.resize(span.len(), 0.0);
-                add_sea_range(&mut part.world, atlas, span.clone(), &sea, Some(&mut depths));
-                for (r, fluid) in run {
+                add_sea_range(
+                    &mut part.world,
+                    atlas,
+                    span.clone(),
+                    &sea,
+                    taylor,
+                    read,
+                    Some(&mut depths),
+                );
+                for (r, fluid, _) in members {
                     let depths = &depths[r.start - span.start..r.end - span.start];
                     // A tile the kernel finds wholly under water takes its
                     // drag in closed form as the others do.
@@ -234,7 +246,7 @@ impl TiledAtlas {
                     part.drag = part.drag + sea_drag_range(atlas, r.clone(), depths, drag, fluid);
                 }
             }
-            for (r, fluid) in &closed.0 {
+            for (r, fluid, _) in &closed.0 {
                 depths.clear();
                 depths.resize(r.len(), 1.0);
                 let fluid = fluid.as_ref().map(|(_, f)| f);
@@ -293,7 +305,14 @@ impl TiledAtlas {
             part.counts.dry += 1;
             return SeaTile::Dry;
         }
-        let (h, s, hess, third) = c.patch.taylor(p.x, p.z);
+        let taylor = Taylor::of(c.patch, p.x, p.z);
+        let Taylor {
+            h,
+            slope: s,
+            hess,
+            third,
+            ..
+        } = taylor;
         let slope = Vector2::new(s[0], s[1]);
         // d(x) ≈ α + β·x + δ(x): the affine part from the tangent plane at P.
         let beta = c.l.transpose() * slope - c.g;
@@ -314,9 +333,15 @@ impl TiledAtlas {
         }
         if dc - reach <= 0.0 || remainder > c.tolerance {
             part.counts.cut += 1;
-            return SeaTile::Texels;
+            // A tile small against the waves reads them from the polynomial
+            // the closed forms take, to third order: within the same
+            // tolerance, and a few multiply-adds a texel.
+            return SeaTile::Texels((remainder <= c.tolerance).then_some(taylor));
         }
         part.counts.submerged += 1;
+        if !c.buoyancy {
+            return SeaTile::Closed;
+        }
         part.shallow |= dc - reach < c.delta;
         let mut t = BuoyancySums::default();
         add_closed_form(&mut t, m, alpha, &beta, &c.g);
@@ -390,14 +415,20 @@ enum SeaTile {
     Dry,
     /// In closed form.
     Closed,
-    /// Through the sea kernel, texel by texel.
-    Texels,
+    /// Through the sea kernel, texel by texel: reading the surface from its
+    /// polynomial about the tile's centre where given, else from the
+    /// patch's cells.
+    Texels(Option<Taylor>),
 }
 
 /// Texel ranges, each with its tile and the fluid's velocity over it
-/// (object axes) where the drag takes one per tile.
+/// (object axes) where the drag takes one per tile, and the polynomial
+/// the kernel reads the surface from where it is one.
 #[derive(Default)]
-struct Ranges(Vec<(Range<usize>, Option<TileFluid>)>);
+struct Ranges(Vec<Entry>);
+
+/// A texel range, its tile and fluid, and its polynomial ([`Ranges`]).
+type Entry = (Range<usize>, Option<TileFluid>, Option<Taylor>);
 
 /// A tile and the fluid's velocity over it, to first order about its
 /// centre (object axes).
@@ -405,11 +436,35 @@ type TileFluid = (usize, LinearFluid);
 
 impl Ranges {
     /// Appends `range`, extending the last one where it follows it and
-    /// neither has a velocity of its own.
-    fn push(&mut self, range: Range<usize>, fluid: Option<TileFluid>) {
+    /// neither has a velocity or a polynomial of its own.
+    fn push(&mut self, range: Range<usize>, fluid: Option<TileFluid>, taylor: Option<Taylor>) {
         match self.0.last_mut() {
-            Some((last, None)) if fluid.is_none() && last.end == range.start => last.end = range.end,
-            _ => self.0.push((range, fluid)),
+            Some((last, None, None)) if fluid.is_none() && taylor.is_none() && last.end == range.start => {
+                last.end = range.end
+            }
+            _ => self.0.push((range, fluid, taylor)),
         }
+    }
+
+    /// The sea kernel's calls over the ranges, each with the ranges it
+    /// covers: a range with a polynomial on its own, runs of consecutive
+    /// ranges without one together.
+    fn calls(&self) -> impl Iterator<Item = (Range<usize>, Option<&Taylor>, &[Entry])> {
+        let mut rest = &self.0[..];
+        std::iter::from_fn(move || {
+            let (first, _, taylor) = rest.first()?;
+            let len = match taylor {
+                Some(_) => 1,
+                None => {
+                    1 + rest
+                        .windows(2)
+                        .take_while(|w| w[1].2.is_none() && w[0].0.end == w[1].0.start)
+                        .count()
+                }
+            };
+            let (members, next) = rest.split_at(len);
+            rest = next;
+            Some((first.start..members[len - 1].0.end, taylor.as_ref(), members))
+        })
     }
 }
