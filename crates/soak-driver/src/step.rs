@@ -91,6 +91,10 @@ impl<H: Handle> Driver<H> {
             .surface
             .height_bounds(t)
             .map(|(lo, hi)| (lo, hi + crest));
+        // A body that reads a band of the sea's waves meets that band's
+        // crest, which may stand above the whole sea's: each band's highest
+        // crest, found once a step.
+        let mut band_crests: Vec<(*const (), f64)> = Vec::new();
 
         // 1. Which bodies need texel work, at which predicted state.
         // Each body's options are made where they are needed from what every
@@ -145,7 +149,25 @@ impl<H: Handle> Driver<H> {
                 .waves
                 .as_deref()
                 .is_some_and(|w| w.own.get(k).is_some_and(|own| !own.is_empty()));
-            if let Some((_, highest)) = bounds
+            let band = match self.sea_band.wavelength(radius) {
+                Ok(Some(wavelength)) => self.water.surface.band_limited(wavelength),
+                _ => None,
+            };
+            let highest = match band {
+                Some(band) => {
+                    let key = std::ptr::from_ref(band).cast::<()>();
+                    let crest = match band_crests.iter().find(|(k, _)| *k == key) {
+                        Some(&(_, c)) => Some(c),
+                        None => band.height_bounds(t).map(|(_, hi)| {
+                            band_crests.push((key, hi + crest));
+                            hi + crest
+                        }),
+                    };
+                    bounds.zip(crest).map(|((_, hi), c)| hi.max(c))
+                }
+                None => bounds.map(|(_, hi)| hi),
+            };
+            if let Some(highest) = highest
                 && centre.y - radius - reach > highest
                 && !pressing
             {

@@ -1,13 +1,14 @@
 //! The driver on its own engine ([`FreeBodies`]): bodies float at their
 //! analytic draft, a body the engine lost is handled, a retired body costs
-//! nothing and stays retired through a save.
+//! nothing and stays retired through a save, a body reading a band of a
+//! sea's waves is taken as dry only above that band's crest.
 
 use std::sync::Arc;
 
 use nalgebra::Isometry3;
 use soak_bake::{Atlas, BakeOptions, builtin};
 use soak_driver::{BodyDesc, Driver, Effects, FreeBodies, FreeHandle, SoakError, StepParams};
-use soak_hydro::{Drag, MassModel, Water};
+use soak_hydro::{Drag, MassModel, SeaBand, SeaSpectrum, SpectralSea, SpectralSurface, Water};
 
 const STEP: StepParams = StepParams {
     dt: 1.0 / 60.0,
@@ -131,4 +132,52 @@ fn a_retired_body_costs_nothing_and_stays_retired() {
         soak.retire(soak_driver::SoakId(7), &mut engine),
         Err(SoakError::UnknownId(7))
     ));
+}
+
+/// A body that reads a band of a spectral sea's waves (the waves under 20 m
+/// dropped) is skipped as dry only above the band's highest crest, which
+/// stands above the whole sea's here (its cells are four times as wide, and
+/// the bound on its interpolant's overshoot with them): between the two
+/// crests it is evaluated, above both it is skipped.
+#[test]
+fn a_body_reading_a_band_is_dry_only_above_the_bands_crest() {
+    let atlas = crate_atlas();
+    let g = 9.80665;
+    let wind_sea = || {
+        let spectrum = SeaSpectrum::jonswap(1.0, 5.0);
+        let sea = SpectralSea::realize(&spectrum, 0.0, spectrum.default_tile(g), 128, 0, g).unwrap();
+        Water::new(SpectralSurface::new(sea))
+    };
+    let water = wind_sea();
+    let radius = atlas.bounding_radius();
+    let band = SeaBand::BodyLengths(20.0 / (2.0 * radius));
+    let wavelength = band.wavelength(radius).unwrap().unwrap();
+    let whole = water.surface.height_bounds(0.0).unwrap().1;
+    let crest = water
+        .surface
+        .band_limited(wavelength)
+        .expect("a band of the sea")
+        .height_bounds(0.0)
+        .unwrap()
+        .1;
+    assert!(
+        crest > whole + 0.05,
+        "the band's crest {crest} m, the sea's {whole} m"
+    );
+    for (lowest, dry) in [(0.5 * (whole + crest), false), (crest + 0.05, true)] {
+        let mut engine = FreeBodies::new(g);
+        let mut soak = Driver::new(wind_sea()).with_sea_band(band);
+        let y = lowest + radius - atlas.origin().y;
+        let h = engine.insert(Isometry3::translation(0.0, y, 0.0));
+        let id = soak
+            .register(&mut engine, h, desc("crate", &atlas, 500.0))
+            .unwrap();
+        soak.before_step(&mut engine, &STEP).unwrap();
+        let skips = soak.body(id).unwrap().dry_skips();
+        assert_eq!(
+            skips,
+            u64::from(dry),
+            "lowest point {lowest} m: {skips} dry skips"
+        );
+    }
 }
