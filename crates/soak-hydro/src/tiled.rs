@@ -180,14 +180,7 @@ pub struct TiledAtlas {
     facing: Vec<FacingBounds>,
     /// `drag_prefix[i]` holds the sums of the drag moments of `tiles[..i]`.
     drag_prefix: Vec<DragMoments>,
-    /// Per tile, its second moments about its centre `c`,
-    /// `Σ A_j (x − c)(x − c)ᵀ` for each `j` (for the closed forms under a
-    /// sea, whose quadratic part is centred there).
-    centred: Vec<[Sym3; 3]>,
 }
-
-/// A symmetric 3 × 3 matrix by its entries `(xx, yy, zz, xy, xz, yz)`.
-pub(crate) type Sym3 = [f64; 6];
 
 /// How many tiles of each kind the last evaluation met.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -227,19 +220,10 @@ impl TiledAtlas {
                 }
                 m.centre = (lo + hi) * 0.5;
                 m.half_extent = (hi - lo) * 0.5;
-                let mut centred = [[0.0; 6]; 3];
-                for i in r {
-                    let (x, a) = texel(atlas, i);
-                    let y = x - m.centre;
-                    m.radius = m.radius.max(y.norm());
-                    let yy = [y.x * y.x, y.y * y.y, y.z * y.z, y.x * y.y, y.x * y.z, y.y * y.z];
-                    for (c, aj) in centred.iter_mut().zip(a.iter()) {
-                        for (e, v) in c.iter_mut().zip(yy) {
-                            *e += aj * v;
-                        }
-                    }
-                }
-                (m, dm, hbox, centred)
+                m.radius = r
+                    .map(|i| (texel(atlas, i).0 - m.centre).norm())
+                    .fold(0.0, f64::max);
+                (m, dm, hbox)
             })
             .collect::<Vec<_>>();
         // Group the tiles by the block of GROUP × GROUP tiles their first
@@ -251,16 +235,15 @@ impl TiledAtlas {
             (u32::from(y) / span, u32::from(x) / span)
         };
         let mut tiles = tiles;
-        tiles.sort_by_key(|(m, ..)| (group_of(m), m.range.0));
+        tiles.sort_by_key(|(m, _, _)| (group_of(m), m.range.0));
         let mut drag_prefix = Vec::with_capacity(tiles.len() + 1);
         let mut running = DragMoments::default();
         drag_prefix.push(running);
-        for (_, dm, ..) in &tiles {
+        for (_, dm, _) in &tiles {
             running.add(dm);
             drag_prefix.push(running);
         }
         let facing: Vec<HBox> = tiles.iter().map(|t| t.2).collect();
-        let centred: Vec<[Sym3; 3]> = tiles.iter().map(|t| t.3).collect();
         let tiles: Vec<TileMoments> = tiles.into_iter().map(|t| t.0).collect();
         let mut groups = Vec::new();
         let mut start = 0;
@@ -312,7 +295,6 @@ impl TiledAtlas {
             prefix,
             facing: facing.iter().map(HBox::bounds).collect(),
             drag_prefix,
-            centred,
         }
     }
 

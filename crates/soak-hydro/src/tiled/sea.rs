@@ -37,7 +37,7 @@ use std::ops::Range;
 use nalgebra::{Matrix2, Matrix2x3, Matrix3, Vector2, Vector3};
 use soak_bake::Atlas;
 
-use super::{Sym3, TileCounts, TiledAtlas, add_closed_form};
+use super::{TileCounts, TiledAtlas, add_closed_form};
 use crate::hydrostatics::drag_kernel::DragMoments;
 use crate::hydrostatics::frame::Frame;
 use crate::hydrostatics::options::SeaVelocity;
@@ -72,10 +72,8 @@ struct SeaTiles<'a> {
     rot: Matrix3<f64>,
     /// The world's up in object axes.
     g: Vector3<f64>,
-    /// The horizontal rows of `rot` (its first and third): `Δ = L (x − c)`.
+    /// The horizontal rows of `rot`: `Δ = L (x − c)`.
     l: Matrix2x3<f64>,
-    /// The same rows as vectors.
-    rows: [Vector3<f64>; 2],
     ow: Vector3<f64>,
     /// The centre of mass from the atlas origin, world axes, m.
     com: Vector3<f64>,
@@ -138,7 +136,6 @@ impl TiledAtlas {
             rot,
             g: rot.transpose() * Vector3::y(),
             l: Matrix2x3::from_rows(&[rot.row(0), rot.row(2)]),
-            rows: [rot.row(0).transpose(), rot.row(2).transpose()],
             ow: frame.ow,
             com: frame.com - frame.ow,
             top,
@@ -348,17 +345,15 @@ impl TiledAtlas {
         part.shallow |= dc - reach < c.delta;
         let mut t = BuoyancySums::default();
         add_closed_form(&mut t, m, alpha, &beta, &c.g);
-        // The quadratic part: u_j = Σ A_j δ = ½ tr(Q M_j), with M_j the
-        // tile's second moments about its centre and Q = Lᵀ H L, whose
-        // trace against M is tr(H L M Lᵀ): each M_j seen through the two
-        // horizontal rows of the rotation.
-        let centred = &self.centred[ti];
-        let [a, b, d] = hess;
-        let (r0, r2) = (&c.rows[0], &c.rows[1]);
-        let u = Vector3::from_fn(|j, _| {
-            let n = horizontal(&centred[j], r0, r2);
-            0.5 * (a * n[0] + 2.0 * b * n[1] + d * n[2])
-        });
+        // The quadratic part: u_j = Σ A_j δ = ½ tr(Q M_j), with
+        // M_j = Σ A_j (x − c)(x − c)ᵀ = S2_j − S1_j cᵀ − c S1_jᵀ + S0_j c cᵀ
+        // from the moments (`Q` symmetric): ½ tr(Q S2_j) − cᵀQ S1_j + ½ S0_j cᵀQc.
+        let q = c.l.transpose() * hm * c.l;
+        let qc = q * centre;
+        let cqc = centre.dot(&qc);
+        let s1qc = m.s1 * qc;
+        let u =
+            Vector3::from_fn(|j, _| 0.5 * q.component_mul(&m.s2[j]).sum() - s1qc[j] + 0.5 * m.s0[j] * cqc);
         let gu = c.g.dot(&u);
         t.vol -= gu;
         t.wr -= gu * centre;
@@ -376,23 +371,25 @@ impl TiledAtlas {
             let first = t.wr - centre * w;
             let rho_c = c.rot * centre - c.com;
             let s3 = Vector3::new(slope.x, 0.0, slope.y);
-            // H L, row by row.
-            let hl = [a * r0 + b * r2, b * r0 + d * r2];
-            let ds3 = Vector3::new(hl[0].dot(&first), 0.0, hl[1].dot(&first));
-            let mg = sym_combination(centred, &c.g);
-            // L M_g row by row, then H L M_g and N = L M_g Lᵀ from it.
-            let lm = [sym_mul(&mg, r0), sym_mul(&mg, r2)];
-            let hlm = [a * lm[0] + b * lm[1], b * lm[0] + d * lm[1]];
-            let n = Matrix2::new(lm[0].dot(r0), lm[0].dot(r2), lm[1].dot(r0), lm[1].dot(r2));
+            let hl = hm * c.l;
+            let ds = hl * first;
+            let ds3 = Vector3::new(ds.x, 0.0, ds.y);
+            let t1 = m.s1.transpose() * c.g;
+            let mg = (m.s2[0] * c.g.x + m.s2[1] * c.g.y + m.s2[2] * c.g.z)
+                - t1 * centre.transpose()
+                - centre * t1.transpose()
+                + centre * centre.transpose() * c.g.dot(&m.s0);
             // Σ_kl M_kl R e_k × P e_l = Σ_k R e_k × (P M) e_k.
+            let hlm = hl * mg;
             let mut second = Vector3::zeros();
-            for (k, (p, q)) in hlm[0].iter().zip(hlm[1].iter()).enumerate() {
+            for k in 0..3 {
                 let rk: Vector3<f64> = c.rot.column(k).into();
-                second += rk.cross(&Vector3::new(*p, 0.0, *q));
+                second += rk.cross(&Vector3::new(hlm[(0, k)], 0.0, hlm[(1, k)]));
             }
             // The slope's second-order part ½ D³h[Δ, Δ] against the same
-            // second moment: ½ tr(T_i N) per slope component.
+            // second moment: ½ tr(T_i N) per slope component, N = L M_g Lᵀ.
             let [xxx, xxz, xzz, zzz] = third;
+            let n = c.l * mg * c.l.transpose();
             let curl = |t: Matrix2<f64>| 0.5 * t.component_mul(&n).sum();
             let ds2 = Vector3::new(
                 curl(Matrix2::new(xxx, xxz, xxz, xzz)),
@@ -470,26 +467,4 @@ impl Ranges {
             Some((first.start..members[len - 1].0.end, taylor.as_ref(), members))
         })
     }
-}
-
-/// `(r₀ᵀ M r₀, r₀ᵀ M r₂, r₂ᵀ M r₂)`: the symmetric `M` seen through two
-/// rows `r₀`, `r₂` (the entries of `L M Lᵀ`).
-fn horizontal(m: &Sym3, r0: &Vector3<f64>, r2: &Vector3<f64>) -> [f64; 3] {
-    let m0 = sym_mul(m, r0);
-    [m0.dot(r0), m0.dot(r2), sym_mul(m, r2).dot(r2)]
-}
-
-/// `M v` for the symmetric `M`.
-fn sym_mul(m: &Sym3, v: &Vector3<f64>) -> Vector3<f64> {
-    let [xx, yy, zz, xy, xz, yz] = *m;
-    Vector3::new(
-        xx * v.x + xy * v.y + xz * v.z,
-        xy * v.x + yy * v.y + yz * v.z,
-        xz * v.x + yz * v.y + zz * v.z,
-    )
-}
-
-/// `Σ_j g_j M_j`.
-fn sym_combination(m: &[Sym3; 3], g: &Vector3<f64>) -> Sym3 {
-    std::array::from_fn(|e| g.x * m[0][e] + g.y * m[1][e] + g.z * m[2][e])
 }
