@@ -27,8 +27,10 @@
 //! within [`SEA_TILE_TOLERANCE`] of the body's bounding radius and the
 //! polynomial (with that remainder) is positive over the whole disc; a
 //! tile the waterline may cut, or too large against the waves' curvature,
-//! goes through the sea kernel texel by texel, and a tile wholly above the
-//! waves is skipped. For a 1024² atlas of a half-metre body on a metres-long
+//! goes through the sea kernel texel by texel (a tile within the tolerance
+//! reads the surface there from the same polynomial, to third order, a few
+//! multiply-adds a texel; a larger one from the patch's cells), and a tile
+//! wholly above the waves is skipped. For a 1024² atlas of a half-metre body on a metres-long
 //! swell the remainder is below a micrometre and nearly every tile under
 //! water takes the closed form.
 
