@@ -10,6 +10,7 @@ const SURFACE_GERSTNER: u32 = 1u;
 const SURFACE_HEIGHT_FIELD: u32 = 2u;
 const SURFACE_UNBOUNDED: u32 = 3u;
 const SURFACE_PATCH: u32 = 4u;
+const SURFACE_SPECTRAL: u32 = 5u;
 
 // Invocations per workgroup and texels per invocation of the per-texel
 // kernels: one work item is WG * PER_THREAD consecutive texels.

@@ -4,6 +4,11 @@
 // `waves: array<Wave>`, `heights: array<f32>` and `radii: array<u32>`.
 // Points are `r = p - o_w` (world axes, relative to the body's atlas origin).
 //
+// A spectral sea read exactly (SURFACE_SPECTRAL) reads its tile's fields,
+// evaluated on the device in the same submission (sea_modes.wgsl,
+// sea_unpack.wgsl), and inverts its choppy map at every point as
+// `SpectralSurface` does on the CPU.
+//
 // A Gerstner sea comes in two forms: its waves (SURFACE_GERSTNER), whose
 // map is inverted here at every point, or sampled once on the CPU
 // (SURFACE_PATCH, `SurfacePatch` of water/patch.rs): per cell the bicubic
@@ -134,6 +139,152 @@ fn patch_velocity(b: Body, r: vec3<f32>) -> vec3<f32> {
     return y.f * (z.f * d + e) + (z.f * bb + a);
 }
 
+// ---- spectral sea (SURFACE_SPECTRAL): `SpectralSurface`'s exact read.
+// info.y: first float of the tile's fields in `heights` (16 per node, see
+// sea_unpack.wgsl); info.z: cells per side n; info.w: the node at or below
+// o_w, (ix | iz << 16). surface.xy: o_w's place across that node's cell,
+// [0, 1); surface.z: 1 / cell side (1/m); surface.w: cell side (m).
+// surface2.x: mean level - o_w.y (m); surface2.y: the energy-weighted mean
+// wavenumber (1/m) of the velocity's decay. Rest positions are in cells
+// from that node, so f32 keeps its precision anywhere on the tile.
+
+// Newton's method on the choppy map: the CPU's iteration count, and a
+// tolerance in cells at f32's precision (the CPU's is 1e-12 relative in f64).
+const SPECTRAL_ITERATIONS: u32 = 16u;
+const SPECTRAL_TOLERANCE: f32 = 2e-6;
+
+// The first float of node (i, j) of the tile, counted from o_w's node and
+// wrapped into the tile.
+fn spectral_node(b: Body, i: i32, j: i32) -> u32 {
+    let n = i32(b.info.z);
+    let x = ((i32(b.info.w & 0xffffu) + i) % n + n) % n;
+    let z = ((i32(b.info.w >> 16u) + j) % n + n) % n;
+    return b.info.y + 16u * u32(z * n + x);
+}
+
+// The cubic Hermite basis at t (value at 0, value at 1, slope at 0, slope
+// at 1) and its derivative, `hermite_basis` of water/spectrum.rs.
+fn hermite_value(t: f32) -> vec4<f32> {
+    let t2 = t * t;
+    let t3 = t2 * t;
+    return vec4<f32>(2.0 * t3 - 3.0 * t2 + 1.0, -2.0 * t3 + 3.0 * t2, t3 - 2.0 * t2 + t, t3 - t2);
+}
+
+fn hermite_slope(t: f32) -> vec4<f32> {
+    let t2 = t * t;
+    return vec4<f32>(6.0 * t2 - 6.0 * t, -6.0 * t2 + 6.0 * t, 3.0 * t2 - 4.0 * t + 1.0, 3.0 * t2 - 2.0 * t);
+}
+
+fn spectral_data(at: u32) -> vec4<f32> {
+    return vec4<f32>(heights[at], heights[at + 1u], heights[at + 2u], heights[at + 3u]);
+}
+
+// The surface particle at rest at `a` (cells from o_w's node), the
+// bicubic Hermite interpolants of the tile's fields (`SeaFields::particle_at`).
+struct SpectralJet {
+    // Where it is, cells from o_w's node.
+    position: vec2<f32>,
+    // Its elevation above the mean level, m.
+    height: f32,
+    // The Jacobian of its position over its rest position:
+    // (∂x/∂x₀, ∂x/∂z₀, ∂z/∂x₀, ∂z/∂z₀).
+    jacobian: vec4<f32>,
+    // Its elevation's gradient over its rest position, m per cell.
+    gradient: vec2<f32>,
+}
+
+fn spectral_jet(b: Body, a: vec2<f32>) -> SpectralJet {
+    let c = floor(a);
+    let f = a - c;
+    let bu = hermite_value(f.x);
+    let du = hermite_slope(f.x);
+    let bv = hermite_value(f.y);
+    let dv = hermite_slope(f.y);
+    // Per field (η, Dx, Dz): value, u-derivative, v-derivative.
+    var h = vec3<f32>(0.0);
+    var dx = vec3<f32>(0.0);
+    var dz = vec3<f32>(0.0);
+    for (var corner = 0u; corner < 4u; corner++) {
+        let ca = corner & 1u;
+        let cb = corner >> 1u;
+        let at = spectral_node(b, i32(c.x) + i32(ca), i32(c.y) + i32(cb));
+        let w = vec4<f32>(bu[ca] * bv[cb], bu[ca + 2u] * bv[cb], bu[ca] * bv[cb + 2u], bu[ca + 2u] * bv[cb + 2u]);
+        let wu = vec4<f32>(du[ca] * bv[cb], du[ca + 2u] * bv[cb], du[ca] * bv[cb + 2u], du[ca + 2u] * bv[cb + 2u]);
+        let wv = vec4<f32>(bu[ca] * dv[cb], bu[ca + 2u] * dv[cb], bu[ca] * dv[cb + 2u], bu[ca + 2u] * dv[cb + 2u]);
+        let fh = spectral_data(at);
+        let fx = spectral_data(at + 4u);
+        let fz = spectral_data(at + 8u);
+        h += vec3<f32>(dot(fh, w), dot(fh, wu), dot(fh, wv));
+        dx += vec3<f32>(dot(fx, w), dot(fx, wu), dot(fx, wv));
+        dz += vec3<f32>(dot(fz, w), dot(fz, wu), dot(fz, wv));
+    }
+    return SpectralJet(
+        a + vec2<f32>(dx.x, dz.x),
+        h.x,
+        vec4<f32>(1.0 + dx.y, dx.z, dz.y, 1.0 + dz.z),
+        h.yz,
+    );
+}
+
+// The particle above `x` (cells from o_w's node), by Newton's method from
+// the guess that it is not displaced (`SeaFields::invert`).
+fn spectral_invert(x: vec2<f32>, b: Body) -> SpectralJet {
+    var a = x;
+    var jet = spectral_jet(b, a);
+    let tolerance = SPECTRAL_TOLERANCE * (1.0 + abs(x.x) + abs(x.y));
+    for (var it = 0u; it < SPECTRAL_ITERATIONS; it++) {
+        let r = jet.position - x;
+        if (abs(r.x) + abs(r.y) < tolerance) {
+            break;
+        }
+        let j = jet.jacobian;
+        let det = j.x * j.w - j.y * j.z;
+        var step = r;
+        if (det > 1e-3) {
+            step = vec2<f32>(j.w * r.x - j.y * r.y, j.x * r.y - j.z * r.x) / det;
+        }
+        a -= step;
+        jet = spectral_jet(b, a);
+    }
+    return jet;
+}
+
+// The slope `J⁻ᵀ ∇₀η` of the surface over the particle (per m; flat where
+// the map folds), `slope_through` of water/spectral_surface.rs.
+fn spectral_slope(b: Body, jet: SpectralJet) -> vec2<f32> {
+    let j = jet.jacobian;
+    let det = j.x * j.w - j.y * j.z;
+    if (abs(det) < 1e-12) {
+        return vec2<f32>(0.0);
+    }
+    let g = jet.gradient * b.surface.z;
+    return vec2<f32>(j.w * g.x - j.z * g.y, j.x * g.y - j.y * g.x) / det;
+}
+
+// The water's velocity at r (m/s), `SpectralSurface::velocity_at`: the
+// tile's velocity at the mean level bilinear between the nodes at the
+// point's own place, decaying below the mean level as e^(k̄ (y - level))
+// and continued linearly above it up to the surface.
+fn spectral_velocity(b: Body, r: vec3<f32>, depth: f32) -> vec3<f32> {
+    let x = b.surface.xy + r.xz * b.surface.z;
+    let c = floor(x);
+    let f = x - c;
+    var v = vec3<f32>(0.0);
+    for (var corner = 0u; corner < 4u; corner++) {
+        let ca = corner & 1u;
+        let cb = corner >> 1u;
+        let at = spectral_node(b, i32(c.x) + i32(ca), i32(c.y) + i32(cb)) + 12u;
+        let w = select(1.0 - f.x, f.x, ca == 1u) * select(1.0 - f.y, f.y, cb == 1u);
+        v += w * vec3<f32>(heights[at], heights[at + 1u], heights[at + 2u]);
+    }
+    let z = b.surface2.y * (min(r.y, r.y + depth) - b.surface2.x);
+    var decay = 1.0 + z;
+    if (z <= 0.0) {
+        decay = exp(z);
+    }
+    return v * decay;
+}
+
 fn surface_at(b: Body, r: vec3<f32>) -> SurfacePoint {
     var out = SurfacePoint(0.0, vec2<f32>(0.0), vec2<f32>(0.0));
     switch b.info.x {
@@ -160,6 +311,11 @@ fn surface_at(b: Body, r: vec3<f32>) -> SurfacePoint {
             out.slope = hs.yz;
             out.depth = b.surface2.x + hs.x - r.y;
         }
+        case SURFACE_SPECTRAL: {
+            let jet = spectral_invert(b.surface.xy + r.xz * b.surface.z, b);
+            out.slope = spectral_slope(b, jet);
+            out.depth = b.surface2.x + jet.height - r.y;
+        }
         case SURFACE_UNBOUNDED: {
             // The CPU's trick: a horizontal plane 1 m above the bounding sphere.
             let radius = sqrt(bitcast<f32>(radii[b.slot.x]));
@@ -180,7 +336,7 @@ fn surface_at(b: Body, r: vec3<f32>) -> SurfacePoint {
 // unbounded medium.
 fn surface_slope(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec2<f32> {
     switch b.info.x {
-        case SURFACE_PATCH: {
+        case SURFACE_PATCH, SURFACE_SPECTRAL: {
             return sp.slope;
         }
         case SURFACE_GERSTNER: {
@@ -240,6 +396,9 @@ fn surface_slope(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec2<f32> {
 fn fluid_velocity(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec3<f32> {
     if (b.info.x == SURFACE_PATCH) {
         return patch_velocity(b, r);
+    }
+    if (b.info.x == SURFACE_SPECTRAL) {
+        return spectral_velocity(b, r, sp.depth);
     }
     if (b.info.x != SURFACE_GERSTNER) {
         return b.current.xyz;

@@ -617,6 +617,53 @@ fn sampled_spectral_parity_256() {
     );
 }
 
+/// A spectral sea read exactly: its tile evaluated on the device in the
+/// batch's own submission (the layers of its modes, their inverse FFT, its
+/// fields laid out per node) and its choppy map inverted at every texel,
+/// against the CPU's exact read (its tile's fields by rustfft in f64).
+#[test]
+fn exact_spectral_parity_256() {
+    run_parity(
+        256,
+        spectral,
+        12,
+        None,
+        17,
+        "JONSWAP sea, exact, tile on the device",
+    );
+    run_parity(
+        256,
+        spectral,
+        8,
+        Some(DRAG),
+        18,
+        "drag, JONSWAP sea, exact, tile on the device",
+    );
+}
+
+/// Ten hours into a run the sea on the device keeps its phases: each mode is
+/// turned to the time on the CPU, in f64.
+#[test]
+fn exact_spectral_parity_ten_hours_in() {
+    let Some(d) = device() else { return };
+    let mut gpu = Gpu::new(&d);
+    let water = spectral();
+    let mut rng = Lcg(19);
+    let mut errors = Errors::default();
+    for b in &baked(256)[..3] {
+        let bodies: Vec<_> = (0..4)
+            .map(|_| (&water, rng.state(b, 0.1, 20.0, 1.0), exact_options()))
+            .collect();
+        let t = 36_000.0 + rng.range(0.0, 10.0);
+        let cpu = Cpu.forces(b, &bodies, t);
+        let got = gpu.forces(b, &bodies, t);
+        for ((body, c), g) in bodies.iter().zip(&cpu).zip(&got) {
+            errors.merge(&compare(b, &water, &body.1, c, g));
+        }
+    }
+    errors.report("JONSWAP sea, exact, ten hours in");
+}
+
 /// The exact read of the swell, for the sampled tests beside it.
 #[test]
 fn exact_swell_parity_256() {
@@ -676,7 +723,7 @@ fn a_batch_of_100_equals_100_single_evaluations() {
     let d = &d;
     let gpu = &mut Gpu::new(d);
     let set = baked(256);
-    let waters = [plane(), sea(), height_field(), tilted(), air()];
+    let waters = [plane(), sea(), height_field(), tilted(), air(), spectral()];
     let mut rng = Lcg(42);
     let mut bodies = Vec::new();
     for k in 0..100 {
@@ -717,7 +764,7 @@ fn a_batch_of_100_equals_100_single_evaluations() {
         let cpu = evaluate(&b.atlas, body.water, &body.state, &b.mass, t, &body.options).unwrap();
         all.merge(&compare(b, body.water, &body.state, &cpu, f));
     }
-    all.report("a batch of 100 bodies, 5 waters, 7 meshes, against the CPU");
+    all.report("a batch of 100 bodies, 6 waters, 7 meshes, against the CPU");
 }
 
 // ---------------------------------------------------------------- sampled surfaces

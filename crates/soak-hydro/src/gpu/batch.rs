@@ -3,8 +3,9 @@
 use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 
 use super::error::{GpuAtlasId, GpuHydroError};
-use super::hydro::GpuHydro;
+use super::hydro::{GpuHydro, Scratch};
 use super::layout::{Body, Dispatch, HYDRO_SLOTS, ITEM_TEXELS, Item, dispatch_bytes};
+use super::sea::DeviceSeas;
 use super::surface::{HeightFields, encode_surface};
 use crate::error::HydroError;
 use crate::hydrostatics::body_state::BodyState;
@@ -139,8 +140,9 @@ impl GpuHydro {
     /// once per body over its footprint (on the CPU, the bodies in
     /// parallel) and read by the kernels as that [`crate::SurfacePatch`], or
     /// with [`crate::SeaSampling::Exact`] inverted at every texel on the
-    /// device. A water whose surface is a [`crate::SurfacePatch`] already
-    /// is read as it is.
+    /// device: a spectral sea's tile is then evaluated on the device too,
+    /// in the same submission, once however many bodies read it. A water
+    /// whose surface is a [`crate::SurfacePatch`] already is read as it is.
     pub fn evaluate_batch(&self, bodies: &[GpuBody<'_>], t: f64) -> Result<Vec<HydroForces>, GpuHydroError> {
         use rayon::prelude::*;
         if bodies.is_empty() {
@@ -170,6 +172,7 @@ impl GpuHydro {
         let mut frames = Vec::with_capacity(n);
         let mut waves = Vec::new();
         let mut heights = HeightFields::default();
+        let mut seas = DeviceSeas::default();
         let mut per_page: Vec<Vec<Item>> = vec![Vec::new(); self.pages.len()];
         let mut ranges: Vec<[u32; 2]> = Vec::with_capacity(n);
         let mut partials = 0u64;
@@ -200,7 +203,16 @@ impl GpuHydro {
                 ..Body::default()
             };
             let water = sampled_waters[i].as_ref().unwrap_or(b.water);
-            encode_surface(i, water, &ow, t, &mut body, &mut waves, &mut heights)?;
+            // A spectral sea read as it is: its tile evaluated and read on
+            // the device.
+            match water
+                .surface
+                .as_any()
+                .and_then(|a| a.downcast_ref::<crate::water::SpectralSurface>())
+            {
+                Some(sea) => seas.encode(i, sea, &ow, t, &mut body, &mut heights)?,
+                None => encode_surface(i, water, &ow, t, &mut body, &mut waves, &mut heights)?,
+            }
             gpu_bodies.push(body);
             // `finish` reads the reference point, the centre of mass, the
             // plane (for Archimedes' slope terms) and the texel count.
@@ -300,6 +312,9 @@ impl GpuHydro {
             let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("soak hydrostatics"),
             });
+            if !seas.is_empty() {
+                self.encode_seas(&mut encoder, s, &seas, cap);
+            }
             {
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some("soak hydrostatics"),
@@ -366,6 +381,70 @@ impl GpuHydro {
                 )
             })
             .collect())
+    }
+}
+
+impl GpuHydro {
+    /// Records the evaluation of every spectral sea of a batch (turned
+    /// amplitudes and uniforms written, then per sea its layers, their
+    /// inverse FFT and its fields into `heights`, which must hold the
+    /// batch's samples already). Call inside an error scope.
+    fn encode_seas(&self, encoder: &mut wgpu::CommandEncoder, s: &mut Scratch, seas: &DeviceSeas, cap: u64) {
+        let (device, queue) = (&self.device, &self.queue);
+        let modes = s.sea_modes.ensure(device, (seas.modes.len() * 8) as u64, cap);
+        queue.write_buffer(modes, 0, bytemuck::cast_slice(&seas.modes));
+        let (uniforms, firsts) = seas.uniforms();
+        let uniform_buf = s.sea_uniforms.ensure(device, uniforms.len() as u64, u64::MAX);
+        queue.write_buffer(uniform_buf, 0, &uniforms);
+        let layers = seas.layer_bytes();
+        s.sea_spec.ensure(device, layers, cap);
+        s.sea_scratch.ensure(device, layers, cap);
+        let k = &self.kernels;
+        let (modes, spec, scratch, uniforms) = (
+            s.sea_modes.get(),
+            s.sea_spec.get(),
+            s.sea_scratch.get(),
+            s.sea_uniforms.get(),
+        );
+        let pair = k.sea_modes.bind(device, &[modes, spec, uniforms]);
+        let forth = k.sea_fft.bind(device, &[spec, scratch, uniforms]);
+        let back = k.sea_fft.bind(device, &[scratch, spec, uniforms]);
+        let unpack = k.sea_unpack.bind(device, &[spec, s.heights.get(), uniforms]);
+        let groups = |threads: u32| {
+            let count = threads.div_ceil(64);
+            let x = count.min(super::layout::MAX_GROUPS_X);
+            [x, count.div_ceil(x)]
+        };
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("soak spectral sea"),
+            timestamp_writes: None,
+        });
+        for (sea, &first) in seas.seas.iter().zip(&firsts) {
+            let nn = sea.n * sea.n;
+            let first = first as u32;
+            let g = groups(nn);
+            pass.set_pipeline(k.sea_modes.pipeline());
+            pass.set_bind_group(0, &pair, &[first]);
+            pass.dispatch_workgroups(g[0], g[1], 1);
+            // The inverse transforms, rows then columns: an even number of
+            // stages, so the result is back in `spec`.
+            pass.set_pipeline(k.sea_fft.pipeline());
+            let stages = 2 * sea.n.trailing_zeros();
+            let g = groups(super::sea::SEA_LAYERS * nn / 2);
+            for stage in 0..stages {
+                let group = if stage % 2 == 0 { &forth } else { &back };
+                pass.set_bind_group(
+                    0,
+                    group,
+                    &[first + (1 + stage) * super::waves::STAGE_STRIDE as u32],
+                );
+                pass.dispatch_workgroups(g[0], g[1], 1);
+            }
+            pass.set_pipeline(k.sea_unpack.pipeline());
+            pass.set_bind_group(0, &unpack, &[first]);
+            let g = groups(nn);
+            pass.dispatch_workgroups(g[0], g[1], 1);
+        }
     }
 }
 

@@ -136,6 +136,13 @@ pub(crate) struct Scratch {
     pub results: Grow,
     pub densities: Grow,
     pub staging: Grow,
+    /// A spectral sea's turned amplitudes, its uniforms and its two
+    /// buffers of transformed layers ([`super::sea`]): allocated on the
+    /// first batch that reads a sea on the device.
+    pub sea_modes: Grow,
+    pub sea_uniforms: Grow,
+    pub sea_spec: Grow,
+    pub sea_scratch: Grow,
 }
 
 impl Scratch {
@@ -153,6 +160,13 @@ impl Scratch {
             ranges: Grow::storage("soak ranges"),
             results: Grow::storage("soak results"),
             densities: Grow::storage("soak densities"),
+            sea_modes: Grow::storage("soak sea modes"),
+            sea_uniforms: Grow::new(
+                "soak sea uniforms",
+                wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            ),
+            sea_spec: Grow::storage("soak sea layers"),
+            sea_scratch: Grow::storage("soak sea scratch"),
             staging: Grow::new(
                 "soak readback",
                 wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,

@@ -11,6 +11,8 @@ const BUOYANCY: &str = include_str!("../../shaders/buoyancy.wgsl");
 const REDUCE: &str = include_str!("../../shaders/reduce.wgsl");
 const MASS: &str = include_str!("../../shaders/mass.wgsl");
 const DEFORM: &str = include_str!("../../shaders/deform.wgsl");
+const SEA_MODES: &str = include_str!("../../shaders/sea_modes.wgsl");
+const SEA_UNPACK: &str = include_str!("../../shaders/sea_unpack.wgsl");
 
 /// The WGSL of each kernel, as compiled (for tools that validate shaders).
 pub fn kernel_sources() -> Vec<(&'static str, String)> {
@@ -23,6 +25,9 @@ pub fn kernel_sources() -> Vec<(&'static str, String)> {
             reduce_source(super::layout::MASS_SLOTS, super::layout::MASS_SLOTS),
         ),
         ("deform", [BINDINGS, DEFORM].concat()),
+        ("sea_modes", SEA_MODES.to_string()),
+        ("sea_fft", super::waves::FFT.to_string()),
+        ("sea_unpack", SEA_UNPACK.to_string()),
     ]
 }
 
@@ -36,6 +41,11 @@ pub(crate) struct Kernels {
     pub mass: Kernel,
     pub reduce_mass: Kernel,
     pub deform: Kernel,
+    /// A spectral sea's tile: its layers of coefficients, an FFT stage,
+    /// its fields laid out for the buoyancy kernel ([`super::sea`]).
+    pub sea_modes: Kernel,
+    pub sea_fft: Kernel,
+    pub sea_unpack: Kernel,
 }
 
 impl Kernels {
@@ -44,6 +54,12 @@ impl Kernels {
         // The last binding of every kernel: one `Dispatch` at a dynamic offset.
         let dispatch = Binding::DynamicUniform {
             size: size_of::<Dispatch>() as u64,
+        };
+        let sea = Binding::DynamicUniform {
+            size: size_of::<super::sea::SeaUniform>() as u64,
+        };
+        let stage = Binding::DynamicUniform {
+            size: size_of::<super::waves::Stage>() as u64,
         };
         let sources = kernel_sources();
         scoped(device, "compiling the hydrostatics kernels", 0, || {
@@ -54,6 +70,9 @@ impl Kernels {
                 mass: make(2, &[Read, Read, Read, ReadWrite, dispatch]),
                 reduce_mass: make(3, &[Read, Read, ReadWrite, dispatch]),
                 deform: make(4, &[ReadWrite, Read, Read, Read, ReadWrite, Read, dispatch]),
+                sea_modes: make(5, &[Read, ReadWrite, sea]),
+                sea_fft: make(6, &[Read, ReadWrite, stage]),
+                sea_unpack: make(7, &[Read, ReadWrite, sea]),
             })
         })
     }

@@ -28,6 +28,10 @@ pub(crate) const SURFACE_GERSTNER: u32 = 1;
 pub(crate) const SURFACE_HEIGHT_FIELD: u32 = 2;
 pub(crate) const SURFACE_UNBOUNDED: u32 = 3;
 pub(crate) const SURFACE_PATCH: u32 = 4;
+/// A spectral sea read exactly from its tile's fields on the device.
+pub(crate) const SURFACE_SPECTRAL: u32 = 5;
+/// Floats per node of a spectral sea's fields in the `heights` binding.
+pub(crate) const SEA_NODE_FLOATS: usize = 16;
 /// Floats per cell of a patch's bicubic coefficients in the `heights` binding.
 pub(crate) const PATCH_CELL_FLOATS: usize = 16;
 /// Floats per cell of a patch's velocity coefficients in the `heights` binding.

@@ -18,7 +18,13 @@
 //! ([`crate::SurfacePatch`], heights and slopes at a few dozen nodes, with
 //! drag the fluid's velocity too) and read by the kernel as per-cell
 //! polynomials; with [`crate::SeaSampling::Exact`] the kernel inverts the
-//! Gerstner map at every texel in f32.
+//! Gerstner map at every texel in f32. A spectral sea
+//! ([`crate::SpectralSurface`]) is read the same two ways: sampled per body
+//! from its tile's fields on the CPU, or, read exactly, its tile evaluated
+//! on the device in the batch's own submission (each mode turned to the
+//! time on the CPU in f64; its seven layers of coefficients, their inverse
+//! FFTs and its fields per node on the device, once per batch however many
+//! bodies read it) and its choppy map inverted at every texel.
 //!
 //! Precision: texel positions are relative to the atlas origin and water
 //! parameters relative to the body's world position, computed in f64 and
@@ -38,6 +44,7 @@ mod hydro;
 mod kernels;
 mod layout;
 mod mass_properties;
+mod sea;
 mod surface;
 mod waves;
 pub mod wgsl;

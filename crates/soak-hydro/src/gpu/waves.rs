@@ -10,27 +10,27 @@ use super::error::GpuHydroError;
 use crate::error::WaterError;
 use crate::waves::{WaveRegion, check_waves};
 
-const FFT: &str = include_str!("../../shaders/waves.wgsl");
+pub(super) const FFT: &str = include_str!("../../shaders/waves.wgsl");
 const MODES: &str = include_str!("../../shaders/waves_modes.wgsl");
 const FINISH: &str = include_str!("../../shaders/waves_finish.wgsl");
 
 /// Bytes between the uniform structs of the FFT's stages (the WebGPU
 /// baseline's uniform offset alignment).
-const STAGE_STRIDE: u64 = 256;
+pub(super) const STAGE_STRIDE: u64 = 256;
 /// Threads per workgroup of every kernel here.
 const GROUP: u32 = 64;
 
 /// One FFT stage's uniform (`Stage` in `waves.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct Stage {
-    n: u32,
-    p: u32,
-    line_stride: u32,
-    pos_stride: u32,
-    sign: f32,
-    layers: u32,
-    pad: [u32; 2],
+pub(super) struct Stage {
+    pub n: u32,
+    pub p: u32,
+    pub line_stride: u32,
+    pub pos_stride: u32,
+    pub sign: f32,
+    pub layers: u32,
+    pub pad: [u32; 2],
 }
 
 /// The rotation's uniform (`Modes` in `waves_modes.wgsl`).

@@ -108,6 +108,13 @@ impl SpectralSurface {
         &self.sea
     }
 
+    /// The energy-weighted mean wavenumber (1/m) the fluid's velocity
+    /// decays with below the mean level.
+    #[cfg(feature = "gpu")]
+    pub(crate) fn mean_wavenumber(&self) -> f64 {
+        self.mean_wavenumber
+    }
+
     /// The tile's fields at time `t` (s): evaluated on the first read at
     /// `t` and shared by every later read at `t`, the last
     /// [`SpectralSurface::KEPT`] times kept (a step reads its own time, and

@@ -712,29 +712,8 @@ impl SpectralSea {
     /// their gradients and twists, and the particles' velocity).
     pub fn fields(&self, t: f64) -> SeaFields {
         let n = self.cells;
-        let dk = std::f64::consts::TAU / self.size;
         let lambda = self.choppiness;
-        // Per mode: A e^{−iωt}, k and k̂, ω; the rows in parallel, each
-        // mode without a division.
-        let mut turned = vec![Turned::default(); n * n];
-        turned.par_chunks_mut(n).enumerate().for_each(|(lz, row)| {
-            let kz = signed(lz, n) as f64 * dk;
-            for (lx, m) in row.iter_mut().enumerate() {
-                let a = self.amplitudes[lz * n + lx];
-                let k = [signed(lx, n) as f64 * dk, kz];
-                let kk = k[0].hypot(k[1]);
-                if kk == 0.0 || a.norm_sqr() == 0.0 {
-                    continue;
-                }
-                let omega = (self.gravity * kk).sqrt();
-                *m = Turned {
-                    a: a * Complex::from_polar(1.0, -omega * t),
-                    k,
-                    unit: [k[0] / kk, k[1] / kk],
-                    omega,
-                };
-            }
-        });
+        let turned = self.turned(t);
         let i = Complex::i();
         let turned = &turned[..];
         // The seven transforms, two real fields each, in parallel: each
@@ -804,6 +783,43 @@ impl SpectralSea {
             twist: [hxz, dx_xz, dz_xz],
             velocity: [vx, vy, vz],
         }
+    }
+
+    /// Every mode at time `t` (s), at its index: `A e^{−iωt}`, `k`, `k̂`
+    /// and `ω` (all zero for the mean and for modes of no amplitude).
+    fn turned(&self, t: f64) -> Vec<Turned> {
+        let n = self.cells;
+        let dk = std::f64::consts::TAU / self.size;
+        // Per mode: A e^{−iωt}, k and k̂, ω; the rows in parallel, each
+        // mode without a division.
+        let mut turned = vec![Turned::default(); n * n];
+        turned.par_chunks_mut(n).enumerate().for_each(|(lz, row)| {
+            let kz = signed(lz, n) as f64 * dk;
+            for (lx, m) in row.iter_mut().enumerate() {
+                let a = self.amplitudes[lz * n + lx];
+                let k = [signed(lx, n) as f64 * dk, kz];
+                let kk = k[0].hypot(k[1]);
+                if kk == 0.0 || a.norm_sqr() == 0.0 {
+                    continue;
+                }
+                let omega = (self.gravity * kk).sqrt();
+                *m = Turned {
+                    a: a * Complex::from_polar(1.0, -omega * t),
+                    k,
+                    unit: [k[0] / kk, k[1] / kk],
+                    omega,
+                };
+            }
+        });
+        turned
+    }
+
+    /// Every mode's amplitude turned to time `t` (s), `A e^{−iωt}` (m), at
+    /// its index: what [`SpectralSea::fields`] transforms (the GPU's read
+    /// of the sea transforms it on the device).
+    #[cfg(feature = "gpu")]
+    pub(crate) fn turned_amplitudes(&self, t: f64) -> Vec<Complex<f64>> {
+        self.turned(t).into_iter().map(|m| m.a).collect()
     }
 }
 
