@@ -3,7 +3,9 @@
 
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions, load_mesh};
-use soak_hydro::{Drag, Gerstner, GerstnerWave, MassModel, SeaSampling, Water};
+use soak_hydro::{
+    Drag, Gerstner, GerstnerWave, MassModel, SeaSampling, SeaSpectrum, SpectralSea, SpectralSurface, Water,
+};
 use soak_rapier::{BodyDesc, Effects, ForceGenerator};
 
 /// A device of its own for the test; `None` without an adapter (a failure
@@ -59,8 +61,11 @@ fn world(
 #[test]
 fn gpu_and_cpu_worlds_follow_the_same_trajectories() {
     let Some(gpu) = device() else { return };
-    let make = |wavy: bool| {
-        if wavy {
+    // Calm water, a Gerstner wave, and a JONSWAP sea (its tile evaluated
+    // on the device in each step's batch).
+    let make = |kind: usize| match kind {
+        0 => Water::calm(0.0),
+        1 => {
             let wave = GerstnerWave {
                 amplitude: 0.2,
                 wavelength: 7.0,
@@ -69,13 +74,16 @@ fn gpu_and_cpu_worlds_follow_the_same_trajectories() {
                 phase: 0.0,
             };
             Water::new(Gerstner::new(0.0, vec![wave], 9.81).unwrap())
-        } else {
-            Water::calm(0.0)
+        }
+        _ => {
+            let spectrum = SeaSpectrum::jonswap(0.5, 3.0);
+            let sea = SpectralSea::realize(&spectrum, 0.0, spectrum.default_tile(9.81), 64, 3, 9.81).unwrap();
+            Water::new(SpectralSurface::new(sea))
         }
     };
-    for wavy in [false, true] {
-        let (mut wc, mut sc, hc) = world(make(wavy), None);
-        let (mut wg, mut sg, hg) = world(make(wavy), Some(&gpu));
+    for kind in 0..3 {
+        let (mut wc, mut sc, hc) = world(make(kind), None);
+        let (mut wg, mut sg, hg) = world(make(kind), Some(&gpu));
         assert!(sg.uses_gpu() && !sc.uses_gpu());
         // One second: forces agree closely step by step, trajectories stay together.
         for step in 0..60 {
@@ -86,12 +94,15 @@ fn gpu_and_cpu_worlds_follow_the_same_trajectories() {
                 let scale = fa.force.norm().max(100.0);
                 assert!(
                     (fa.force - fb.force).norm() < 2e-3 * scale,
-                    "step {step} body {k}: {} vs {}",
+                    "water {kind} step {step} body {k}: {} vs {}",
                     fa.force,
                     fb.force
                 );
                 let (pa, pb) = (wc.bodies[*a].translation(), wg.bodies[*b].translation());
-                assert!((pa - pb).length() < 1e-3, "step {step} body {k}: {pa} vs {pb}");
+                assert!(
+                    (pa - pb).length() < 1e-3,
+                    "water {kind} step {step} body {k}: {pa} vs {pb}"
+                );
             }
         }
         assert_eq!(sg.firewall().count(), 0);

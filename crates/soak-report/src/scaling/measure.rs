@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use rapier3d::prelude::*;
 use soak_bake::{Atlas, BakeOptions, builtin};
-use soak_hydro::{Drag, DragTexels, MassModel, Water};
+use soak_hydro::{Drag, DragTexels, MassModel, SeaSampling, Water};
 use soak_rapier::soak_seakeeping::{FloatingBody, RadiationModel};
 use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakError, radiation_settings};
 
@@ -194,9 +194,12 @@ fn build(
         None => None,
         Some(w) => {
             let g = ForceGenerator::new(water(w)?);
-            Some(match column.device {
-                Device::Cpu => g,
-                Device::Gpu => gpu(g)?,
+            Some(match (column.device, w) {
+                (Device::Cpu, _) => g,
+                // The spectral sea's tile evaluated on the device in the
+                // step's own submission, every texel reading it there.
+                (Device::Gpu, WaterKind::Jonswap) => gpu(g)?.with_sea_sampling(SeaSampling::Exact),
+                (Device::Gpu, _) => gpu(g)?,
             })
         }
     };

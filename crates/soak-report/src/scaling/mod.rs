@@ -161,8 +161,9 @@ impl Column {
     /// The columns measured, in table order: Rapier alone, then per
     /// water (calm, swell, JONSWAP) buoyancy, buoyancy with drag and
     /// buoyancy with radiation on the CPU, then (with `gpu`) the first two
-    /// on the GPU for each water (a spectral sea read there through each
-    /// body's patch, sampled on the CPU).
+    /// on the GPU for each water (the swell read there through each body's
+    /// patch, sampled on the CPU; the JONSWAP sea read exactly, its tile
+    /// evaluated on the device in each step's batch).
     pub fn all(gpu: bool) -> Vec<Column> {
         Self::on(gpu, &WaterKind::ALL)
     }
