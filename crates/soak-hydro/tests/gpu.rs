@@ -1063,6 +1063,26 @@ fn an_atlas_larger_than_the_binding_limit_is_split_and_agrees() {
         }
         other => panic!("expected TooLarge, got {other:?}"),
     }
+    // A spectral sea whose tile's fields (16 floats a node, 4 MB at 256²)
+    // would not fit a binding, read on the device.
+    let spectrum = SeaSpectrum::jonswap(0.5, 3.0);
+    let ocean = Water::new(SpectralSurface::new(
+        SpectralSea::realize(&spectrum, 0.0, 50.0, 256, 1, 9.80665).unwrap(),
+    ));
+    let one = [GpuBody::from((
+        split,
+        &ocean,
+        BodyState::at_rest(Isometry3::identity()),
+        mass,
+        exact_options(),
+    ))];
+    match small.evaluate_batch(&one, 0.0) {
+        Err(e @ GpuHydroError::Gpu(GpuError::TooLarge { needed, limit: l, .. })) => {
+            assert!(needed > l && l == limit);
+            eprintln!("refused as expected: {e}");
+        }
+        other => panic!("expected TooLarge, got {other:?}"),
+    }
     assert!(matches!(
         GpuHydro::with_options(&d.0, &d.1, GpuOptions::default().with_max_storage_binding(1000)),
         Err(GpuHydroError::Gpu(GpuError::LimitTooSmall { .. }))

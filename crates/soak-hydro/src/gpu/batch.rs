@@ -267,6 +267,11 @@ impl GpuHydro {
             "the height fields and sampled surfaces of this batch",
             (heights.samples.len() * 4) as u64,
         )?;
+        too_large("the spectral seas' transforms of this batch", seas.layer_bytes())?;
+        too_large(
+            "the spectral seas' modes of this batch",
+            (seas.modes.len() * 8) as u64,
+        )?;
 
         let items: Vec<Item> = per_page.concat();
         let mut dispatches = Vec::new();
