@@ -637,7 +637,7 @@ impl TiledAtlas {
                 under.add_difference(&self.prefix[done.end], &self.prefix[done.start]);
             }
             if under.texels > 0 {
-                add_closed_form(&mut local, &under, alpha, &beta, &g);
+                let _ = add_closed_form(&mut local, &under, alpha, &beta, &g);
             }
             for (ranges, side) in [(cut_wet, PlanarTexels::Dry), (cut, PlanarTexels::Wet)] {
                 if !ranges.is_empty() {
@@ -735,13 +735,17 @@ impl Moments for TileMoments {
     }
 }
 
+/// Adds the planar closed form of the tile with moments `m` under the
+/// depth `α + β·x` (object axes) to `s`, and returns `S1ᵀ g` and
+/// `Σ_j g_j S2_j` (the moments weighted by the area vectors' up component,
+/// for callers that take the depth further).
 fn add_closed_form<M: Moments>(
     s: &mut BuoyancySums,
     m: &M,
     alpha: f64,
     beta: &Vector3<f64>,
     g: &Vector3<f64>,
-) {
+) -> (Vector3<f64>, Matrix3<f64>) {
     let (s0, s1, s2) = (*m.s0(), *m.s1(), m.s2());
     // Σ A d = α S0 + S1 β
     let ad = alpha * s0 + s1 * beta;
@@ -770,4 +774,5 @@ fn add_closed_form<M: Moments>(
     s.d2a += 0.5 * (alpha * alpha * s0 + 2.0 * alpha * (s1 * beta) + bsb);
     s.area += m.area();
     s.count += m.texels() as usize;
+    (t1, t2)
 }

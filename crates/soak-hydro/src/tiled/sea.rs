@@ -76,6 +76,10 @@ struct SeaTiles<'a> {
     g: Vector3<f64>,
     /// The horizontal rows of `rot`: `Δ = L (x − c)`.
     l: Matrix2x3<f64>,
+    /// The same rows `l₀`, `l₂` as vectors.
+    rows: [Vector3<f64>; 2],
+    /// `l₀l₀ᵀ`, `l₀l₂ᵀ + l₂l₀ᵀ` and `l₂l₂ᵀ`: `Q = Lᵀ H L` from `H`.
+    ll: [Sym; 3],
     ow: Vector3<f64>,
     /// The centre of mass from the atlas origin, world axes, m.
     com: Vector3<f64>,
@@ -138,6 +142,15 @@ impl TiledAtlas {
             rot,
             g: rot.transpose() * Vector3::y(),
             l: Matrix2x3::from_rows(&[rot.row(0), rot.row(2)]),
+            rows: [rot.row(0).transpose(), rot.row(2).transpose()],
+            ll: {
+                let (r0, r2) = (rot.row(0), rot.row(2));
+                [
+                    std::array::from_fn(|e| r0[SYM[e].0] * r0[SYM[e].1]),
+                    std::array::from_fn(|e| r0[SYM[e].0] * r2[SYM[e].1] + r2[SYM[e].0] * r0[SYM[e].1]),
+                    std::array::from_fn(|e| r2[SYM[e].0] * r2[SYM[e].1]),
+                ]
+            },
             ow: frame.ow,
             com: frame.com - frame.ow,
             top,
@@ -346,16 +359,17 @@ impl TiledAtlas {
         }
         part.shallow |= dc - reach < c.delta;
         let mut t = BuoyancySums::default();
-        add_closed_form(&mut t, m, alpha, &beta, &c.g);
+        let (t1, t2) = add_closed_form(&mut t, m, alpha, &beta, &c.g);
         // The quadratic part: u_j = Σ A_j δ = ½ tr(Q M_j), with
         // M_j = Σ A_j (x − c)(x − c)ᵀ = S2_j − S1_j cᵀ − c S1_jᵀ + S0_j c cᵀ
         // from the moments (`Q` symmetric): ½ tr(Q S2_j) − cᵀQ S1_j + ½ S0_j cᵀQc.
-        let q = c.l.transpose() * hm * c.l;
-        let qc = q * centre;
+        // Q = Lᵀ H L = H_xx l₀l₀ᵀ + H_xz (l₀l₂ᵀ + l₂l₀ᵀ) + H_zz l₂l₂ᵀ.
+        let [hxx, hxz, hzz] = hess;
+        let q: Sym = std::array::from_fn(|e| hxx * c.ll[0][e] + hxz * c.ll[1][e] + hzz * c.ll[2][e]);
+        let qc = sym_mul(&q, &centre);
         let cqc = centre.dot(&qc);
         let s1qc = m.s1 * qc;
-        let u =
-            Vector3::from_fn(|j, _| 0.5 * q.component_mul(&m.s2[j]).sum() - s1qc[j] + 0.5 * m.s0[j] * cqc);
+        let u = Vector3::from_fn(|j, _| 0.5 * sym_trace(&q, &m.s2[j]) - s1qc[j] + 0.5 * m.s0[j] * cqc);
         let gu = c.g.dot(&u);
         t.vol -= gu;
         t.wr -= gu * centre;
@@ -373,30 +387,36 @@ impl TiledAtlas {
             let first = t.wr - centre * w;
             let rho_c = c.rot * centre - c.com;
             let s3 = Vector3::new(slope.x, 0.0, slope.y);
-            let hl = hm * c.l;
-            let ds = hl * first;
-            let ds3 = Vector3::new(ds.x, 0.0, ds.y);
-            let t1 = m.s1.transpose() * c.g;
-            let mg = (m.s2[0] * c.g.x + m.s2[1] * c.g.y + m.s2[2] * c.g.z)
-                - t1 * centre.transpose()
-                - centre * t1.transpose()
-                + centre * centre.transpose() * c.g.dot(&m.s0);
-            // Σ_kl M_kl R e_k × P e_l = Σ_k R e_k × (P M) e_k.
-            let hlm = hl * mg;
+            let [r0, r2] = &c.rows;
+            // The rows of H L.
+            let hl = [hxx * r0 + hxz * r2, hxz * r0 + hzz * r2];
+            let ds3 = Vector3::new(hl[0].dot(&first), 0.0, hl[1].dot(&first));
+            // M_g = Σ_j g_j S2_j − T1 cᵀ − c T1ᵀ + (g·S0) c cᵀ, T1 = S1ᵀ g.
+            let gs0 = c.g.dot(&m.s0);
+            let mg: Sym = std::array::from_fn(|e| {
+                let (k, l) = SYM[e];
+                t2[(k, l)] - t1[k] * centre[l] - centre[k] * t1[l] + gs0 * centre[k] * centre[l]
+            });
+            // The rows of L M_g (M_g symmetric), of H L M_g, and
+            // N = L M_g Lᵀ.
+            let lm = [sym_mul(&mg, r0), sym_mul(&mg, r2)];
+            let hlm = [hxx * lm[0] + hxz * lm[1], hxz * lm[0] + hzz * lm[1]];
+            let (n00, n01, n11) = (lm[0].dot(r0), lm[0].dot(r2), lm[1].dot(r2));
+            // Σ_kl M_kl R e_k × P e_l = Σ_k R e_k × (P M) e_k, with
+            // (P M) e_k = (hlm₀ₖ, 0, hlm₁ₖ).
             let mut second = Vector3::zeros();
             for k in 0..3 {
-                let rk: Vector3<f64> = c.rot.column(k).into();
-                second += rk.cross(&Vector3::new(hlm[(0, k)], 0.0, hlm[(1, k)]));
+                let rk = c.rot.column(k);
+                let (vx, vz) = (hlm[0][k], hlm[1][k]);
+                second += Vector3::new(rk[1] * vz, rk[2] * vx - rk[0] * vz, -rk[1] * vx);
             }
             // The slope's second-order part ½ D³h[Δ, Δ] against the same
-            // second moment: ½ tr(T_i N) per slope component, N = L M_g Lᵀ.
+            // second moment: ½ tr(T_i N) per slope component.
             let [xxx, xxz, xzz, zzz] = third;
-            let n = c.l * mg * c.l.transpose();
-            let curl = |t: Matrix2<f64>| 0.5 * t.component_mul(&n).sum();
             let ds2 = Vector3::new(
-                curl(Matrix2::new(xxx, xxz, xxz, xzz)),
+                0.5 * (xxx * n00 + 2.0 * xxz * n01 + xzz * n11),
                 0.0,
-                curl(Matrix2::new(xxz, xzz, xzz, zzz)),
+                0.5 * (xxz * n00 + 2.0 * xzz * n01 + zzz * n11),
             );
             second += rho_c.cross(&ds2);
             part.world.slope = part.world.slope
@@ -409,6 +429,31 @@ impl TiledAtlas {
         part.local = part.local + t;
         SeaTile::Closed
     }
+}
+
+/// A symmetric 3 × 3 matrix by its entries `SYM`.
+type Sym = [f64; 6];
+
+/// The entries of a [`Sym`]: the diagonal, then above it.
+const SYM: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (0, 2)];
+
+/// `a v`.
+#[inline]
+fn sym_mul(a: &Sym, v: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        a[0] * v.x + a[3] * v.y + a[5] * v.z,
+        a[3] * v.x + a[1] * v.y + a[4] * v.z,
+        a[5] * v.x + a[4] * v.y + a[2] * v.z,
+    )
+}
+
+/// `tr(a b)` for `b` symmetric.
+#[inline]
+fn sym_trace(a: &Sym, b: &Matrix3<f64>) -> f64 {
+    a[0] * b[(0, 0)]
+        + a[1] * b[(1, 1)]
+        + a[2] * b[(2, 2)]
+        + 2.0 * (a[3] * b[(0, 1)] + a[4] * b[(1, 2)] + a[5] * b[(0, 2)])
 }
 
 /// Where a tile lies under the sea.
