@@ -405,9 +405,7 @@ impl TiledAtlas {
             // Σ_kl M_kl R e_k × P e_l = Σ_k R e_k × (P M) e_k, with
             // (P M) e_k = (hlm₀ₖ, 0, hlm₁ₖ).
             let mut second = Vector3::zeros();
-            for k in 0..3 {
-                let rk = c.rot.column(k);
-                let (vx, vz) = (hlm[0][k], hlm[1][k]);
+            for ((rk, &vx), &vz) in c.rot.column_iter().zip(hlm[0].iter()).zip(hlm[1].iter()) {
                 second += Vector3::new(rk[1] * vz, rk[2] * vx - rk[0] * vz, -rk[1] * vx);
             }
             // The slope's second-order part ½ D³h[Δ, Δ] against the same
