@@ -10,21 +10,7 @@
 //   3: ∂Dx/∂x, ∂Dz/∂z
 //
 // Layer L of node k holds `F + i G` with `F = ½ (f(m) + conj f(o))`, `G` the
-// same of `g`, `m` the mode at k and `o` the one opposite it.
-
-struct Sea {
-    // Cells per side, first mode in `modes`, first float of the fields in
-    // `heights` (sea_unpack.wgsl), unused.
-    n: u32,
-    modes_first: u32,
-    fields_first: u32,
-    _pad0: u32,
-    // Wavenumber step 2π/L (1/m), choppiness, gravity (m/s²), cell side (m).
-    dk: f32,
-    lambda: f32,
-    gravity: f32,
-    cell: f32,
-}
+// same of `g`, `m` the mode at k and `o` the one opposite it. After sea.wgsl.
 
 @group(0) @binding(0) var<storage, read> modes: array<vec2<f32>>;
 @group(0) @binding(1) var<storage, read_write> spec: array<vec2<f32>>;

@@ -9,17 +9,8 @@
 //           (∂Dx/∂x, ∂Dx/∂z, d ∂²Dx/∂x∂z): the Hermite data of Dx in cells
 //   8..12   the same of Dz
 //   12..15  the water's velocity at the node (m/s); 15 unused
-
-struct Sea {
-    n: u32,
-    modes_first: u32,
-    fields_first: u32,
-    _pad0: u32,
-    dk: f32,
-    lambda: f32,
-    gravity: f32,
-    cell: f32,
-}
+//
+// After sea.wgsl.
 
 @group(0) @binding(0) var<storage, read> spec: array<vec2<f32>>;
 @group(0) @binding(1) var<storage, read_write> heights: array<f32>;

@@ -11,6 +11,7 @@ const BUOYANCY: &str = include_str!("../../shaders/buoyancy.wgsl");
 const REDUCE: &str = include_str!("../../shaders/reduce.wgsl");
 const MASS: &str = include_str!("../../shaders/mass.wgsl");
 const DEFORM: &str = include_str!("../../shaders/deform.wgsl");
+const SEA: &str = include_str!("../../shaders/sea.wgsl");
 const SEA_MODES: &str = include_str!("../../shaders/sea_modes.wgsl");
 const SEA_UNPACK: &str = include_str!("../../shaders/sea_unpack.wgsl");
 
@@ -25,9 +26,9 @@ pub fn kernel_sources() -> Vec<(&'static str, String)> {
             reduce_source(super::layout::MASS_SLOTS, super::layout::MASS_SLOTS),
         ),
         ("deform", [BINDINGS, DEFORM].concat()),
-        ("sea_modes", SEA_MODES.to_string()),
+        ("sea_modes", [SEA, SEA_MODES].concat()),
         ("sea_fft", super::waves::FFT.to_string()),
-        ("sea_unpack", SEA_UNPACK.to_string()),
+        ("sea_unpack", [SEA, SEA_UNPACK].concat()),
     ]
 }
 
