@@ -404,8 +404,10 @@ impl TiledAtlas {
             let (n00, n01, n11) = (lm[0].dot(r0), lm[0].dot(r2), lm[1].dot(r2));
             // Σ_kl M_kl R e_k × P e_l = Σ_k R e_k × (P M) e_k, with
             // (P M) e_k = (hlm₀ₖ, 0, hlm₁ₖ).
+            let (p0, p1): ([f64; 3], [f64; 3]) = (hlm[0].into(), hlm[1].into());
             let mut second = Vector3::zeros();
-            for ((rk, &vx), &vz) in c.rot.column_iter().zip(hlm[0].iter()).zip(hlm[1].iter()) {
+            for (k, (vx, vz)) in p0.into_iter().zip(p1).enumerate() {
+                let rk = c.rot.column(k);
                 second += Vector3::new(rk[1] * vz, rk[2] * vx - rk[0] * vz, -rk[1] * vx);
             }
             // The slope's second-order part ½ D³h[Δ, Δ] against the same

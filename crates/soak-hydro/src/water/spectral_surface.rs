@@ -170,11 +170,9 @@ impl SpectralSurface {
         let [vx, vy, vz] = &f.velocity;
         let n = f.cells;
         let ([ix, iz], [u, v]) = f.cell(point[0], point[1]);
-        let at = |c: &[f64]| {
-            let i = |a: usize, b: usize| ((iz + b) % n) * n + (ix + a) % n;
-            (1.0 - v) * ((1.0 - u) * c[i(0, 0)] + u * c[i(1, 0)])
-                + v * ((1.0 - u) * c[i(0, 1)] + u * c[i(1, 1)])
-        };
+        let [c00, c10, c01, c11] = super::spectrum::corners(ix, iz, n);
+        let at =
+            |c: &[f64]| (1.0 - v) * ((1.0 - u) * c[c00] + u * c[c10]) + v * ((1.0 - u) * c[c01] + u * c[c11]);
         Vector3::new(at(vx), at(vy), at(vz))
     }
 

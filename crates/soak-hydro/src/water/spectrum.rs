@@ -368,8 +368,9 @@ impl SeaFields {
         let ((bu, du, _), (bv, dv, _)) = (hermite_basis(u), hermite_basis(v));
         let fields = self.interpolated();
         let mut out = [(0.0, [0.0; 2]); 3];
-        for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-            let i = ((iz + b) % n) * n + (ix + a) % n;
+        let corner = corners(ix, iz, n);
+        for (k, (a, b)) in [(0, 0), (1, 0), (0, 1), (1, 1)].into_iter().enumerate() {
+            let i = corner[k];
             // The corner's four basis products, and their u- and
             // v-derivatives.
             let w = [
@@ -412,8 +413,9 @@ impl SeaFields {
         let ((bu, du, eu), (bv, dv, ev)) = (hermite_basis(u), hermite_basis(v));
         let fields = self.interpolated();
         let mut out = [[0.0; 3]; 3];
-        for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-            let i = ((iz + b) % n) * n + (ix + a) % n;
+        let corner = corners(ix, iz, n);
+        for (k, (a, b)) in [(0, 0), (1, 0), (0, 1), (1, 1)].into_iter().enumerate() {
+            let i = corner[k];
             // The corner's four basis products' uu, uv and vv derivatives.
             let pair = |p: &[f64; 4], q: &[f64; 4]| {
                 [p[a] * q[b], p[a + 2] * q[b], p[a] * q[b + 2], p[a + 2] * q[b + 2]]
@@ -821,6 +823,16 @@ impl SpectralSea {
     pub(crate) fn turned_amplitudes(&self, t: f64) -> Vec<Complex<f64>> {
         self.turned(t).into_iter().map(|m| m.a).collect()
     }
+}
+
+/// The nodes at the corners `(0, 0)`, `(1, 0)`, `(0, 1)` and `(1, 1)` of
+/// cell `(ix, iz)` of a tile of `n` cells a side, wrapped into it.
+pub(super) fn corners(ix: usize, iz: usize, n: usize) -> [usize; 4] {
+    let (ix1, iz1) = (
+        if ix + 1 == n { 0 } else { ix + 1 },
+        if iz + 1 == n { 0 } else { iz + 1 },
+    );
+    [iz * n + ix, iz * n + ix1, iz1 * n + ix, iz1 * n + ix1]
 }
 
 /// The cubic Hermite basis on [0, 1] at `t` (value at 0, value at 1,
