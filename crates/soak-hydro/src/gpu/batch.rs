@@ -210,7 +210,7 @@ impl GpuHydro {
                 .as_any()
                 .and_then(|a| a.downcast_ref::<crate::water::SpectralSurface>())
             {
-                Some(sea) => seas.encode(i, sea, &ow, t, &mut body, &mut heights)?,
+                Some(sea) => seas.encode(i, sea, &ow, t, &mut body)?,
                 None => encode_surface(i, water, &ow, t, &mut body, &mut waves, &mut heights)?,
             }
             gpu_bodies.push(body);
@@ -246,6 +246,9 @@ impl GpuHydro {
             }
             ranges.push([first as u32, (partials - first) as u32]);
         }
+        // The seas' fields after the samples: the device writes them.
+        seas.place(heights.samples.len(), &mut gpu_bodies)?;
+        let height_bytes = ((heights.samples.len() + seas.fields) * 4) as u64;
 
         let limit = self.limit;
         let too_large = |what, needed: u64| -> Result<(), GpuHydroError> {
@@ -264,8 +267,8 @@ impl GpuHydro {
         )?;
         too_large("the Gerstner waves of this batch", (waves.len() * 32) as u64)?;
         too_large(
-            "the height fields and sampled surfaces of this batch",
-            (heights.samples.len() * 4) as u64,
+            "the height fields, sampled surfaces and spectral seas of this batch",
+            height_bytes,
         )?;
         too_large("the spectral seas' transforms of this batch", seas.layer_bytes())?;
         too_large(
@@ -299,7 +302,7 @@ impl GpuHydro {
             queue.write_buffer(body_buf, 0, bytemuck::cast_slice(&gpu_bodies));
             let wave_buf = s.waves.ensure(device, (waves.len() * 32) as u64, cap);
             queue.write_buffer(wave_buf, 0, bytemuck::cast_slice(&waves));
-            let height_buf = s.heights.ensure(device, (heights.samples.len() * 4) as u64, cap);
+            let height_buf = s.heights.ensure(device, height_bytes, cap);
             queue.write_buffer(height_buf, 0, bytemuck::cast_slice(&heights.samples));
             let item_buf = s
                 .items
@@ -415,11 +418,7 @@ impl GpuHydro {
         let forth = k.sea_fft.bind(device, &[spec, scratch, uniforms]);
         let back = k.sea_fft.bind(device, &[scratch, spec, uniforms]);
         let unpack = k.sea_unpack.bind(device, &[spec, s.heights.get(), uniforms]);
-        let groups = |threads: u32| {
-            let count = threads.div_ceil(64);
-            let x = count.min(super::layout::MAX_GROUPS_X);
-            [x, count.div_ceil(x)]
-        };
+        let groups = super::layout::thread_groups;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("soak spectral sea"),
             timestamp_writes: None,

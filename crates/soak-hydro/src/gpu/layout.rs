@@ -22,6 +22,17 @@ pub(crate) const TRIBARY_BYTES: u64 = 16;
 pub(crate) const DISPATCH_STRIDE: u64 = 256;
 /// Workgroups per dispatch dimension the WebGPU baseline allows.
 pub(crate) const MAX_GROUPS_X: u32 = 65535;
+/// Threads per workgroup of every kernel (`@workgroup_size(64)`).
+pub(crate) const GROUP_THREADS: u32 = 64;
+
+/// Workgroups `[x, y]` for one thread per element of `threads` elements,
+/// at most [`MAX_GROUPS_X`] along x (a kernel counts its element as
+/// `(y · x_groups + x) · 64 + local`, and skips those past the end).
+pub(crate) fn thread_groups(threads: u32) -> [u32; 2] {
+    let count = threads.div_ceil(GROUP_THREADS);
+    let x = count.clamp(1, MAX_GROUPS_X);
+    [x, count.div_ceil(x)]
+}
 
 pub(crate) const SURFACE_PLANE: u32 = 0;
 pub(crate) const SURFACE_GERSTNER: u32 = 1;

@@ -14,7 +14,6 @@ use nalgebra::Vector3;
 
 use super::error::GpuHydroError;
 use super::layout::{Body, SEA_NODE_FLOATS, SURFACE_SPECTRAL};
-use super::surface::HeightFields;
 use super::waves::{STAGE_STRIDE, Stage};
 use crate::water::SpectralSurface;
 use soak_gpu::GpuError;
@@ -45,6 +44,10 @@ pub(crate) struct DeviceSeas {
     /// Every sea's turned amplitudes, end to end (re, im).
     pub modes: Vec<[f32; 2]>,
     pub seas: Vec<SeaUniform>,
+    /// Floats the device writes of every sea's fields, end to end: after
+    /// the batch's own samples in the height buffer, from
+    /// [`DeviceSeas::place`] on.
+    pub fields: usize,
 }
 
 impl DeviceSeas {
@@ -55,11 +58,14 @@ impl DeviceSeas {
 
     /// Fills `body`'s surface fields for the spectral sea `s` at time `t`
     /// (s), seen from the body's atlas origin at world `ow` (m): the sea's
-    /// modes taken and room for its fields made in `heights` on its first
-    /// body.
+    /// modes taken and room counted for its fields on its first body (its
+    /// fields' first float counted from the seas' own, until
+    /// [`DeviceSeas::place`]).
     ///
     /// # Errors
-    /// [`GpuHydroError::Gpu`] for fields a `u32` does not index.
+    /// [`GpuHydroError::Gpu`] for modes or fields a `u32` does not index;
+    /// [`GpuHydroError::Water`] for a mode whose turned amplitude is not
+    /// finite.
     pub(crate) fn encode(
         &mut self,
         index: usize,
@@ -67,7 +73,6 @@ impl DeviceSeas {
         ow: &Vector3<f64>,
         t: f64,
         body: &mut Body,
-        heights: &mut HeightFields,
     ) -> Result<(), GpuHydroError> {
         let sea = s.sea();
         let n = sea.cells;
@@ -76,12 +81,12 @@ impl DeviceSeas {
             Some(&(_, k)) => k,
             None => {
                 let floats = n * n * SEA_NODE_FLOATS;
-                let end = heights.samples.len() as u64 + floats as u64;
+                let end = self.fields as u64 + floats as u64;
                 let modes_end = self.modes.len() as u64 + (n * n) as u64;
                 if end > u32::MAX as u64 || modes_end > u32::MAX as u64 {
                     return Err(GpuError::TooLarge {
                         what: "the spectral seas of this batch",
-                        needed: end * 4,
+                        needed: end.max(modes_end) * 4,
                         limit: u32::MAX as u64 * 4,
                     }
                     .into());
@@ -89,7 +94,7 @@ impl DeviceSeas {
                 let uniform = SeaUniform {
                     n: n as u32,
                     modes_first: self.modes.len() as u32,
-                    fields_first: heights.samples.len() as u32,
+                    fields_first: self.fields as u32,
                     pad: 0,
                     dk: (std::f64::consts::TAU / sea.size) as f32,
                     lambda: sea.choppiness as f32,
@@ -108,8 +113,7 @@ impl DeviceSeas {
                 }
                 self.modes
                     .extend(turned.iter().map(|a| [a.re as f32, a.im as f32]));
-                // The device writes the fields here.
-                heights.samples.resize(heights.samples.len() + floats, 0.0);
+                self.fields += floats;
                 self.seas.push(uniform);
                 self.seen.push((key, self.seas.len() - 1));
                 self.seas.len() - 1
@@ -139,6 +143,33 @@ impl DeviceSeas {
         body.surface = [fx, fz, (1.0 / d) as f32, d as f32];
         body.surface2 = [(sea.level - ow.y) as f32, s.mean_wavenumber() as f32, 0.0, 0.0];
         body.current = [0.0; 4];
+        Ok(())
+    }
+
+    /// Lays the seas' fields after the batch's `samples` floats of the
+    /// height buffer (so that the upload stops there, and the device writes
+    /// the rest): every sea's first float and those of `bodies` reading one
+    /// moved on by `samples`.
+    ///
+    /// # Errors
+    /// [`GpuHydroError::Gpu`] where the whole does not fit a `u32` index.
+    pub(crate) fn place(&mut self, samples: usize, bodies: &mut [Body]) -> Result<(), GpuHydroError> {
+        let end = samples as u64 + self.fields as u64;
+        if end > u32::MAX as u64 {
+            return Err(GpuError::TooLarge {
+                what: "the height fields and spectral seas of this batch",
+                needed: end * 4,
+                limit: u32::MAX as u64 * 4,
+            }
+            .into());
+        }
+        let base = samples as u32;
+        for sea in &mut self.seas {
+            sea.fields_first += base;
+        }
+        for body in bodies.iter_mut().filter(|b| b.info[0] == SURFACE_SPECTRAL) {
+            body.info[1] += base;
+        }
         Ok(())
     }
 

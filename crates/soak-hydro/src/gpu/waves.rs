@@ -17,8 +17,6 @@ const FINISH: &str = include_str!("../../shaders/waves_finish.wgsl");
 /// Bytes between the uniform structs of the FFT's stages (the WebGPU
 /// baseline's uniform offset alignment).
 pub(super) const STAGE_STRIDE: u64 = 256;
-/// Threads per workgroup of every kernel here.
-const GROUP: u32 = 64;
 
 /// One FFT stage's uniform (`Stage` in `waves.wgsl`).
 #[repr(C)]
@@ -329,11 +327,7 @@ impl GpuWaves {
             dt: dt as f32,
         };
         let nn = (n * n) as u32;
-        let groups = |threads: u32| {
-            let count = threads.div_ceil(GROUP);
-            let x = count.min(65_535);
-            [x, count.div_ceil(x)]
-        };
+        let groups = super::layout::thread_groups;
         scoped::<_, GpuHydroError>(&self.device, "waves: step", 0, || {
             self.queue
                 .write_buffer(&self.modes, 0, bytemuck::bytes_of(&modes));
