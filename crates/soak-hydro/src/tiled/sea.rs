@@ -66,6 +66,19 @@ use crate::water::{Surface, SurfacePatch};
 /// torque (`soak accuracy` puts both against the exact inversion).
 pub const SEA_TILE_TOLERANCE: f64 = 1e-4;
 
+/// How far a tile's texels may read the surface from its polynomial in a
+/// pass for the drag alone, as a fraction of the body's bounding radius.
+///
+/// That pass takes nothing of a texel's depth but its sign (whether the
+/// texel is under water), and its texels are coarse: a depth off by the
+/// polynomial's remainder, a few millimetres on a half-metre body, moves
+/// only the texels that close to the waterline, a few per cent of a drag
+/// texel's size (on the bench's box on its JONSWAP sea, the remainders of
+/// its cut drag tiles are 0.1 to 0.7 mm and its drag the same to 15
+/// digits). The polynomial's read costs a few multiply-adds a texel, the
+/// patch's cells far more.
+const SEA_DRAG_DEPTH_TOLERANCE: f64 = 1e-2;
+
 /// Groups of tiles per parallel task.
 const GROUP_CHUNK: usize = 32;
 
@@ -86,6 +99,10 @@ struct SeaTiles<'a> {
     /// Highest height of the patch, m.
     top: f64,
     tolerance: f64,
+    /// How far the texels of a tile the kernel reads may read the surface
+    /// from its polynomial, m: the tolerance where the buoyancy is summed,
+    /// [`SEA_DRAG_DEPTH_TOLERANCE`]'s where only the depths' signs count.
+    texel_tolerance: f64,
     delta: f64,
     archimedes: bool,
     /// Whether the buoyancy is summed (else the tiles are classified for
@@ -155,6 +172,11 @@ impl TiledAtlas {
             com: frame.com - frame.ow,
             top,
             tolerance: SEA_TILE_TOLERANCE * frame.depth_scale,
+            texel_tolerance: if buoyancy {
+                SEA_TILE_TOLERANCE
+            } else {
+                SEA_DRAG_DEPTH_TOLERANCE
+            } * frame.depth_scale,
             delta: frame.deep_scale,
             archimedes,
             buoyancy,
@@ -350,8 +372,9 @@ impl TiledAtlas {
             part.counts.cut += 1;
             // A tile small against the waves reads them from the polynomial
             // the closed forms take, to third order: within the same
-            // tolerance, and a few multiply-adds a texel.
-            return SeaTile::Texels((remainder <= c.tolerance).then_some(taylor));
+            // tolerance (a looser one for the drag alone), and a few
+            // multiply-adds a texel.
+            return SeaTile::Texels((remainder <= c.texel_tolerance).then_some(taylor));
         }
         part.counts.submerged += 1;
         if !c.buoyancy {
