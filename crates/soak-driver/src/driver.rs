@@ -177,6 +177,17 @@ impl<H: Handle> Driver<H> {
         self.sea
     }
 
+    /// Whether the bodies' water is read on the device alone: the GPU
+    /// backend reading the sea exactly (no patch sampled on the CPU), and
+    /// no interactive waves (whose bodies read the sea under them on the
+    /// CPU).
+    pub(crate) fn reads_on_device(&self) -> bool {
+        #[cfg(feature = "gpu")]
+        return self.gpu.is_some() && self.sea == SeaSampling::Exact && self.waves.is_none();
+        #[cfg(not(feature = "gpu"))]
+        false
+    }
+
     /// The same driver reading a sampled sea's velocity for the drag as
     /// `velocity` says: once per tile of each body's atlas, to first order
     /// over the tile (the default: within 2e-4 of the per-texel read at

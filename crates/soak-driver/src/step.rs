@@ -86,11 +86,23 @@ impl<H: Handle> Driver<H> {
         let step = self.steps;
         // The interactive waves raise the highest crest by theirs.
         let crest = self.waves.as_deref().map_or(0.0, |w| w.solver.highest());
-        let bounds = self
-            .water
-            .surface
-            .height_bounds(t)
-            .map(|(lo, hi)| (lo, hi + crest));
+        // A spectral sea the device reads itself: its crest is not bounded
+        // here (that would evaluate its whole tile on the CPU as well), and
+        // a body above it finds no texel under water on the device.
+        let device_sea = self.reads_on_device()
+            && self
+                .water
+                .surface
+                .as_any()
+                .is_some_and(|s| s.is::<soak_hydro::SpectralSurface>());
+        let bounds = if device_sea {
+            None
+        } else {
+            self.water
+                .surface
+                .height_bounds(t)
+                .map(|(lo, hi)| (lo, hi + crest))
+        };
         // A body that reads a band of the sea's waves meets that band's
         // crest, which may stand above the whole sea's: each band's highest
         // crest, found once a step.
@@ -153,7 +165,7 @@ impl<H: Handle> Driver<H> {
                 Ok(Some(wavelength)) => self.water.surface.band_limited(wavelength),
                 _ => None,
             };
-            let highest = match band {
+            let highest = match band.filter(|_| !device_sea) {
                 Some(band) => {
                     let key = std::ptr::from_ref(band).cast::<()>();
                     let crest = match band_crests.iter().find(|(k, _)| *k == key) {
@@ -212,8 +224,10 @@ impl<H: Handle> Driver<H> {
         // cells.
         // A surface that evaluates something for every reader at `t` (a
         // spectral sea's tile) does it once, with every thread, before the
-        // bodies read it in parallel.
-        if !work.is_empty() {
+        // bodies read it in parallel; where the device reads it, the CPU
+        // does not (a step that falls back to the CPU evaluates it on its
+        // first read).
+        if !work.is_empty() && !self.reads_on_device() {
             self.water.surface.prepare(t);
         }
         let (seas, pressed): (Vec<Option<Water>>, Vec<Option<Pressed>>) = {
