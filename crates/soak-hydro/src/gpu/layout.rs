@@ -22,6 +22,19 @@ pub(crate) const TRIBARY_BYTES: u64 = 16;
 pub(crate) const DISPATCH_STRIDE: u64 = 256;
 /// Workgroups per dispatch dimension the WebGPU baseline allows.
 pub(crate) const MAX_GROUPS_X: u32 = 65535;
+/// Refuses `floats` f32 a kernel indexes with a `u32` when they are more
+/// than it reaches, naming `what` they are.
+pub(crate) fn u32_indexed(what: &'static str, floats: u64) -> Result<(), soak_gpu::GpuError> {
+    if floats > u64::from(u32::MAX) {
+        return Err(soak_gpu::GpuError::TooLarge {
+            what,
+            needed: floats * 4,
+            limit: u64::from(u32::MAX) * 4,
+        });
+    }
+    Ok(())
+}
+
 /// Threads per workgroup of every kernel (`@workgroup_size(64)`).
 pub(crate) const GROUP_THREADS: u32 = 64;
 

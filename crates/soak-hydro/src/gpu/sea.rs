@@ -13,10 +13,9 @@
 use nalgebra::Vector3;
 
 use super::error::GpuHydroError;
-use super::layout::{Body, SEA_NODE_FLOATS, SURFACE_SPECTRAL};
+use super::layout::{Body, SEA_NODE_FLOATS, SURFACE_SPECTRAL, u32_indexed};
 use super::waves::{STAGE_STRIDE, Stage};
 use crate::water::SpectralSurface;
-use soak_gpu::GpuError;
 
 /// Layers of the tile's transforms (two real fields each).
 pub(crate) const SEA_LAYERS: u32 = 7;
@@ -81,16 +80,14 @@ impl DeviceSeas {
             Some(&(_, k)) => k,
             None => {
                 let floats = n * n * SEA_NODE_FLOATS;
-                let end = self.fields as u64 + floats as u64;
-                let modes_end = self.modes.len() as u64 + (n * n) as u64;
-                if end > u32::MAX as u64 || modes_end > u32::MAX as u64 {
-                    return Err(GpuError::TooLarge {
-                        what: "the spectral seas of this batch",
-                        needed: end.max(modes_end) * 4,
-                        limit: u32::MAX as u64 * 4,
-                    }
-                    .into());
-                }
+                u32_indexed(
+                    "the spectral seas' fields of this batch",
+                    self.fields as u64 + floats as u64,
+                )?;
+                u32_indexed(
+                    "the spectral seas' modes of this batch",
+                    self.modes.len() as u64 + (n * n) as u64,
+                )?;
                 let uniform = SeaUniform {
                     n: n as u32,
                     modes_first: self.modes.len() as u32,
@@ -154,15 +151,10 @@ impl DeviceSeas {
     /// # Errors
     /// [`GpuHydroError::Gpu`] where the whole does not fit a `u32` index.
     pub(crate) fn place(&mut self, samples: usize, bodies: &mut [Body]) -> Result<(), GpuHydroError> {
-        let end = samples as u64 + self.fields as u64;
-        if end > u32::MAX as u64 {
-            return Err(GpuError::TooLarge {
-                what: "the height fields and spectral seas of this batch",
-                needed: end * 4,
-                limit: u32::MAX as u64 * 4,
-            }
-            .into());
-        }
+        u32_indexed(
+            "the height fields and spectral seas of this batch",
+            samples as u64 + self.fields as u64,
+        )?;
         let base = samples as u32;
         for sea in &mut self.seas {
             sea.fields_first += base;

@@ -6,11 +6,10 @@ use nalgebra::Vector3;
 use super::error::GpuHydroError;
 use super::layout::{
     Body, PATCH_CELL_FLOATS, PATCH_VELOCITY_CELL_FLOATS, SURFACE_GERSTNER, SURFACE_HEIGHT_FIELD,
-    SURFACE_PATCH, SURFACE_PLANE, SURFACE_UNBOUNDED, Wave,
+    SURFACE_PATCH, SURFACE_PLANE, SURFACE_UNBOUNDED, Wave, u32_indexed,
 };
 use crate::error::WaterError;
 use crate::water::{Gerstner, HeightField, Plane, SurfacePatch, Unbounded, Water};
-use soak_gpu::GpuError;
 
 /// The height samples of the height fields of one batch and the cell
 /// coefficients of its sampled surfaces ([`SurfacePatch`]), each field or
@@ -100,15 +99,10 @@ impl HeightFields {
             + velocity
                 .as_ref()
                 .map_or(0, |v| v.coefficients.len() * PATCH_VELOCITY_CELL_FLOATS);
-        let end = self.samples.len() as u64 + needed as u64;
-        if end > u32::MAX as u64 {
-            return Err(GpuError::TooLarge {
-                what: "the height fields and sampled surfaces of this batch",
-                needed: end * 4,
-                limit: u32::MAX as u64 * 4,
-            }
-            .into());
-        }
+        u32_indexed(
+            "the height fields and sampled surfaces of this batch",
+            self.samples.len() as u64 + needed as u64,
+        )?;
         let bad = |name: &'static str, value: f64| GpuHydroError::Water {
             body: index,
             source: WaterError::Parameter { name, value },
