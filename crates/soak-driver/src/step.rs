@@ -161,11 +161,13 @@ impl<H: Handle> Driver<H> {
                 .waves
                 .as_deref()
                 .is_some_and(|w| w.own.get(k).is_some_and(|own| !own.is_empty()));
+            // (A sea the device reads has no crest bounded here, its bands'
+            // neither.)
             let band = match self.sea_band.wavelength(radius) {
-                Ok(Some(wavelength)) => self.water.surface.band_limited(wavelength),
+                Ok(Some(wavelength)) if !device_sea => self.water.surface.band_limited(wavelength),
                 _ => None,
             };
-            let highest = match band.filter(|_| !device_sea) {
+            let highest = match band {
                 Some(band) => {
                     let key = std::ptr::from_ref(band).cast::<()>();
                     let crest = match band_crests.iter().find(|(k, _)| *k == key) {
