@@ -231,9 +231,11 @@ impl SeaDragSums {
     }
 }
 
-/// Running sums per lane.
+/// Running sums per lane of the sea's drag kernel: texel ranges added one
+/// after another ([`SeaDragLanes::add`]) stay in lanes, summed once at the
+/// end ([`SeaDragLanes::finish`]).
 #[derive(Clone, Copy)]
-struct SumLanes {
+pub(crate) struct SeaDragLanes {
     /// `Σ s`, `Σ s x` (3), `Σ s x xᵀ` (xx, yy, zz, xy, yz, zx), as
     /// [`DragAcc::iso`].
     iso: [Lanes; 10],
@@ -245,7 +247,7 @@ struct SumLanes {
     wh: [Lanes; 6],
 }
 
-impl Default for SumLanes {
+impl Default for SeaDragLanes {
     fn default() -> Self {
         Self {
             iso: [[0.0; LANES]; 10],
@@ -256,9 +258,9 @@ impl Default for SumLanes {
     }
 }
 
-impl SumLanes {
+impl SeaDragLanes {
     /// The sums of the lanes, added in a fixed order.
-    fn finish(&self) -> SeaDragSums {
+    pub(crate) fn finish(&self) -> SeaDragSums {
         let sum = |v: &Lanes| (v[0] + v[1]) + (v[2] + v[3]);
         let mut out = SeaDragSums::default();
         for (s, v) in out.acc.iso.iter_mut().zip(&self.iso) {
@@ -327,34 +329,311 @@ pub(crate) fn sea_drag_range(
     frame: &SeaDragFrame,
     fluid: Option<&LinearFluid>,
 ) -> SeaDragSums {
-    let mut sums = SumLanes::default();
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
-            // SAFETY: the processor has AVX2 and FMA, checked just above.
-            #[allow(unsafe_code)]
-            unsafe {
-                sea_drag_avx2(&mut sums, atlas, range, depths, frame, fluid)
-            };
-            return sums.finish();
-        }
-    }
-    sea_drag_lanes::<false>(&mut sums, atlas, range, depths, frame, fluid);
+    let mut sums = SeaDragLanes::default();
+    sums.add(atlas, range, depths, frame, fluid);
     sums.finish()
+}
+
+impl SeaDragLanes {
+    /// Adds the texels of `range` as [`sea_drag_range`] sums them, in the
+    /// fluid's velocity over the range (`fluid`) or, without one, in the
+    /// patch's at every texel.
+    pub(crate) fn add(
+        &mut self,
+        atlas: &Atlas,
+        range: Range<usize>,
+        depths: &[f64],
+        frame: &SeaDragFrame,
+        fluid: Option<&LinearFluid>,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+                // SAFETY: the processor has AVX2 and FMA, checked just above.
+                #[allow(unsafe_code)]
+                unsafe {
+                    sea_drag_avx2(self, atlas, range, depths, frame, fluid)
+                };
+                return;
+            }
+        }
+        sea_drag_lanes::<false>(self, atlas, range, depths, frame, fluid);
+    }
 }
 
 /// [`sea_drag_lanes`] compiled for AVX2, multiply-adds fused.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn sea_drag_avx2(
-    sums: &mut SumLanes,
+    sums: &mut SeaDragLanes,
     atlas: &Atlas,
     range: Range<usize>,
     depths: &[f64],
     frame: &SeaDragFrame,
     fluid: Option<&LinearFluid>,
 ) {
-    sea_drag_lanes::<true>(sums, atlas, range, depths, frame, fluid);
+    use std::arch::x86_64::*;
+    match fluid {
+        Some(fluid) => {
+            // u + U (x − c), as nalgebra sums a matrix times a vector.
+            let u0 = [fluid.u.x, fluid.u.y, fluid.u.z].map(|v| _mm256_set1_pd(v));
+            let c = [fluid.c.x, fluid.c.y, fluid.c.z].map(|v| _mm256_set1_pd(v));
+            let grad: [[__m256d; 3]; 3] =
+                std::array::from_fn(|i| std::array::from_fn(|j| _mm256_set1_pd(fluid.grad[(i, j)])));
+            sea_drag_lanes_avx2(sums, atlas, range, depths, &frame.params, |x, wet| {
+                let dx = [0, 1, 2].map(|k| _mm256_sub_pd(x[k], c[k]));
+                std::array::from_fn(|i| {
+                    let g = &grad[i];
+                    let r = _mm256_add_pd(
+                        _mm256_add_pd(_mm256_mul_pd(g[0], dx[0]), _mm256_mul_pd(g[1], dx[1])),
+                        _mm256_mul_pd(g[2], dx[2]),
+                    );
+                    _mm256_and_pd(_mm256_add_pd(u0[i], r), wet)
+                })
+            });
+        }
+        None => {
+            let (rot, ow, patch) = (&frame.rot, &frame.ow, frame.patch);
+            let r: [[__m256d; 3]; 3] =
+                std::array::from_fn(|i| std::array::from_fn(|j| _mm256_set1_pd(rot[(i, j)])));
+            sea_drag_lanes_avx2(sums, atlas, range, depths, &frame.params, |x, wet| {
+                // The fluid's velocity at each wet texel's place (world),
+                // then in object axes.
+                let (x, wet) = (x.map(|v| to_lanes(v)), _mm256_movemask_pd(wet));
+                let mut uw = [[0.0; LANES]; 3];
+                for k in (0..LANES).filter(|k| wet & (1 << k) != 0) {
+                    let p = Vector3::from_fn(|c, _| {
+                        let v = rot[(c, 0)].mul_add(x[0][k], ow[c]);
+                        let v = rot[(c, 1)].mul_add(x[1][k], v);
+                        rot[(c, 2)].mul_add(x[2][k], v)
+                    });
+                    let v = patch.velocity_lanes::<true>(&p);
+                    for c in 0..3 {
+                        uw[c][k] = v[c];
+                    }
+                }
+                let uw = uw.map(|v| from_lanes(&v));
+                std::array::from_fn(|c| {
+                    let v = _mm256_mul_pd(r[0][c], uw[0]);
+                    let v = _mm256_fmadd_pd(r[1][c], uw[1], v);
+                    _mm256_fmadd_pd(r[2][c], uw[2], v)
+                })
+            });
+        }
+    }
+}
+
+/// The lanes of `v`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn to_lanes(v: std::arch::x86_64::__m256d) -> Lanes {
+    let mut out = [0.0; LANES];
+    // SAFETY: `out` holds the four f64 an unaligned 256-bit store writes.
+    #[allow(unsafe_code)]
+    unsafe {
+        std::arch::x86_64::_mm256_storeu_pd(out.as_mut_ptr(), v)
+    };
+    out
+}
+
+/// `v`'s first four lanes as a vector.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn from_lanes(v: &[f64]) -> std::arch::x86_64::__m256d {
+    let v = &v[..LANES];
+    // SAFETY: `v` holds the four f64 an unaligned 256-bit load reads.
+    #[allow(unsafe_code)]
+    unsafe {
+        std::arch::x86_64::_mm256_loadu_pd(v.as_ptr())
+    }
+}
+
+/// [`sea_drag_lanes`] written with AVX2 intrinsics, the fluid's velocity
+/// over a group's lanes from `velocity` (given their positions, zero
+/// where dry, and the mask of the wet ones; zero where dry): the same
+/// operations in the same order on the same lanes as [`add_group`] with
+/// fused multiply-adds, so the same bits, its running sums in registers
+/// rather than lane arrays. The last `len % LANES` texels make a group of
+/// their own, read from padded copies, their empty lanes dry.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn sea_drag_lanes_avx2<V>(
+    sums: &mut SeaDragLanes,
+    atlas: &Atlas,
+    range: Range<usize>,
+    depths: &[f64],
+    p: &SeaDragParams,
+    mut velocity: V,
+) where
+    V: FnMut(&[std::arch::x86_64::__m256d; 3], std::arch::x86_64::__m256d) -> [std::arch::x86_64::__m256d; 3],
+{
+    use std::arch::x86_64::*;
+
+    /// Lanes `i .. i + LANES` of `v`, widened.
+    #[target_feature(enable = "avx2,fma")]
+    fn load(v: &[f32], i: usize) -> __m256d {
+        let v = &v[i..i + LANES];
+        // SAFETY: `v` holds the four floats an unaligned 128-bit load reads.
+        #[allow(unsafe_code)]
+        _mm256_cvtps_pd(unsafe { _mm_loadu_ps(v.as_ptr()) })
+    }
+    /// Lanes `i .. i + LANES` of `v`.
+    #[target_feature(enable = "avx2,fma")]
+    fn load64(v: &[f64], i: usize) -> __m256d {
+        let v = &v[i..i + LANES];
+        // SAFETY: `v` holds the four f64 an unaligned 256-bit load reads.
+        #[allow(unsafe_code)]
+        unsafe {
+            _mm256_loadu_pd(v.as_ptr())
+        }
+    }
+    /// Stores `v` into `out`.
+    #[target_feature(enable = "avx2,fma")]
+    fn put(out: &mut Lanes, v: __m256d) {
+        // SAFETY: `out` holds the four f64 an unaligned 256-bit store writes.
+        #[allow(unsafe_code)]
+        unsafe {
+            _mm256_storeu_pd(out.as_mut_ptr(), v)
+        };
+    }
+
+    let n = atlas.len();
+    let xs = atlas.local_positions().columns(0..n);
+    let avs = atlas.area_vectors().columns(0..n);
+    let zero = _mm256_setzero_pd();
+    let w = p.w.map(|v| _mm256_set1_pd(v));
+    let (kq, lin) = (_mm256_set1_pd(p.kq), _mm256_set1_pd(p.lin));
+    let linear = p.lin > 0.0;
+    let mut iso = sums.iso.each_ref().map(|v| load64(v, 0));
+    let mut gg = sums.gg.each_ref().map(|v| load64(v, 0));
+    let mut su = sums.su.each_ref().map(|v| load64(v, 0));
+    let mut wh = sums.wh.each_ref().map(|v| load64(v, 0));
+
+    let mut group = |xs: [&[f32]; 3], avs: [&[f32]; 3], depths: &[f64], at: usize, d0: usize| {
+        let wet = _mm256_cmp_pd::<_CMP_GT_OQ>(load64(depths, d0), zero);
+        if _mm256_movemask_pd(wet) == 0 {
+            return;
+        }
+        // A dry lane's position and area vector read as zeros, and its
+        // fluid's velocity too: it adds zeros.
+        let x = [0, 1, 2].map(|k| _mm256_and_pd(load(xs[k], at), wet));
+        let a = [0, 1, 2].map(|k| _mm256_and_pd(load(avs[k], at), wet));
+        let u = velocity(&x, wet);
+        let h = [
+            a[0],
+            a[1],
+            a[2],
+            _mm256_sub_pd(_mm256_mul_pd(x[1], a[2]), _mm256_mul_pd(x[2], a[1])),
+            _mm256_sub_pd(_mm256_mul_pd(x[2], a[0]), _mm256_mul_pd(x[0], a[2])),
+            _mm256_sub_pd(_mm256_mul_pd(x[0], a[1]), _mm256_mul_pd(x[1], a[0])),
+        ];
+        // A·u and the facing h·w − A·u.
+        let au = _mm256_fmadd_pd(a[2], u[2], _mm256_fmadd_pd(a[1], u[1], _mm256_mul_pd(a[0], u[0])));
+        let mut f = _mm256_mul_pd(h[0], w[0]);
+        for j in 1..6 {
+            f = _mm256_fmadd_pd(h[j], w[j], f);
+        }
+        let f = _mm256_sub_pd(f, au);
+        // `f64::max(f, 0)`: zero where `f` is not a number, as `max_pd`
+        // gives its second operand then.
+        let mut s = _mm256_mul_pd(kq, _mm256_max_pd(f, zero));
+        let mut wl = zero;
+        if linear {
+            let aa = _mm256_fmadd_pd(a[2], a[2], _mm256_fmadd_pd(a[1], a[1], _mm256_mul_pd(a[0], a[0])));
+            let area = _mm256_sqrt_pd(aa);
+            let some = _mm256_cmp_pd::<_CMP_GT_OQ>(area, zero);
+            s = _mm256_add_pd(s, _mm256_and_pd(_mm256_mul_pd(lin, area), some));
+            wl = _mm256_and_pd(_mm256_div_pd(lin, area), some);
+        }
+        let sr = [0, 1, 2].map(|k| _mm256_mul_pd(s, x[k]));
+        iso[0] = _mm256_add_pd(iso[0], s);
+        iso[1] = _mm256_add_pd(iso[1], sr[0]);
+        iso[2] = _mm256_add_pd(iso[2], sr[1]);
+        iso[3] = _mm256_add_pd(iso[3], sr[2]);
+        iso[4] = _mm256_fmadd_pd(sr[0], x[0], iso[4]);
+        iso[5] = _mm256_fmadd_pd(sr[1], x[1], iso[5]);
+        iso[6] = _mm256_fmadd_pd(sr[2], x[2], iso[6]);
+        iso[7] = _mm256_fmadd_pd(sr[0], x[1], iso[7]);
+        iso[8] = _mm256_fmadd_pd(sr[1], x[2], iso[8]);
+        iso[9] = _mm256_fmadd_pd(sr[2], x[0], iso[9]);
+        // s u and s x × u.
+        let s_u = [0, 1, 2].map(|k| _mm256_mul_pd(s, u[k]));
+        su[0] = _mm256_add_pd(su[0], s_u[0]);
+        su[1] = _mm256_add_pd(su[1], s_u[1]);
+        su[2] = _mm256_add_pd(su[2], s_u[2]);
+        su[3] = _mm256_add_pd(
+            su[3],
+            _mm256_sub_pd(_mm256_mul_pd(x[1], s_u[2]), _mm256_mul_pd(x[2], s_u[1])),
+        );
+        su[4] = _mm256_add_pd(
+            su[4],
+            _mm256_sub_pd(_mm256_mul_pd(x[2], s_u[0]), _mm256_mul_pd(x[0], s_u[2])),
+        );
+        su[5] = _mm256_add_pd(
+            su[5],
+            _mm256_sub_pd(_mm256_mul_pd(x[0], s_u[1]), _mm256_mul_pd(x[1], s_u[0])),
+        );
+        if linear {
+            let mut m = 0;
+            for i in 0..6 {
+                let whi = _mm256_mul_pd(wl, h[i]);
+                for hj in &h[i..] {
+                    gg[m] = _mm256_fmadd_pd(whi, *hj, gg[m]);
+                    m += 1;
+                }
+            }
+            let wau = _mm256_mul_pd(wl, au);
+            for (j, hj) in h.iter().enumerate() {
+                wh[j] = _mm256_fmadd_pd(wau, *hj, wh[j]);
+            }
+        }
+    };
+
+    // One call of `group` in the loop (the last texels of the range, a
+    // group of their own, read from padded copies): the compiler then
+    // inlines it, its running sums no longer stored and loaded each call.
+    let (start, end) = (range.start, range.end);
+    let mut i = start;
+    while i < end {
+        let k = (end - i).min(LANES);
+        let (pxs, pavs, pd);
+        let (gx, ga, gd, at, d0) = if k == LANES {
+            (xs, avs, depths, i, i - start)
+        } else {
+            let pad = |v: &[f32]| {
+                let mut padded = [0.0f32; LANES];
+                padded[..k].copy_from_slice(&v[i..end]);
+                padded
+            };
+            (pxs, pavs) = (xs.map(pad), avs.map(pad));
+            let mut d = [0.0f64; LANES];
+            d[..k].copy_from_slice(&depths[i - start..]);
+            pd = d;
+            (
+                pxs.each_ref().map(|v| &v[..]),
+                pavs.each_ref().map(|v| &v[..]),
+                &pd[..],
+                0,
+                0,
+            )
+        };
+        group(gx, ga, gd, at, d0);
+        i += k;
+    }
+    for (out, v) in sums.iso.iter_mut().zip(iso) {
+        put(out, v);
+    }
+    for (out, v) in sums.su.iter_mut().zip(su) {
+        put(out, v);
+    }
+    if linear {
+        for (out, v) in sums.gg.iter_mut().zip(gg) {
+            put(out, v);
+        }
+        for (out, v) in sums.wh.iter_mut().zip(wh) {
+            put(out, v);
+        }
+    }
 }
 
 /// The texels of `range`, [`LANES`] at a time (the last group padded with
@@ -362,7 +641,7 @@ fn sea_drag_avx2(
 /// skipped, a dry texel of a group adds zeros.
 #[inline(always)]
 fn sea_drag_lanes<const FMA: bool>(
-    sums: &mut SumLanes,
+    sums: &mut SeaDragLanes,
     atlas: &Atlas,
     range: Range<usize>,
     depths: &[f64],
@@ -427,7 +706,7 @@ fn sea_drag_lanes<const FMA: bool>(
 /// tests.
 #[cfg(test)]
 pub(crate) fn sea_drag_texels(p: &SeaDragParams, texels: &[[Vector3<f64>; 3]]) -> SeaDragSums {
-    let mut sums = SumLanes::default();
+    let mut sums = SeaDragLanes::default();
     for group in texels.chunks(LANES) {
         let lane = |m: usize| -> [Lanes; 3] {
             std::array::from_fn(|c| lanes(|k| group.get(k).map_or(0.0, |t| t[m][c])))
@@ -441,7 +720,7 @@ pub(crate) fn sea_drag_texels(p: &SeaDragParams, texels: &[[Vector3<f64>; 3]]) -
 /// velocity, object axes; a texel of no area adds zeros).
 #[inline(always)]
 fn add_group<const FMA: bool>(
-    sums: &mut SumLanes,
+    sums: &mut SeaDragLanes,
     p: &SeaDragParams,
     x: &[Lanes; 3],
     a: &[Lanes; 3],
@@ -503,5 +782,124 @@ fn add_group<const FMA: bool>(
                 }
             }
         }
+    }
+}
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod tests {
+    use nalgebra::{Isometry3, Matrix3, UnitQuaternion, Vector3};
+    use soak_bake::{Atlas, BakeOptions, builtin};
+
+    use super::*;
+    use crate::hydrostatics::body_state::BodyState;
+    use crate::hydrostatics::options::HydroOptions;
+    use crate::water::{Gerstner, GerstnerWave, Water};
+
+    /// The intrinsics' kernel adds the same bits as the lanes' code it was
+    /// written from, compiled for AVX2, in one fluid velocity over the
+    /// range and in the patch's at every texel: over ranges of every
+    /// length modulo the lanes, texels wet and dry, with skin friction and
+    /// without, facing the flow and not.
+    #[test]
+    fn the_fluid_kernel_adds_the_lanes_bits() {
+        if !(std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")) {
+            eprintln!("skipped: the processor has no AVX2 and FMA");
+            return;
+        }
+        let atlas = Atlas::bake(&builtin::sphere(0.5, 24, 12), BakeOptions::square(32)).unwrap();
+        let swell = Water::new(Gerstner::new(0.0, GerstnerWave::SWELL.to_vec(), 9.81).unwrap());
+        let state = BodyState::at_rest(Isometry3::from_parts(
+            Vector3::new(0.3, 0.1, -0.2).into(),
+            UnitQuaternion::from_euler_angles(0.3, -0.5, 0.2),
+        ));
+        // Sampled for drag, with the waves' velocities.
+        let options = HydroOptions {
+            drag: Some(Drag {
+                coefficient: 1.0,
+                linear: 0.0,
+            }),
+            ..HydroOptions::default()
+        };
+        let sampled = crate::sampled_water(&atlas, &swell, &state, 0.7, &options)
+            .unwrap()
+            .expect("the swell is sampled by default");
+        let patch = sampled
+            .surface
+            .as_any()
+            .and_then(|s| s.downcast_ref::<SurfacePatch>())
+            .expect("a patch");
+        let fluid = LinearFluid {
+            u: Vector3::new(0.4, -0.2, 0.3),
+            grad: Matrix3::new(0.3, -0.1, 0.05, 0.2, -0.4, 0.1, -0.15, 0.25, 0.1),
+            c: Vector3::new(0.1, -0.2, 0.05),
+        };
+        // Depths of both signs, and zero, in a fixed pseudo-random order.
+        let depths: Vec<f64> = (0..atlas.len())
+            .map(|i| match (i * 7919) % 5 {
+                0 => 0.0,
+                1 | 3 => 0.01 * ((i % 13) as f64 + 1.0),
+                _ => -0.02,
+            })
+            .collect();
+        let mut compared = 0;
+        for (linear, omega) in [(20.0, 0.8), (0.0, -1.5)] {
+            let drag = Drag {
+                coefficient: 0.9,
+                linear,
+            };
+            let rot = *state.pose.rotation.to_rotation_matrix().matrix();
+            let params = SeaDragParams::new(
+                &drag,
+                1025.0,
+                &rot,
+                &Vector3::new(0.02, 0.0, -0.01),
+                &Vector3::new(0.5, -0.7, 0.3),
+                &Vector3::new(0.2, omega, -0.4),
+            );
+            let frame = SeaDragFrame {
+                params,
+                rot,
+                ow: state.pose.translation.vector,
+                patch,
+            };
+            for start in [0, 1, 5, 6, 7] {
+                for len in [1, 2, 3, 4, 5, 15, 16, 17, 63, 64] {
+                    let range = start..(start + len).min(atlas.len());
+                    let d = &depths[range.clone()];
+                    // SAFETY: the processor has AVX2 and FMA, checked above.
+                    #[allow(unsafe_code)]
+                    for fluid in [Some(&fluid), None] {
+                        let mut want = SeaDragLanes::default();
+                        // SAFETY: the processor has AVX2 and FMA, checked above.
+                        #[allow(unsafe_code)]
+                        let got = unsafe {
+                            let mut got = SeaDragLanes::default();
+                            sea_drag_avx2(&mut got, &atlas, range.clone(), d, &frame, fluid);
+                            lanes_avx2(&mut want, &atlas, range.clone(), d, &frame, fluid);
+                            got
+                        };
+                        let (got, want) = (got.finish(), want.finish());
+                        assert_eq!(got, want, "range {range:?}, skin friction {linear}, {fluid:?}");
+                        assert!(got.acc.iso[0] != 0.0 || d.iter().all(|&d| d <= 0.0));
+                        assert!(got.b.iter().any(|&b| b != 0.0) || d.iter().all(|&d| d <= 0.0));
+                        compared += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(compared, 200);
+    }
+
+    /// The lanes' code, compiled for AVX2.
+    #[target_feature(enable = "avx2,fma")]
+    fn lanes_avx2(
+        sums: &mut SeaDragLanes,
+        atlas: &Atlas,
+        range: Range<usize>,
+        depths: &[f64],
+        frame: &SeaDragFrame,
+        fluid: Option<&LinearFluid>,
+    ) {
+        sea_drag_lanes::<true>(sums, atlas, range, depths, frame, fluid);
     }
 }

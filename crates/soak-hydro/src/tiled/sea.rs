@@ -43,7 +43,7 @@ use super::{TileCounts, TiledAtlas, add_closed_form};
 use crate::hydrostatics::drag_kernel::DragMoments;
 use crate::hydrostatics::frame::Frame;
 use crate::hydrostatics::options::SeaVelocity;
-use crate::hydrostatics::sea_drag::{LinearFluid, SeaDragFrame, SeaDragSums, sea_drag_range};
+use crate::hydrostatics::sea_drag::{LinearFluid, SeaDragFrame, SeaDragLanes, SeaDragSums};
 use crate::hydrostatics::sea_kernel::{self, SeaFrame, SeaRead, Taylor, add_sea_range};
 use crate::hydrostatics::sums::{BuoyancySums, SlopeSums};
 use crate::parallel::par_map;
@@ -253,8 +253,10 @@ impl TiledAtlas {
                 return part;
             };
             // The drag kernel takes the kernel's depths where it read them,
-            // and every texel of a tile in closed form as submerged.
+            // and every texel of a tile in closed form as submerged; its
+            // ranges' sums stay in lanes until the chunk's end.
             let mut depths = Vec::new();
+            let mut lanes = SeaDragLanes::default();
             // The kernel's calls as without drag (the same sums to the
             // bit); the drag over each range of a call, with its depths.
             for (span, taylor, members) in texels.calls() {
@@ -280,15 +282,16 @@ impl TiledAtlas {
                         continue;
                     }
                     let fluid = fluid.as_ref().map(|(_, f)| f);
-                    part.drag = part.drag + sea_drag_range(atlas, r.clone(), depths, drag, fluid);
+                    lanes.add(atlas, r.clone(), depths, drag, fluid);
                 }
             }
             for (r, fluid, _) in &closed.0 {
                 depths.clear();
                 depths.resize(r.len(), 1.0);
                 let fluid = fluid.as_ref().map(|(_, f)| f);
-                part.drag = part.drag + sea_drag_range(atlas, r.clone(), &depths, drag, fluid);
+                lanes.add(atlas, r.clone(), &depths, drag, fluid);
             }
+            part.drag = part.drag + lanes.finish();
             part
         });
         let mut sums = BuoyancySums::default();
