@@ -193,6 +193,9 @@ impl Atlas {
         };
         let mut radius2 = 0.0f64;
         let mut clusters: Vec<Cluster> = Vec::new();
+        // The merged samples of the tile being laid, and its block.
+        let mut pending: Vec<Merged> = Vec::new();
+        let mut pending_tile = None;
         let mut block = 0;
         while block < order.len() {
             let (block_key, opening, _) = key(order[block]);
@@ -216,31 +219,21 @@ impl Atlas {
                 }
             }
             let tile = block_key >> 32;
-            let texel = [(block_key & 0xffff) as u16, ((block_key >> 16) & 0xffff) as u16];
-            for c in &clusters {
-                let n = atlas.areas.len() as u32;
-                let p = c.position();
-                radius2 = radius2.max(p.norm_squared());
-                atlas.local_positions.push([p.x as f32, p.y as f32, p.z as f32]);
-                let a = c.area_vector;
-                atlas.area_vectors.push([a.x as f32, a.y as f32, a.z as f32]);
-                atlas.areas.push(c.area as f32);
-                let t = self.triangle_ids[c.representative];
-                atlas.triangle_ids.push(t);
-                atlas.texels_per_triangle[t as usize] += 1;
-                atlas.barycentrics.push(self.barycentrics[c.representative]);
-                atlas.texels.push(texel);
-                let same_tile = atlas
-                    .tiles
-                    .last()
-                    .is_some_and(|last| tile_of(&atlas, last) == tile);
-                match atlas.tiles.last_mut() {
-                    Some(last) if same_tile => last.end = n + 1,
-                    _ => atlas.tiles.push(Tile { start: n, end: n + 1 }),
-                }
+            if pending_tile != Some(tile) {
+                lay_tile(&mut atlas, self, &mut pending, &mut radius2);
+                pending_tile = Some(tile);
             }
+            let texel = [(block_key & 0xffff) as u16, ((block_key >> 16) & 0xffff) as u16];
+            pending.extend(clusters.iter().map(|c| Merged {
+                position: c.position(),
+                area_vector: c.area_vector,
+                area: c.area,
+                representative: c.representative,
+                texel,
+            }));
             block = end;
         }
+        lay_tile(&mut atlas, self, &mut pending, &mut radius2);
         atlas.bounding_radius = radius2.sqrt();
         Ok(atlas)
     }
@@ -255,6 +248,78 @@ impl Atlas {
     }
 }
 
+/// Merged samples closer than this many times the largest texel side of
+/// their tile (`√a`) are of one piece of surface: a tile's samples are
+/// laid as one tile per piece ([`lay_tile`]). Neighbouring merged samples
+/// of one chart are a side apart, diagonal ones √2, a block cut by the
+/// chart's edge a little more.
+const PIECE_LINK: f64 = 2.0;
+
+/// A merged sample waiting for the pieces of its tile.
+struct Merged {
+    position: Vector3<f64>,
+    area_vector: Vector3<f64>,
+    area: f64,
+    /// The source sample whose triangle and barycentrics it takes.
+    representative: usize,
+    /// Its block, in the coarse texture.
+    texel: [u16; 2],
+}
+
+/// Lays the merged samples of one `tile_size`² block of the coarse texture
+/// (`pending`, emptied) into `atlas`: one tile per piece of surface among
+/// them (samples chained by [`PIECE_LINK`] texel sides), each piece's
+/// samples in their order, the pieces in the order of their first sample.
+/// A block can hold samples of charts of the UV map laid side by side in
+/// the texture but far apart on the mesh; as one tile their bounding
+/// sphere would span both, so the tiles the drag is summed over could
+/// neither take the fluid's velocity to first order over it nor settle it
+/// wholly under or over the water as often.
+fn lay_tile(atlas: &mut Atlas, source: &Atlas, pending: &mut Vec<Merged>, radius2: &mut f64) {
+    let n = pending.len();
+    let link = PIECE_LINK * pending.iter().map(|m| m.area.sqrt()).fold(0.0, f64::max);
+    // Single-linkage pieces by union–find (a tile holds tens of samples).
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    for i in 0..n {
+        for j in i + 1..n {
+            if (pending[i].position - pending[j].position).norm() <= link {
+                let (a, b) = (root(&mut parent, i), root(&mut parent, j));
+                parent[a.max(b)] = a.min(b);
+            }
+        }
+    }
+    let roots: Vec<usize> = (0..n).map(|i| root(&mut parent, i)).collect();
+    for piece in (0..n).filter(|&i| roots[i] == i) {
+        let start = atlas.areas.len() as u32;
+        for m in (0..n).filter(|&i| roots[i] == piece).map(|i| &pending[i]) {
+            let p = m.position;
+            *radius2 = radius2.max(p.norm_squared());
+            atlas.local_positions.push([p.x as f32, p.y as f32, p.z as f32]);
+            let a = m.area_vector;
+            atlas.area_vectors.push([a.x as f32, a.y as f32, a.z as f32]);
+            atlas.areas.push(m.area as f32);
+            let t = source.triangle_ids[m.representative];
+            atlas.triangle_ids.push(t);
+            atlas.texels_per_triangle[t as usize] += 1;
+            atlas.barycentrics.push(source.barycentrics[m.representative]);
+            atlas.texels.push(m.texel);
+        }
+        atlas.tiles.push(Tile {
+            start,
+            end: atlas.areas.len() as u32,
+        });
+    }
+    pending.clear();
+}
+
+#[cfg(test)]
 /// The merged tile a tile of a coarsened atlas lies in (from its first
 /// texel).
 fn tile_of(atlas: &Atlas, tile: &Tile) -> u64 {
@@ -398,26 +463,78 @@ mod tests {
     }
 
     /// Tiles are runs of samples in one `tile_size`² block of the coarse
-    /// texture, covering every sample once.
+    /// texture, covering every sample once, a block's runs one after
+    /// another.
     #[test]
     fn tiles_are_runs_of_one_block() {
-        let fine = baked(&builtin::sphere(0.5, 64, 32), 128);
-        let coarse = fine.coarsened(4, 4).unwrap();
-        assert_eq!((coarse.width(), coarse.height()), (32, 32));
-        let mut next = 0;
-        let mut seen = std::collections::HashSet::new();
-        for tile in coarse.tiles() {
-            assert_eq!(tile.start, next);
-            assert!(tile.end > tile.start);
-            let block = tile_of(&coarse, tile);
-            assert!(seen.insert(block), "block {block} in two runs");
-            for i in tile.range() {
-                let [x, y] = coarse.texels()[i];
-                assert_eq!(((y as u64 / 4) << 16) | (x as u64 / 4), block);
+        for mesh in [builtin::sphere(0.5, 64, 32), builtin::cuboid(1.0, 0.6, 0.8)] {
+            let fine = baked(&mesh, 128);
+            let coarse = fine.coarsened(4, 4).unwrap();
+            assert_eq!((coarse.width(), coarse.height()), (32, 32));
+            let mut next = 0;
+            let mut seen = std::collections::HashSet::new();
+            let mut last = None;
+            for tile in coarse.tiles() {
+                assert_eq!(tile.start, next);
+                assert!(tile.end > tile.start);
+                let block = tile_of(&coarse, tile);
+                assert!(
+                    last == Some(block) || seen.insert(block),
+                    "block {block} in runs apart"
+                );
+                last = Some(block);
+                for i in tile.range() {
+                    let [x, y] = coarse.texels()[i];
+                    assert_eq!(((y as u64 / 4) << 16) | (x as u64 / 4), block);
+                }
+                next = tile.end;
             }
-            next = tile.end;
+            assert_eq!(next as usize, coarse.len());
         }
-        assert_eq!(next as usize, coarse.len());
+    }
+
+    /// A block holding samples of charts laid side by side in the texture
+    /// but apart on the mesh (the box's faces) lays one tile per piece:
+    /// each tile's samples chained within `PIECE_LINK` sides, no two tiles
+    /// of a block that close, and every tile as small as a block of one
+    /// chart (a tile of the box spanned 1.4 m before: two faces).
+    #[test]
+    fn a_block_of_charts_apart_lays_a_tile_per_piece() {
+        let coarse = baked(&builtin::cuboid(1.0, 0.6, 0.8), 128)
+            .coarsened(4, 4)
+            .unwrap();
+        let position = |i: usize| Vector3::from(coarse.local_positions().get(i).map(f64::from));
+        let side = (0..coarse.len())
+            .map(|i| f64::from(coarse.areas()[i]).sqrt())
+            .fold(0.0, f64::max);
+        let tiles = coarse.tiles();
+        let mut split = 0;
+        for (k, tile) in tiles.iter().enumerate() {
+            let r = tile.range();
+            let centre = r.clone().map(position).sum::<Vector3<f64>>() / r.len() as f64;
+            let radius = r
+                .clone()
+                .map(|i| (position(i) - centre).norm())
+                .fold(0.0, f64::max);
+            // A block is 4 × 4 merged samples of about `side` each.
+            assert!(
+                radius <= 3.0 * side,
+                "tile {k}: radius {radius} against a side of {side}"
+            );
+            if let Some(next) = tiles
+                .get(k + 1)
+                .filter(|n| tile_of(&coarse, n) == tile_of(&coarse, tile))
+            {
+                split += 1;
+                let link = r
+                    .clone()
+                    .flat_map(|i| next.range().map(move |j| (i, j)))
+                    .map(|(i, j)| (position(i) - position(j)).norm())
+                    .fold(f64::MAX, f64::min);
+                assert!(link > PIECE_LINK * side * 0.5, "tiles {k} and {}: {link}", k + 1);
+            }
+        }
+        assert!(split > 0, "no block of the box's atlas holds two charts");
     }
 
     /// Hard cases: an atlas of centroid samples only (4,096 triangles at
