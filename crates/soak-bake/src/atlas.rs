@@ -6,7 +6,11 @@ use serde::{Deserialize, Serialize};
 use crate::columns::Columns;
 use crate::error::BakeError;
 
-/// A run of consecutive texels that lie in one `tile_size`² block of the texture.
+/// A run of consecutive texels that lie in one `tile_size`² block of the
+/// texture and on one piece of the surface: a block holding texels of
+/// charts laid side by side in the texture but apart on the mesh lays one
+/// tile per piece, one after another (samples within two texel sides of
+/// each other are of one piece).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Tile {
     /// Index of the tile's first texel in the atlas arrays.
@@ -217,7 +221,8 @@ impl Atlas {
         &self.centroid_samples
     }
 
-    /// Runs of samples per texture tile, in storage order.
+    /// Runs of samples per texture tile and piece of surface ([`Tile`]),
+    /// in storage order.
     pub fn tiles(&self) -> &[Tile] {
         &self.tiles
     }

@@ -7,6 +7,7 @@ use crate::atlas::{Atlas, Tile};
 use crate::columns::Columns;
 use crate::error::BakeError;
 use crate::mesh::Mesh;
+use crate::pieces::{PIECE_LINK, pieces};
 use crate::validate;
 
 /// Largest texture side soak bakes, texels.
@@ -204,6 +205,36 @@ pub(crate) fn bake_unchecked(mesh: &Mesh, options: BakeOptions) -> Atlas {
         })
         .collect();
 
+    let position = |s: &Sample| {
+        let (_, [p0, p1, p2]) = &per_triangle[s.triangle as usize];
+        let [l1, l2] = s.bary;
+        p0 * (1.0 - l1 - l2) + p1 * l1 + p2 * l2
+    };
+    // Each block's samples piece by piece, a tile per piece (`pieces`).
+    let mut blocks = Vec::new();
+    let mut start = 0;
+    while start < samples.len() {
+        let block = samples[start].key >> 16;
+        let len = samples[start..]
+            .iter()
+            .take_while(|s| s.key >> 16 == block)
+            .count();
+        blocks.push(start..start + len);
+        start += len;
+    }
+    let laid: Vec<(Vec<usize>, Vec<usize>)> = blocks
+        .par_iter()
+        .map(|r| {
+            let points: Vec<Vector3<f64>> = samples[r.clone()].iter().map(position).collect();
+            let side = samples[r.clone()]
+                .iter()
+                .map(|s| per_triangle[s.triangle as usize].0.norm().sqrt())
+                .fold(0.0, f64::max);
+            let (order, ends) = pieces(&points, PIECE_LINK * side);
+            (order.into_iter().map(|i| r.start + i).collect(), ends)
+        })
+        .collect();
+
     let n = samples.len();
     let mut local_positions = Columns::with_capacity(n);
     let mut area_vectors = Columns::with_capacity(n);
@@ -214,27 +245,30 @@ pub(crate) fn bake_unchecked(mesh: &Mesh, options: BakeOptions) -> Atlas {
     let mut centroid_samples = Vec::new();
     let mut tiles: Vec<Tile> = Vec::new();
     let mut radius2 = 0.0f64;
-    for (i, s) in samples.iter().enumerate() {
-        let (av, [p0, p1, p2]) = &per_triangle[s.triangle as usize];
-        let [l1, l2] = s.bary;
-        let p = p0 * (1.0 - l1 - l2) + p1 * l1 + p2 * l2;
-        radius2 = radius2.max(p.norm_squared());
-        local_positions.push([p.x as f32, p.y as f32, p.z as f32]);
-        area_vectors.push([av.x as f32, av.y as f32, av.z as f32]);
-        areas.push(av.norm() as f32);
-        triangle_ids.push(s.triangle);
-        barycentrics.push([l1 as f32, l2 as f32]);
-        texels.push(s.texel);
-        if s.centroid {
-            centroid_samples.push(i as u32);
-        }
-        let tile = s.key >> 16;
-        match tiles.last_mut() {
-            Some(last) if (samples[last.start as usize].key >> 16) == tile => last.end = i as u32 + 1,
-            _ => tiles.push(Tile {
-                start: i as u32,
-                end: i as u32 + 1,
-            }),
+    for (order, ends) in &laid {
+        let mut begin = 0;
+        for &end in ends {
+            let first = areas.len() as u32;
+            for s in order[begin..end].iter().map(|&k| &samples[k]) {
+                let i = areas.len();
+                let av = per_triangle[s.triangle as usize].0;
+                let p = position(s);
+                radius2 = radius2.max(p.norm_squared());
+                local_positions.push([p.x as f32, p.y as f32, p.z as f32]);
+                area_vectors.push([av.x as f32, av.y as f32, av.z as f32]);
+                areas.push(av.norm() as f32);
+                triangle_ids.push(s.triangle);
+                barycentrics.push(s.bary.map(|l| l as f32));
+                texels.push(s.texel);
+                if s.centroid {
+                    centroid_samples.push(i as u32);
+                }
+            }
+            tiles.push(Tile {
+                start: first,
+                end: areas.len() as u32,
+            });
+            begin = end;
         }
     }
     Atlas {

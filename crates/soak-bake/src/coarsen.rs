@@ -7,6 +7,7 @@ use nalgebra::Vector3;
 use crate::atlas::{Atlas, Tile};
 use crate::columns::Columns;
 use crate::error::BakeError;
+use crate::pieces::{PIECE_LINK, pieces};
 
 /// Samples whose normals differ by more than this (cosine: 30°) are not
 /// merged: a block of texels folded over an edge of the mesh keeps one
@@ -248,13 +249,6 @@ impl Atlas {
     }
 }
 
-/// Merged samples closer than this many times the largest texel side of
-/// their tile (`√a`) are of one piece of surface: a tile's samples are
-/// laid as one tile per piece ([`lay_tile`]). Neighbouring merged samples
-/// of one chart are a side apart, diagonal ones √2, a block cut by the
-/// chart's edge a little more.
-const PIECE_LINK: f64 = 2.0;
-
 /// A merged sample waiting for the pieces of its tile.
 struct Merged {
     position: Vector3<f64>,
@@ -268,37 +262,17 @@ struct Merged {
 
 /// Lays the merged samples of one `tile_size`² block of the coarse texture
 /// (`pending`, emptied) into `atlas`: one tile per piece of surface among
-/// them (samples chained by [`PIECE_LINK`] texel sides), each piece's
-/// samples in their order, the pieces in the order of their first sample.
-/// A block can hold samples of charts of the UV map laid side by side in
-/// the texture but far apart on the mesh; as one tile their bounding
-/// sphere would span both, so the tiles the drag is summed over could
-/// neither take the fluid's velocity to first order over it nor settle it
-/// wholly under or over the water as often.
+/// them ([`pieces`], chained within [`PIECE_LINK`] texel sides), each
+/// piece's samples in their order, the pieces in the order of their first
+/// sample.
 fn lay_tile(atlas: &mut Atlas, source: &Atlas, pending: &mut Vec<Merged>, radius2: &mut f64) {
-    let n = pending.len();
     let link = PIECE_LINK * pending.iter().map(|m| m.area.sqrt()).fold(0.0, f64::max);
-    // Single-linkage pieces by union–find (a tile holds tens of samples).
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
-    for i in 0..n {
-        for j in i + 1..n {
-            if (pending[i].position - pending[j].position).norm() <= link {
-                let (a, b) = (root(&mut parent, i), root(&mut parent, j));
-                parent[a.max(b)] = a.min(b);
-            }
-        }
-    }
-    let roots: Vec<usize> = (0..n).map(|i| root(&mut parent, i)).collect();
-    for piece in (0..n).filter(|&i| roots[i] == i) {
+    let points: Vec<Vector3<f64>> = pending.iter().map(|m| m.position).collect();
+    let (order, ends) = pieces(&points, link);
+    let mut begin = 0;
+    for end in ends {
         let start = atlas.areas.len() as u32;
-        for m in (0..n).filter(|&i| roots[i] == piece).map(|i| &pending[i]) {
+        for m in order[begin..end].iter().map(|&i| &pending[i]) {
             let p = m.position;
             *radius2 = radius2.max(p.norm_squared());
             atlas.local_positions.push([p.x as f32, p.y as f32, p.z as f32]);
@@ -315,6 +289,7 @@ fn lay_tile(atlas: &mut Atlas, source: &Atlas, pending: &mut Vec<Merged>, radius
             start,
             end: atlas.areas.len() as u32,
         });
+        begin = end;
     }
     pending.clear();
 }

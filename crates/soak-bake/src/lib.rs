@@ -12,6 +12,7 @@ mod load;
 mod mesh;
 mod open;
 mod pack;
+mod pieces;
 mod unwrap;
 mod uv_overlap;
 mod validate;

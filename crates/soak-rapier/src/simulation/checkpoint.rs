@@ -22,7 +22,10 @@ pub const CHECKPOINT_MAGIC: [u8; 8] = *b"SOAKCKPT";
 
 /// The state format's version: raised whenever what a checkpoint holds
 /// changes, so that a file of another version is refused, not misread.
-pub const CHECKPOINT_VERSION: u32 = 1;
+/// Version 2: a bake lays the texels of a texture block holding two
+/// charts of the UV map as two tiles, so a body's per-texel state (its
+/// liquid texture) follows another texel order than version 1's.
+pub const CHECKPOINT_VERSION: u32 = 2;
 
 /// Magic, version, length and checksum.
 const HEADER: usize = 8 + 4 + 8 + 4;
