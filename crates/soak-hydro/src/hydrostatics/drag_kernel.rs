@@ -236,32 +236,8 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
 ) {
     use std::arch::x86_64::*;
 
-    /// Lanes `i .. i + LANES` of `v`, widened.
-    #[target_feature(enable = "avx2,fma")]
-    fn load(v: &[f32], i: usize) -> __m256d {
-        let v = &v[i..i + LANES];
-        // SAFETY: `v` holds the four floats an unaligned 128-bit load reads.
-        #[allow(unsafe_code)]
-        _mm256_cvtps_pd(unsafe { _mm_loadu_ps(v.as_ptr()) })
-    }
-    /// `v` as lanes.
-    #[target_feature(enable = "avx2,fma")]
-    fn get(v: &Lanes) -> __m256d {
-        // SAFETY: `v` holds the four f64 an unaligned 256-bit load reads.
-        #[allow(unsafe_code)]
-        unsafe {
-            _mm256_loadu_pd(v.as_ptr())
-        }
-    }
-    /// Stores `v` into `out`.
-    #[target_feature(enable = "avx2,fma")]
-    fn put(out: &mut Lanes, v: __m256d) {
-        // SAFETY: `out` holds the four f64 an unaligned 256-bit store writes.
-        #[allow(unsafe_code)]
-        unsafe {
-            _mm256_storeu_pd(out.as_mut_ptr(), v)
-        };
-    }
+    use super::avx::{add_iso, add_rank1, h_of, load as get, store, widen as load};
+
     /// All lanes set where `on`, else none.
     #[target_feature(enable = "avx2,fma")]
     fn mask(on: bool) -> __m256d {
@@ -291,14 +267,7 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
             return;
         }
         let a = [load(avs[0], at), load(avs[1], at), load(avs[2], at)];
-        let h = [
-            a[0],
-            a[1],
-            a[2],
-            _mm256_sub_pd(_mm256_mul_pd(x[1], a[2]), _mm256_mul_pd(x[2], a[1])),
-            _mm256_sub_pd(_mm256_mul_pd(x[2], a[0]), _mm256_mul_pd(x[0], a[2])),
-            _mm256_sub_pd(_mm256_mul_pd(x[0], a[1]), _mm256_mul_pd(x[1], a[0])),
-        ];
+        let h = h_of(&x, &a);
         let mut s = zero;
         let mut any = zero;
         if QUADRATIC {
@@ -332,30 +301,9 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
         } else if _mm256_movemask_pd(any) == 0 {
             return;
         }
-        let sr = [
-            _mm256_mul_pd(s, x[0]),
-            _mm256_mul_pd(s, x[1]),
-            _mm256_mul_pd(s, x[2]),
-        ];
-        iso[0] = _mm256_add_pd(iso[0], s);
-        iso[1] = _mm256_add_pd(iso[1], sr[0]);
-        iso[2] = _mm256_add_pd(iso[2], sr[1]);
-        iso[3] = _mm256_add_pd(iso[3], sr[2]);
-        iso[4] = _mm256_fmadd_pd(sr[0], x[0], iso[4]);
-        iso[5] = _mm256_fmadd_pd(sr[1], x[1], iso[5]);
-        iso[6] = _mm256_fmadd_pd(sr[2], x[2], iso[6]);
-        iso[7] = _mm256_fmadd_pd(sr[0], x[1], iso[7]);
-        iso[8] = _mm256_fmadd_pd(sr[1], x[2], iso[8]);
-        iso[9] = _mm256_fmadd_pd(sr[2], x[0], iso[9]);
+        add_iso(&mut iso, s, &x);
         if LINEAR {
-            let mut m = 0;
-            for i in 0..6 {
-                let wh = _mm256_mul_pd(wl, h[i]);
-                for hj in &h[i..] {
-                    gg[m] = _mm256_fmadd_pd(wh, *hj, gg[m]);
-                    m += 1;
-                }
-            }
+            add_rank1(&mut gg, wl, &h);
         }
     };
     let all = mask(true);
@@ -388,11 +336,11 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
         }
     }
     for (out, v) in acc.iso.iter_mut().zip(iso) {
-        put(out, v);
+        *out = store(v);
     }
     if LINEAR {
         for (out, v) in acc.gg.iter_mut().zip(gg) {
-            put(out, v);
+            *out = store(v);
         }
     }
 }

@@ -23,6 +23,8 @@
 //! - `evaluation`: the per-texel pass, [`evaluate`](crate::evaluate) and
 //!   [`streaming_read`](crate::streaming_read).
 
+#[cfg(target_arch = "x86_64")]
+mod avx;
 pub(crate) mod body_state;
 pub(crate) mod deep_volume;
 pub(crate) mod drag_kernel;

@@ -229,25 +229,7 @@ fn planar_lanes_avx2<const PRESSURE: bool, const DRY: bool>(
 ) -> PlanarLanes {
     use std::arch::x86_64::*;
 
-    /// Lanes `i .. i + LANES` of `v`, widened.
-    #[target_feature(enable = "avx2,fma")]
-    fn load(v: &[f32], i: usize) -> __m256d {
-        let v = &v[i..i + LANES];
-        // SAFETY: `v` holds the four floats an unaligned 128-bit load reads.
-        #[allow(unsafe_code)]
-        _mm256_cvtps_pd(unsafe { _mm_loadu_ps(v.as_ptr()) })
-    }
-    /// The lanes of `v` as an array.
-    #[target_feature(enable = "avx2,fma")]
-    fn lanes(v: __m256d) -> Lanes {
-        let mut out = [0.0; LANES];
-        // SAFETY: `out` holds the four f64 an unaligned 256-bit store writes.
-        #[allow(unsafe_code)]
-        unsafe {
-            _mm256_storeu_pd(out.as_mut_ptr(), v)
-        };
-        out
-    }
+    use super::avx::{store as lanes, widen as load};
 
     let zero = _mm256_setzero_pd();
     let one = _mm256_set1_pd(1.0);

@@ -372,6 +372,7 @@ fn sea_drag_avx2(
     frame: &SeaDragFrame,
     fluid: Option<&LinearFluid>,
 ) {
+    use super::avx::{load, store};
     use std::arch::x86_64::*;
     match fluid {
         Some(fluid) => {
@@ -399,7 +400,7 @@ fn sea_drag_avx2(
             sea_drag_lanes_avx2(sums, atlas, range, depths, &frame.params, |x, wet| {
                 // The fluid's velocity at each wet texel's place (world),
                 // then in object axes.
-                let (x, wet) = (x.map(|v| to_lanes(v)), _mm256_movemask_pd(wet));
+                let (x, wet) = (x.map(|v| store(v)), _mm256_movemask_pd(wet));
                 let mut uw = [[0.0; LANES]; 3];
                 for k in (0..LANES).filter(|k| wet & (1 << k) != 0) {
                     let p = Vector3::from_fn(|c, _| {
@@ -412,7 +413,7 @@ fn sea_drag_avx2(
                         uw[c][k] = v[c];
                     }
                 }
-                let uw = uw.map(|v| from_lanes(&v));
+                let uw = uw.map(|v| load(&v));
                 std::array::from_fn(|c| {
                     let v = _mm256_mul_pd(r[0][c], uw[0]);
                     let v = _mm256_fmadd_pd(r[1][c], uw[1], v);
@@ -420,31 +421,6 @@ fn sea_drag_avx2(
                 })
             });
         }
-    }
-}
-
-/// The lanes of `v`.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-fn to_lanes(v: std::arch::x86_64::__m256d) -> Lanes {
-    let mut out = [0.0; LANES];
-    // SAFETY: `out` holds the four f64 an unaligned 256-bit store writes.
-    #[allow(unsafe_code)]
-    unsafe {
-        std::arch::x86_64::_mm256_storeu_pd(out.as_mut_ptr(), v)
-    };
-    out
-}
-
-/// `v`'s first four lanes as a vector.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-fn from_lanes(v: &[f64]) -> std::arch::x86_64::__m256d {
-    let v = &v[..LANES];
-    // SAFETY: `v` holds the four f64 an unaligned 256-bit load reads.
-    #[allow(unsafe_code)]
-    unsafe {
-        std::arch::x86_64::_mm256_loadu_pd(v.as_ptr())
     }
 }
 
@@ -467,35 +443,8 @@ fn sea_drag_lanes_avx2<V>(
 ) where
     V: FnMut(&[std::arch::x86_64::__m256d; 3], std::arch::x86_64::__m256d) -> [std::arch::x86_64::__m256d; 3],
 {
+    use super::avx::{add_iso, add_rank1, h_of, load, store, widen};
     use std::arch::x86_64::*;
-
-    /// Lanes `i .. i + LANES` of `v`, widened.
-    #[target_feature(enable = "avx2,fma")]
-    fn load(v: &[f32], i: usize) -> __m256d {
-        let v = &v[i..i + LANES];
-        // SAFETY: `v` holds the four floats an unaligned 128-bit load reads.
-        #[allow(unsafe_code)]
-        _mm256_cvtps_pd(unsafe { _mm_loadu_ps(v.as_ptr()) })
-    }
-    /// Lanes `i .. i + LANES` of `v`.
-    #[target_feature(enable = "avx2,fma")]
-    fn load64(v: &[f64], i: usize) -> __m256d {
-        let v = &v[i..i + LANES];
-        // SAFETY: `v` holds the four f64 an unaligned 256-bit load reads.
-        #[allow(unsafe_code)]
-        unsafe {
-            _mm256_loadu_pd(v.as_ptr())
-        }
-    }
-    /// Stores `v` into `out`.
-    #[target_feature(enable = "avx2,fma")]
-    fn put(out: &mut Lanes, v: __m256d) {
-        // SAFETY: `out` holds the four f64 an unaligned 256-bit store writes.
-        #[allow(unsafe_code)]
-        unsafe {
-            _mm256_storeu_pd(out.as_mut_ptr(), v)
-        };
-    }
 
     let n = atlas.len();
     let xs = atlas.local_positions().columns(0..n);
@@ -504,29 +453,22 @@ fn sea_drag_lanes_avx2<V>(
     let w = p.w.map(|v| _mm256_set1_pd(v));
     let (kq, lin) = (_mm256_set1_pd(p.kq), _mm256_set1_pd(p.lin));
     let linear = p.lin > 0.0;
-    let mut iso = sums.iso.each_ref().map(|v| load64(v, 0));
-    let mut gg = sums.gg.each_ref().map(|v| load64(v, 0));
-    let mut su = sums.su.each_ref().map(|v| load64(v, 0));
-    let mut wh = sums.wh.each_ref().map(|v| load64(v, 0));
+    let mut iso = sums.iso.each_ref().map(|v| load(v));
+    let mut gg = sums.gg.each_ref().map(|v| load(v));
+    let mut su = sums.su.each_ref().map(|v| load(v));
+    let mut wh = sums.wh.each_ref().map(|v| load(v));
 
     let mut group = |xs: [&[f32]; 3], avs: [&[f32]; 3], depths: &[f64], at: usize, d0: usize| {
-        let wet = _mm256_cmp_pd::<_CMP_GT_OQ>(load64(depths, d0), zero);
+        let wet = _mm256_cmp_pd::<_CMP_GT_OQ>(load(&depths[d0..]), zero);
         if _mm256_movemask_pd(wet) == 0 {
             return;
         }
         // A dry lane's position and area vector read as zeros, and its
         // fluid's velocity too: it adds zeros.
-        let x = [0, 1, 2].map(|k| _mm256_and_pd(load(xs[k], at), wet));
-        let a = [0, 1, 2].map(|k| _mm256_and_pd(load(avs[k], at), wet));
+        let x = [0, 1, 2].map(|k| _mm256_and_pd(widen(xs[k], at), wet));
+        let a = [0, 1, 2].map(|k| _mm256_and_pd(widen(avs[k], at), wet));
         let u = velocity(&x, wet);
-        let h = [
-            a[0],
-            a[1],
-            a[2],
-            _mm256_sub_pd(_mm256_mul_pd(x[1], a[2]), _mm256_mul_pd(x[2], a[1])),
-            _mm256_sub_pd(_mm256_mul_pd(x[2], a[0]), _mm256_mul_pd(x[0], a[2])),
-            _mm256_sub_pd(_mm256_mul_pd(x[0], a[1]), _mm256_mul_pd(x[1], a[0])),
-        ];
+        let h = h_of(&x, &a);
         // A·u and the facing h·w − A·u.
         let au = _mm256_fmadd_pd(a[2], u[2], _mm256_fmadd_pd(a[1], u[1], _mm256_mul_pd(a[0], u[0])));
         let mut f = _mm256_mul_pd(h[0], w[0]);
@@ -545,17 +487,7 @@ fn sea_drag_lanes_avx2<V>(
             s = _mm256_add_pd(s, _mm256_and_pd(_mm256_mul_pd(lin, area), some));
             wl = _mm256_and_pd(_mm256_div_pd(lin, area), some);
         }
-        let sr = [0, 1, 2].map(|k| _mm256_mul_pd(s, x[k]));
-        iso[0] = _mm256_add_pd(iso[0], s);
-        iso[1] = _mm256_add_pd(iso[1], sr[0]);
-        iso[2] = _mm256_add_pd(iso[2], sr[1]);
-        iso[3] = _mm256_add_pd(iso[3], sr[2]);
-        iso[4] = _mm256_fmadd_pd(sr[0], x[0], iso[4]);
-        iso[5] = _mm256_fmadd_pd(sr[1], x[1], iso[5]);
-        iso[6] = _mm256_fmadd_pd(sr[2], x[2], iso[6]);
-        iso[7] = _mm256_fmadd_pd(sr[0], x[1], iso[7]);
-        iso[8] = _mm256_fmadd_pd(sr[1], x[2], iso[8]);
-        iso[9] = _mm256_fmadd_pd(sr[2], x[0], iso[9]);
+        add_iso(&mut iso, s, &x);
         // s u and s x × u.
         let s_u = [0, 1, 2].map(|k| _mm256_mul_pd(s, u[k]));
         su[0] = _mm256_add_pd(su[0], s_u[0]);
@@ -574,14 +506,7 @@ fn sea_drag_lanes_avx2<V>(
             _mm256_sub_pd(_mm256_mul_pd(x[0], s_u[1]), _mm256_mul_pd(x[1], s_u[0])),
         );
         if linear {
-            let mut m = 0;
-            for i in 0..6 {
-                let whi = _mm256_mul_pd(wl, h[i]);
-                for hj in &h[i..] {
-                    gg[m] = _mm256_fmadd_pd(whi, *hj, gg[m]);
-                    m += 1;
-                }
-            }
+            add_rank1(&mut gg, wl, &h);
             let wau = _mm256_mul_pd(wl, au);
             for (j, hj) in h.iter().enumerate() {
                 wh[j] = _mm256_fmadd_pd(wau, *hj, wh[j]);
@@ -621,17 +546,17 @@ fn sea_drag_lanes_avx2<V>(
         i += k;
     }
     for (out, v) in sums.iso.iter_mut().zip(iso) {
-        put(out, v);
+        *out = store(v);
     }
     for (out, v) in sums.su.iter_mut().zip(su) {
-        put(out, v);
+        *out = store(v);
     }
     if linear {
         for (out, v) in sums.gg.iter_mut().zip(gg) {
-            put(out, v);
+            *out = store(v);
         }
         for (out, v) in sums.wh.iter_mut().zip(wh) {
-            put(out, v);
+            *out = store(v);
         }
     }
 }

@@ -180,40 +180,10 @@ mod avx2 {
     use soak_bake::Atlas;
 
     use super::{RENORMALISE, SeaFrame, Taylor};
+    use crate::hydrostatics::avx::{load as vector_of, store as lanes, widen as load};
     use crate::hydrostatics::sums::BuoyancySums;
 
     const LANES: usize = 4;
-
-    /// Lanes `i .. i + 4` of `v`, widened.
-    #[target_feature(enable = "avx2,fma")]
-    fn load(v: &[f32], i: usize) -> __m256d {
-        let v = &v[i..i + LANES];
-        // SAFETY: `v` holds the four floats an unaligned 128-bit load reads.
-        #[allow(unsafe_code)]
-        _mm256_cvtps_pd(unsafe { _mm_loadu_ps(v.as_ptr()) })
-    }
-
-    /// The lanes of `v` as an array.
-    #[target_feature(enable = "avx2,fma")]
-    fn lanes(v: __m256d) -> [f64; LANES] {
-        let mut out = [0.0; LANES];
-        // SAFETY: `out` holds the four f64 an unaligned 256-bit store writes.
-        #[allow(unsafe_code)]
-        unsafe {
-            _mm256_storeu_pd(out.as_mut_ptr(), v)
-        };
-        out
-    }
-
-    /// A vector from four lanes.
-    #[target_feature(enable = "avx2,fma")]
-    fn vector(v: [f64; LANES]) -> __m256d {
-        // SAFETY: `v` holds the four f64 an unaligned 256-bit load reads.
-        #[allow(unsafe_code)]
-        unsafe {
-            _mm256_loadu_pd(v.as_ptr())
-        }
-    }
 
     /// The running sums, one per lane.
     struct Acc {
@@ -312,7 +282,7 @@ mod avx2 {
                 if same {
                     _mm256_set1_pd(coefficients[cells_of[0]][p][q])
                 } else {
-                    vector(cells_of.map(|c| coefficients[c][p][q]))
+                    vector_of(&cells_of.map(|c| coefficients[c][p][q]))
                 }
             };
             let mut c = [zero; 4];
@@ -466,7 +436,7 @@ mod avx2 {
                                 *pk = 1.0;
                             }
                         }
-                        acc.product = vector(product);
+                        acc.product = vector_of(&product);
                     }
                 } else {
                     // Σ −d A and Σ r × (−d A), the signs applied at the end.
