@@ -120,9 +120,9 @@ impl<H: Handle> Driver<H> {
             sea_velocity: self.sea_velocity,
             sea_band: self.sea_band,
         };
-        let mut work: Vec<(usize, BodyState)> = Vec::new();
+        let mut work: Vec<(usize, BodyState)> = Vec::with_capacity(self.bodies.len());
         // What the engine said of each body in `work`, in the same order.
-        let mut engine: Vec<EngineBody> = Vec::new();
+        let mut engine: Vec<EngineBody> = Vec::with_capacity(self.bodies.len());
         let mut slamming = false;
         for (k, b) in self.bodies.iter_mut().enumerate() {
             if !b.effects.needs_hydrostatics() {
@@ -337,132 +337,64 @@ impl<H: Handle> Driver<H> {
             press_waves(w, self.bodies.len(), &work, pressed);
         }
 
-        // 3. Radiation's memory and wrench and the inertia the step moves,
-        // for every radiating body on its own in one parallel pass (the
-        // other bodies' inertia is made as they are handed to the engine,
-        // and a scene without radiation makes no pass). `work` lists the
-        // bodies in order, so the pass's results come in `work`'s order.
-        let radiates = |b: &SoakBody<H>| b.effects.radiation.is_some() && b.radiation.is_some();
-        let mut radiating: Vec<Option<Moved>> = Vec::new();
-        if work.iter().any(|(k, _)| radiates(&self.bodies[*k])) {
-            let mut slot = vec![usize::MAX; self.bodies.len()];
-            for (i, (k, _)) in work.iter().enumerate() {
-                slot[*k] = i;
-            }
+        // 3. What each body hands the engine: radiation's memory and wrench,
+        // the inertia the step moves, slamming, the firewall's checks and
+        // the implicit heave, for every body on its own in one parallel
+        // pass (each body's in a fixed order: the same for any number of
+        // threads). `work` lists the bodies in order, as does the pass.
+        let mut slot = vec![usize::MAX; self.bodies.len()];
+        for (i, (k, _)) in work.iter().enumerate() {
+            slot[*k] = i;
+        }
+        let mut handed: Vec<Option<Handed<H>>> = Vec::with_capacity(self.bodies.len());
+        {
             let water = &self.water;
-            radiating = self
-                .bodies
+            let (results, seas, engine, planes, work) = (&results, &seas, &engine, &planes, &work);
+            self.bodies
                 .par_iter_mut()
                 .enumerate()
-                // A body's radiation is about a microsecond: a few bodies
-                // per task.
-                .with_min_len(8)
-                .filter_map(|(k, b)| {
+                // A body's part is a fraction of a microsecond without
+                // radiation, about one with it: a few bodies per task.
+                .with_min_len(16)
+                .map(|(k, b)| {
                     let i = slot[k];
-                    (i != usize::MAX).then(|| {
-                        let forces = results[i].as_ref().ok().filter(|_| radiates(b))?;
-                        Some(moved(b, &engine[i], &work[i].1, forces, water, t, dt))
+                    if i == usize::MAX {
+                        return None;
+                    }
+                    let state = &work[i].1;
+                    let options = shared.of(b, state);
+                    let sea = seas[i].as_ref().unwrap_or(water);
+                    let plane = planes.get(i).copied().flatten();
+                    let rejected = hand(
+                        b,
+                        &engine[i],
+                        state,
+                        &options,
+                        &results[i],
+                        sea,
+                        plane,
+                        water,
+                        t,
+                        substeps,
+                    );
+                    Some(Handed {
+                        handle: b.handle,
+                        applied: b.applied,
+                        rejected,
                     })
                 })
-                .collect();
+                .collect_into_vec(&mut handed);
         }
 
-        // 4. The firewall, then the engine.
-        for (i, ((((k, state), result), sea), rb)) in
-            work.iter().zip(results).zip(&seas).zip(&engine).enumerate()
-        {
-            let b = &mut self.bodies[*k];
-            let options = &shared.of(b, state);
-            let forces = match result {
-                Ok(f) => f,
-                Err(e) => {
-                    self.firewall.reject(step, &b.name, "body state", e);
-                    bodies.set_wrench(b.handle, &b.applied);
-                    continue;
-                }
+        // 4. The firewall, then the engine, one body at a time.
+        for (k, h) in handed.into_iter().enumerate() {
+            let Some(h) = h else {
+                continue;
             };
-            let Moved {
-                inertial,
-                engine,
-                radiation,
-                rejected,
-            } = match radiating.get_mut(i).and_then(Option::take) {
-                Some(moved) => moved,
-                None => moved(b, rb, state, &forces, &self.water, t, dt),
-            };
-            if let Some(reason) = rejected {
-                self.firewall.reject(step, &b.name, "radiation", reason);
+            for (quantity, reason) in h.rejected {
+                self.firewall.reject(step, &self.bodies[k].name, quantity, reason);
             }
-            // Slamming: the momentum the water-plane's growing added mass
-            // takes, acting over the step like the drag.
-            let slam = match (
-                b.slam.as_deref_mut(),
-                b.effects.slamming,
-                planes.get(i).copied().flatten(),
-            ) {
-                (Some(slam), Some(rule), Some(plane)) => slam_step(
-                    slam,
-                    &rule,
-                    &plane,
-                    state,
-                    &b.mass,
-                    &inertial,
-                    self.water.density,
-                    dt,
-                    t + dt,
-                ),
-                _ => Wrench::default(),
-            };
-            let mut wrench = Wrench::default();
-            // Buoyancy can never exceed the weight of fluid the whole body displaces.
-            let limit = 1.5 * self.water.density * self.water.gravity * b.shape.volume + 1e-9;
-            let bw = forces.buoyancy;
-            if !bw.is_finite() {
-                self.firewall
-                    .reject(step, &b.name, "buoyancy", format!("non-finite {bw:?}"));
-                wrench = wrench + last_part(&b.forces.buoyancy);
-            } else if bw.force.norm() > limit {
-                self.firewall.reject(
-                    step,
-                    &b.name,
-                    "buoyancy",
-                    format!("|F| = {:.3e} N exceeds {:.3e} N", bw.force.norm(), limit),
-                );
-                wrench = wrench + last_part(&b.forces.buoyancy);
-            } else {
-                // The drag (and slamming) is applied with the buoyancy: the
-                // implicit solve counts it.
-                let drag = last_part(&forces.drag) + slam + radiation;
-                let water = sea.as_ref().unwrap_or(&self.water);
-                wrench = wrench
-                    + implicit_heave(
-                        b, rb, water, state, options, t, substeps, limit, bw, drag, &inertial,
-                    );
-            }
-            wrench = wrench + slam + radiation;
-            if forces.drag.is_finite() {
-                wrench = wrench + forces.drag;
-            } else {
-                self.firewall
-                    .reject(step, &b.name, "drag", format!("non-finite {:?}", forces.drag));
-            }
-            // With an added mass: the wrench that gives the body alone the
-            // accelerations the body and the water would take.
-            let applied = match &engine {
-                Some(map) => {
-                    let g = self.water.gravity * rb.gravity_scale;
-                    let engine = inertial.for_engine(map, &wrench, &b.mass.inertia, g);
-                    if engine.is_finite() { engine } else { wrench }
-                }
-                None => wrench,
-            };
-            bodies.set_wrench(b.handle, &applied);
-            b.added_force = Wrench {
-                force: applied.force - wrench.force,
-                torque: applied.torque - wrench.torque,
-            };
-            b.applied = applied;
-            b.forces = forces;
+            bodies.set_wrench(h.handle, &h.applied);
         }
     }
 
@@ -727,9 +659,8 @@ fn press_waves(
 /// What a body's water adds to its step: the inertia the step moves and
 /// radiation's wrench (with the reason the firewall must record when that
 /// wrench came out non-finite and was set to nil). Each body's is its own
-/// (radiation's memory records the body's velocity here), so the step
-/// makes them for every body at once, in parallel, before it hands the
-/// forces to the engine one body at a time.
+/// (radiation's memory records the body's velocity here): [`hand`] makes
+/// them for every body at once, in parallel.
 struct Moved {
     inertial: Inertial,
     /// What handing the engine the body's wrench takes of its turn (with
@@ -737,6 +668,117 @@ struct Moved {
     engine: Option<EngineMap>,
     radiation: Wrench,
     rejected: Option<String>,
+}
+
+/// What the step hands the engine for one body ([`hand`]): the wrench for
+/// the body `handle` names, and what the firewall rejected on the way (each
+/// quantity with the reason), in order.
+struct Handed<H> {
+    handle: H,
+    applied: Wrench,
+    rejected: Vec<(&'static str, String)>,
+}
+
+/// What body `b` hands the engine for the step `options.dt` (s) at time
+/// `t` (s), from `result`, what its texels gave at its predicted `state`
+/// (`rb` what the engine says of it, `sea` the water it was evaluated on,
+/// `water` the driver's, `plane` its water-plane where it slams): the
+/// wrench it keeps as [`SoakBody::applied`], with the added force, the
+/// forces and its radiation's and slamming's states. A quantity the
+/// firewall rejects keeps its last good value; what it rejected comes back,
+/// in order, with the reasons. A failed evaluation keeps the last wrench.
+#[allow(clippy::too_many_arguments)]
+fn hand<H>(
+    b: &mut SoakBody<H>,
+    rb: &EngineBody,
+    state: &BodyState,
+    options: &HydroOptions,
+    result: &Result<HydroForces, String>,
+    sea: &Water,
+    plane: Option<WaterPlane>,
+    water: &Water,
+    t: f64,
+    substeps: f64,
+) -> Vec<(&'static str, String)> {
+    let dt = options.dt;
+    let mut rejected = Vec::new();
+    let forces = match result {
+        Ok(f) => f,
+        Err(e) => {
+            rejected.push(("body state", e.clone()));
+            return rejected;
+        }
+    };
+    let Moved {
+        inertial,
+        engine,
+        radiation,
+        rejected: reason,
+    } = moved(b, rb, state, forces, water, t, dt);
+    if let Some(reason) = reason {
+        rejected.push(("radiation", reason));
+    }
+    // Slamming: the momentum the water-plane's growing added mass takes,
+    // acting over the step like the drag.
+    let slam = match (b.slam.as_deref_mut(), b.effects.slamming, plane) {
+        (Some(slam), Some(rule), Some(plane)) => slam_step(
+            slam,
+            &rule,
+            &plane,
+            state,
+            &b.mass,
+            &inertial,
+            water.density,
+            dt,
+            t + dt,
+        ),
+        _ => Wrench::default(),
+    };
+    let mut wrench = Wrench::default();
+    // Buoyancy can never exceed the weight of fluid the whole body displaces.
+    let limit = 1.5 * water.density * water.gravity * b.shape.volume + 1e-9;
+    let bw = forces.buoyancy;
+    if !bw.is_finite() {
+        rejected.push(("buoyancy", format!("non-finite {bw:?}")));
+        wrench = wrench + last_part(&b.forces.buoyancy);
+    } else if bw.force.norm() > limit {
+        rejected.push((
+            "buoyancy",
+            format!("|F| = {:.3e} N exceeds {:.3e} N", bw.force.norm(), limit),
+        ));
+        wrench = wrench + last_part(&b.forces.buoyancy);
+    } else {
+        // The drag (and slamming) is applied with the buoyancy: the
+        // implicit solve counts it.
+        let drag = last_part(&forces.drag) + slam + radiation;
+        wrench = wrench
+            + implicit_heave(
+                b, rb, sea, state, options, t, substeps, limit, bw, drag, &inertial,
+            );
+    }
+    wrench = wrench + slam + radiation;
+    if forces.drag.is_finite() {
+        wrench = wrench + forces.drag;
+    } else {
+        rejected.push(("drag", format!("non-finite {:?}", forces.drag)));
+    }
+    // With an added mass: the wrench that gives the body alone the
+    // accelerations the body and the water would take.
+    let applied = match &engine {
+        Some(map) => {
+            let g = water.gravity * rb.gravity_scale;
+            let engine = inertial.for_engine(map, &wrench, &b.mass.inertia, g);
+            if engine.is_finite() { engine } else { wrench }
+        }
+        None => wrench,
+    };
+    b.added_force = Wrench {
+        force: applied.force - wrench.force,
+        torque: applied.torque - wrench.torque,
+    };
+    b.applied = applied;
+    b.forces = *forces;
+    rejected
 }
 
 /// Body `b`'s [`Moved`] for the step `dt` (s) at time `t` (s): `rb` is what
