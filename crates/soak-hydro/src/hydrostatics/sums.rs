@@ -292,14 +292,29 @@ impl DragAcc {
     /// system about it is `T K_o Tᵀ` with `T = [[I, 0], [−[c]×, I]]`, and
     /// in world axes `Q T K_o Tᵀ Qᵀ` with `Q = diag(rot, rot)`.
     pub(crate) fn system(&self, rot: &Matrix3<f64>, c: &Vector3<f64>, u: &Vector3<f64>) -> DragSums {
-        let mut qt = Matrix6::zeros();
-        qt.fixed_view_mut::<3, 3>(0, 0).copy_from(rot);
-        qt.fixed_view_mut::<3, 3>(3, 3).copy_from(rot);
-        qt.fixed_view_mut::<3, 3>(3, 0)
-            .copy_from(&(-rot * c.cross_matrix()));
-        let k = qt * self.k() * qt.transpose();
+        // In 3 × 3 blocks, K_o = [[A, B], [Bᵀ, D]] and [c]× = C (Cᵀ = −C):
+        // T K_o Tᵀ = [[A, A C + B], [·, D − C B − (C B)ᵀ − C A C]], each block
+        // then turned, R X Rᵀ (a third of the 6 × 6 products' work).
+        let k = self.k();
+        let a = k.fixed_view::<3, 3>(0, 0).into_owned();
+        let b = k.fixed_view::<3, 3>(0, 3).into_owned();
+        let d = k.fixed_view::<3, 3>(3, 3).into_owned();
+        let cx = c.cross_matrix();
+        let ac = a * cx;
+        let b_c = ac + b;
+        let cb = cx * b;
+        let d_c = d - cb - cb.transpose() - cx * ac;
+        let turn = |x: &Matrix3<f64>| rot * x * rot.transpose();
+        let (a_w, b_w, d_w) = (turn(&a), turn(&b_c), turn(&d_c));
         // The same matrix to the last bit on either side of the diagonal.
-        let k = Matrix6::from_fn(|i, j| if i <= j { k[(i, j)] } else { k[(j, i)] });
+        let k = Matrix6::from_fn(|i, j| {
+            let (i, j) = (i.min(j), i.max(j));
+            match (i < 3, j < 3) {
+                (true, true) => a_w[(i, j)],
+                (true, false) => b_w[(i, j - 3)],
+                _ => d_w[(i - 3, j - 3)],
+            }
+        });
         let b = k.fixed_view::<6, 3>(0, 0) * u;
         DragSums { k, b }
     }
