@@ -13,7 +13,8 @@ use soak_bake::Atlas;
 use crate::error::HydroError;
 use crate::hydrostatics::body_state::BodyState;
 use crate::hydrostatics::drag_kernel::{
-    Added, DragLanes, DragMoments, Facing, FacingBounds, HBox, LocalDrag, add_drag_ranges, uniform_velocity,
+    Added, DragLanes, DragMoments, Facing, FacingBounds, HBox, LocalDrag, RangeList, add_drag_ranges,
+    uniform_velocity,
 };
 use crate::hydrostatics::evaluation::{drag_sums, exact_sums, patch_sums, sample_patch};
 use crate::hydrostatics::finish::finish;

@@ -119,7 +119,7 @@ pub(crate) fn add_drag_texels(
     added: Added,
 ) {
     let mut lanes = DragLanes::default();
-    add_drag_ranges(&mut lanes, atlas, &[range], p, added);
+    add_drag_ranges(&mut lanes, atlas, &[(&[range][..], added)], p);
     lanes.add_to(acc);
 }
 
@@ -133,14 +133,8 @@ pub(crate) fn add_drag_texels(
 /// whose lanes adds anything skipped after its tests; with AVX2 and FMA
 /// where the processor has them (the same operations, multiply-adds fused
 /// as the portable code's `mul_add`, so the same bits as it).
-pub(crate) fn add_drag_ranges(
-    lanes: &mut DragLanes,
-    atlas: &Atlas,
-    ranges: &[std::ops::Range<usize>],
-    p: &LocalDrag,
-    added: Added,
-) {
-    if ranges.is_empty() {
+pub(crate) fn add_drag_ranges(lanes: &mut DragLanes, atlas: &Atlas, lists: &[RangeList], p: &LocalDrag) {
+    if lists.iter().all(|(ranges, _)| ranges.is_empty()) {
         return;
     }
     let n = atlas.len();
@@ -149,12 +143,16 @@ pub(crate) fn add_drag_ranges(
         avs: atlas.area_vectors().columns(0..n),
     };
     match (p.lin > 0.0, p.quadratic()) {
-        (true, true) => drag_lanes::<true, true>(lanes, &t, ranges, p, added),
-        (true, false) => drag_lanes::<true, false>(lanes, &t, ranges, p, added),
-        (false, true) => drag_lanes::<false, true>(lanes, &t, ranges, p, added),
+        (true, true) => drag_lanes::<true, true>(lanes, &t, lists, p),
+        (true, false) => drag_lanes::<true, false>(lanes, &t, lists, p),
+        (false, true) => drag_lanes::<false, true>(lanes, &t, lists, p),
         (false, false) => {}
     }
 }
+
+/// Texel ranges the drag kernel takes one after the other, with what the
+/// closed forms have added for them already.
+pub(crate) type RangeList<'a> = (&'a [std::ops::Range<usize>], Added);
 
 /// Texels the drag kernel takes side by side.
 pub(super) const LANES: usize = 4;
@@ -201,9 +199,8 @@ impl DragLanes {
 fn drag_lanes<const LINEAR: bool, const QUADRATIC: bool>(
     acc: &mut DragLanes,
     t: &DragColumns,
-    ranges: &[std::ops::Range<usize>],
+    lists: &[RangeList],
     p: &LocalDrag,
-    added: Added,
 ) {
     #[cfg(target_arch = "x86_64")]
     {
@@ -211,13 +208,15 @@ fn drag_lanes<const LINEAR: bool, const QUADRATIC: bool>(
             // SAFETY: the processor has AVX2 and FMA, checked just above.
             #[allow(unsafe_code)]
             unsafe {
-                drag_lanes_avx2::<LINEAR, QUADRATIC>(acc, t, ranges, p, added)
+                drag_lanes_avx2::<LINEAR, QUADRATIC>(acc, t, lists, p)
             };
             return;
         }
     }
-    for r in ranges {
-        drag_lanes_generic::<false, LINEAR, QUADRATIC>(acc, t, r.clone(), p, added);
+    for (ranges, added) in lists {
+        for r in ranges.iter() {
+            drag_lanes_generic::<false, LINEAR, QUADRATIC>(acc, t, r.clone(), p, *added);
+        }
     }
 }
 
@@ -225,14 +224,15 @@ fn drag_lanes<const LINEAR: bool, const QUADRATIC: bool>(
 /// intrinsics: the same operations in the same order on the same lanes,
 /// so the same bits. The last `len % LANES` texels of a range make a
 /// group of their own, padded with zeros and its empty lanes masked off.
+/// Every list's ranges in one call, the running sums in registers
+/// throughout.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
     acc: &mut DragLanes,
     t: &DragColumns,
-    ranges: &[std::ops::Range<usize>],
+    lists: &[RangeList],
     p: &LocalDrag,
-    added: Added,
 ) {
     use std::arch::x86_64::*;
 
@@ -250,68 +250,77 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
     let beta = p.beta.map(|b| _mm256_set1_pd(b));
     let w = p.w.map(|w| _mm256_set1_pd(w));
     let (kq, lin) = (_mm256_set1_pd(p.kq), _mm256_set1_pd(p.lin));
-    let (added_q, added_l) = (mask(added.quadratic), mask(added.linear));
-    let anything_added = added.quadratic || added.linear;
     let mut iso = acc.iso.each_ref().map(|v| get(v));
     let mut gg = [zero; 21];
     if LINEAR {
         gg = acc.gg.each_ref().map(|v| get(v));
     }
-    let mut group = |xs: [&[f32]; 3], avs: [&[f32]; 3], at: usize, valid: __m256d| {
-        let x = [load(xs[0], at), load(xs[1], at), load(xs[2], at)];
-        let d = _mm256_add_pd(alpha, _mm256_mul_pd(beta[0], x[0]));
-        let d = _mm256_add_pd(d, _mm256_mul_pd(beta[1], x[1]));
-        let d = _mm256_add_pd(d, _mm256_mul_pd(beta[2], x[2]));
-        let wet = _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(d, zero), valid);
-        if !anything_added && _mm256_movemask_pd(wet) == 0 {
-            return;
-        }
-        let a = [load(avs[0], at), load(avs[1], at), load(avs[2], at)];
-        let h = h_of(&x, &a);
-        let mut s = zero;
-        let mut any = zero;
-        if QUADRATIC {
-            let mut f = _mm256_mul_pd(h[0], w[0]);
-            for j in 1..6 {
-                f = _mm256_fmadd_pd(h[j], w[j], f);
-            }
-            let taken = _mm256_and_pd(wet, _mm256_cmp_pd::<_CMP_GT_OQ>(f, zero));
-            let kf = _mm256_mul_pd(kq, f);
-            let signed = _mm256_blendv_pd(_mm256_xor_pd(kf, neg), kf, taken);
-            let counted = _mm256_and_pd(_mm256_xor_pd(taken, added_q), valid);
-            s = _mm256_and_pd(signed, counted);
-            any = counted;
-        }
-        let mut wl = zero;
-        if LINEAR {
-            let counted = _mm256_and_pd(_mm256_xor_pd(wet, added_l), valid);
-            any = _mm256_or_pd(any, counted);
-            if _mm256_movemask_pd(any) == 0 {
+    // What the closed forms added for a list's texels: the quadratic and
+    // linear parts' masks, and whether either.
+    let mut group =
+        |xs: [&[f32]; 3], avs: [&[f32]; 3], at: usize, valid: __m256d, added: (__m256d, __m256d, bool)| {
+            let (added_q, added_l, anything_added) = added;
+            let x = [load(xs[0], at), load(xs[1], at), load(xs[2], at)];
+            let d = _mm256_add_pd(alpha, _mm256_mul_pd(beta[0], x[0]));
+            let d = _mm256_add_pd(d, _mm256_mul_pd(beta[1], x[1]));
+            let d = _mm256_add_pd(d, _mm256_mul_pd(beta[2], x[2]));
+            let wet = _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(d, zero), valid);
+            if !anything_added && _mm256_movemask_pd(wet) == 0 {
                 return;
             }
-            let aa = _mm256_fmadd_pd(a[2], a[2], _mm256_fmadd_pd(a[1], a[1], _mm256_mul_pd(a[0], a[0])));
-            let area = _mm256_sqrt_pd(aa);
-            let counted = _mm256_and_pd(counted, _mm256_cmp_pd::<_CMP_GT_OQ>(area, zero));
-            let ds = _mm256_mul_pd(lin, area);
-            let dw = _mm256_div_pd(lin, area);
-            let ds = _mm256_blendv_pd(_mm256_xor_pd(ds, neg), ds, wet);
-            let dw = _mm256_blendv_pd(_mm256_xor_pd(dw, neg), dw, wet);
-            s = _mm256_add_pd(s, _mm256_and_pd(ds, counted));
-            wl = _mm256_and_pd(dw, counted);
-        } else if _mm256_movemask_pd(any) == 0 {
-            return;
-        }
-        add_iso(&mut iso, s, &x);
-        if LINEAR {
-            add_rank1(&mut gg, wl, &h);
-        }
-    };
+            let a = [load(avs[0], at), load(avs[1], at), load(avs[2], at)];
+            let h = h_of(&x, &a);
+            let mut s = zero;
+            let mut any = zero;
+            if QUADRATIC {
+                let mut f = _mm256_mul_pd(h[0], w[0]);
+                for j in 1..6 {
+                    f = _mm256_fmadd_pd(h[j], w[j], f);
+                }
+                let taken = _mm256_and_pd(wet, _mm256_cmp_pd::<_CMP_GT_OQ>(f, zero));
+                let kf = _mm256_mul_pd(kq, f);
+                let signed = _mm256_blendv_pd(_mm256_xor_pd(kf, neg), kf, taken);
+                let counted = _mm256_and_pd(_mm256_xor_pd(taken, added_q), valid);
+                s = _mm256_and_pd(signed, counted);
+                any = counted;
+            }
+            let mut wl = zero;
+            if LINEAR {
+                let counted = _mm256_and_pd(_mm256_xor_pd(wet, added_l), valid);
+                any = _mm256_or_pd(any, counted);
+                if _mm256_movemask_pd(any) == 0 {
+                    return;
+                }
+                let aa = _mm256_fmadd_pd(a[2], a[2], _mm256_fmadd_pd(a[1], a[1], _mm256_mul_pd(a[0], a[0])));
+                let area = _mm256_sqrt_pd(aa);
+                let counted = _mm256_and_pd(counted, _mm256_cmp_pd::<_CMP_GT_OQ>(area, zero));
+                let ds = _mm256_mul_pd(lin, area);
+                let dw = _mm256_div_pd(lin, area);
+                let ds = _mm256_blendv_pd(_mm256_xor_pd(ds, neg), ds, wet);
+                let dw = _mm256_blendv_pd(_mm256_xor_pd(dw, neg), dw, wet);
+                s = _mm256_add_pd(s, _mm256_and_pd(ds, counted));
+                wl = _mm256_and_pd(dw, counted);
+            } else if _mm256_movemask_pd(any) == 0 {
+                return;
+            }
+            add_iso(&mut iso, s, &x);
+            if LINEAR {
+                add_rank1(&mut gg, wl, &h);
+            }
+        };
     let all = mask(true);
-    for range in ranges {
+    for (range, added) in lists.iter().flat_map(|(ranges, added)| {
+        let masks = (
+            mask(added.quadratic),
+            mask(added.linear),
+            added.quadratic || added.linear,
+        );
+        ranges.iter().map(move |r| (r, masks))
+    }) {
         let (start, end) = (range.start, range.end);
         let whole = end - (end - start) % LANES;
         for i in (start..whole).step_by(LANES) {
-            group(t.xs, t.avs, i, all);
+            group(t.xs, t.avs, i, all, added);
         }
         if whole < end {
             let k = end - whole;
@@ -332,6 +341,7 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
                 avs.each_ref().map(|v| &v[..]),
                 0,
                 valid,
+                added,
             );
         }
     }

@@ -277,16 +277,21 @@ impl<'a> DragWalk<'a> {
     pub(super) fn finish(self) -> DragAcc {
         let prefix = &self.tiled.drag_prefix;
         let mut lanes = DragLanes::default();
-        for (i, ranges) in self.texels.iter().enumerate() {
+        // One kernel call for the lists without its skin friction, one for
+        // those with: each list's ranges in turn.
+        for (k, lists) in self.texels.chunks(4).enumerate() {
             let p = LocalDrag {
-                lin: if i >= 4 { self.p.lin } else { 0.0 },
+                lin: if k == 1 { self.p.lin } else { 0.0 },
                 ..self.p
             };
-            let added = Added {
-                linear: i & 2 != 0,
-                quadratic: i & 1 != 0,
-            };
-            add_drag_ranges(&mut lanes, self.atlas, ranges, &p, added);
+            let lists: [RangeList; 4] = std::array::from_fn(|j| {
+                let added = Added {
+                    linear: j & 2 != 0,
+                    quadratic: j & 1 != 0,
+                };
+                (&lists[j][..], added)
+            });
+            add_drag_ranges(&mut lanes, self.atlas, &lists, &p);
         }
         let mut acc = DragAcc::default();
         lanes.add_to(&mut acc);

@@ -7,7 +7,8 @@ use soak_bake::{BakeOptions, builtin};
 /// The AVX2 kernel (where the processor has it) and the portable one
 /// with fused multiply-adds give the same sums, and the portable one
 /// without them the same but for rounding, over ranges of every length
-/// modulo the lanes and with every combination of closed forms added.
+/// modulo the lanes and with every combination of closed forms added, in
+/// one list or in several of one call.
 #[test]
 fn the_avx2_and_portable_kernels_agree() {
     let atlas = Atlas::bake(&builtin::boat(4.0, 1.2, 0.6), BakeOptions::square(64)).unwrap();
@@ -43,7 +44,7 @@ fn the_avx2_and_portable_kernels_agree() {
             drag_lanes_generic::<false, true, true>(&mut plain, &t, r.clone(), &p, added);
         }
         let mut dispatched = DragLanes::default();
-        drag_lanes::<true, true>(&mut dispatched, &t, &ranges, &p, added);
+        drag_lanes::<true, true>(&mut dispatched, &t, &[(&ranges[..], added)], &p);
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
             assert_eq!(fused, dispatched);
@@ -60,4 +61,23 @@ fn the_avx2_and_portable_kernels_agree() {
             }
         }
     }
+    // Lists of every combination in one call: each range as the
+    // portable kernel takes it, one after the other.
+    let combos = [(false, false), (true, false), (false, true), (true, true)]
+        .map(|(linear, quadratic)| Added { linear, quadratic });
+    let split: [&[std::ops::Range<usize>]; 4] = [&[0..3, 3..9], &[9..10], &[10..23, 30..31], &[40..n]];
+    let lists: Vec<RangeList> = split.into_iter().zip(combos).collect();
+    let mut one_call = DragLanes::default();
+    drag_lanes::<true, true>(&mut one_call, &t, &lists, &p);
+    let mut in_turn = DragLanes::default();
+    for (ranges, added) in &lists {
+        for r in ranges.iter() {
+            drag_lanes_generic::<true, true, true>(&mut in_turn, &t, r.clone(), &p, *added);
+        }
+    }
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+        assert_eq!(one_call, in_turn);
+    }
+    assert!(one_call.iso.iter().flatten().any(|&v| v != 0.0));
 }
