@@ -156,7 +156,7 @@ impl PlaneLanes {
 }
 
 /// The planar kernel's sums, one per lane (see [`add_planar_ranges`]).
-#[derive(Default)]
+#[derive(Default, Debug, PartialEq)]
 struct PlanarLanes {
     vol: Lanes,
     wd: Lanes,
@@ -497,6 +497,22 @@ mod tests {
             ];
             #[cfg(target_arch = "x86_64")]
             if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+                // The same bits as the fused generic code.
+                // SAFETY: the processor has AVX2 and FMA, checked just above.
+                #[allow(unsafe_code)]
+                let same = unsafe {
+                    [
+                        planar_lanes_avx2::<true, false>(&p, &t, &ranges)
+                            == generic::<true, true, false>(&p, &t, &ranges).0,
+                        planar_lanes_avx2::<false, false>(&p, &t, &ranges)
+                            == generic::<true, false, false>(&p, &t, &ranges).0,
+                        planar_lanes_avx2::<true, true>(&p, &t, &ranges)
+                            == generic::<true, true, true>(&p, &t, &ranges).0,
+                        planar_lanes_avx2::<false, true>(&p, &t, &ranges)
+                            == generic::<true, false, true>(&p, &t, &ranges).0,
+                    ]
+                };
+                assert_eq!(same, [true; 4], "AVX2 against fused generic at level {y}");
                 // SAFETY: the processor has AVX2 and FMA, checked just above.
                 #[allow(unsafe_code)]
                 variants.extend(unsafe {
