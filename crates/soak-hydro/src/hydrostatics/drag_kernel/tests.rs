@@ -65,7 +65,12 @@ fn the_avx2_and_portable_kernels_agree() {
     // portable kernel takes it, one after the other.
     let combos = [(false, false), (true, false), (false, true), (true, true)]
         .map(|(linear, quadratic)| Added { linear, quadratic });
-    let split: [&[std::ops::Range<usize>]; 4] = [&[0..3, 3..9], &[9..10], &[10..23, 30..31], &[40..n]];
+    let split: [&[std::ops::Range<usize>]; 4] = [
+        &[0..3, 3..9],
+        &[9..10, 10..17],
+        &[17..23, 30..31],
+        &[31..40, 40..n],
+    ];
     let lists: Vec<RangeList> = split.into_iter().zip(combos).collect();
     let mut one_call = DragLanes::default();
     drag_lanes::<true, true>(&mut one_call, &t, &lists, &p);
