@@ -203,6 +203,22 @@ where
     slots.into_iter().filter_map(OnceLock::into_inner).collect()
 }
 
+/// [`par_map`] folded in index order, `add(…add(add(init, f(0)), f(1))…,
+/// f(n − 1))`: the same result on any number of threads. A single item
+/// (a body whose tiles make one chunk) is computed and folded on the
+/// calling thread, with no list.
+pub(crate) fn par_fold<T, A, F, G>(n: usize, f: F, init: A, mut add: G) -> A
+where
+    T: Send + Sync,
+    F: Fn(usize) -> T + Sync,
+    G: FnMut(A, T) -> A,
+{
+    if n == 1 {
+        return add(init, f(0));
+    }
+    par_map(n, f).into_iter().fold(init, add)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -212,6 +228,22 @@ mod tests {
         for n in [0, 1, 2, 3, 17, 1000] {
             let out = par_map(n, |i| i * i);
             assert_eq!(out, (0..n).map(|i| i * i).collect::<Vec<_>>());
+        }
+    }
+
+    #[test]
+    fn a_fold_adds_in_index_order() {
+        for n in [0, 1, 2, 5, 100] {
+            let folded = par_fold(
+                n,
+                |i| i,
+                Vec::new(),
+                |mut v, i| {
+                    v.push(i);
+                    v
+                },
+            );
+            assert_eq!(folded, (0..n).collect::<Vec<_>>());
         }
     }
 

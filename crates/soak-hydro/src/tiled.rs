@@ -25,7 +25,7 @@ use crate::hydrostatics::planar_kernel::{PlanarTexels, add_planar_ranges};
 use crate::hydrostatics::sea_drag::SeaDragFrame;
 use crate::hydrostatics::sums::{BuoyancySums, DragAcc, DragSums};
 use crate::mass::MassProperties;
-use crate::parallel::par_map;
+use crate::parallel::{par_fold, par_map};
 use crate::water::{SurfacePatch, Water};
 
 mod drag;
@@ -645,21 +645,22 @@ impl TiledAtlas {
                     add_planar_ranges(&mut local, atlas, &ranges, alpha, &beta, &g, pressure, side);
                 }
             }
-            (local.rotated(&rot), drag.map(DragWalk::finish), counts)
+            (local.rotated(&rot), drag.as_mut().map(DragWalk::finish), counts)
         };
-        let parts: Vec<(BuoyancySums, Option<DragAcc>, TileCounts)> = par_map(n_chunks, work);
-        let mut sums = BuoyancySums::default();
-        let mut acc = DragAcc::default();
-        let mut counts = TileCounts::default();
-        for (s, d, c) in parts {
-            sums = sums + s;
-            if let Some(d) = d {
-                acc += &d;
-            }
-            counts.submerged += c.submerged;
-            counts.dry += c.dry;
-            counts.cut += c.cut;
-        }
+        let (sums, acc, counts) = par_fold(
+            n_chunks,
+            work,
+            (BuoyancySums::default(), DragAcc::default(), TileCounts::default()),
+            |(sums, mut acc, mut counts), (s, d, c)| {
+                if let Some(d) = d {
+                    acc += &d;
+                }
+                counts.submerged += c.submerged;
+                counts.dry += c.dry;
+                counts.cut += c.cut;
+                (sums + s, acc, counts)
+            },
+        );
         let drag = options.drag.map(|d| match uniform {
             Some((_, u)) => acc.system(&rot, &c, &u),
             // The fluid's velocity varies: per texel, with it where it is.

@@ -273,8 +273,17 @@ impl<'a> DragWalk<'a> {
         usize::from(linear) * 4 + usize::from(added.linear) * 2 + usize::from(added.quadratic)
     }
 
+    /// What the closed forms added to the tiles of list `j` (of either
+    /// half): the inverse of [`DragWalk::list`]'s `added`.
+    pub(super) fn added(j: usize) -> Added {
+        Added {
+            linear: j & 2 != 0,
+            quadratic: j & 1 != 0,
+        }
+    }
+
     /// The chunk's sums.
-    pub(super) fn finish(self) -> DragAcc {
+    pub(super) fn finish(&mut self) -> DragAcc {
         let prefix = &self.tiled.drag_prefix;
         let mut lanes = DragLanes::default();
         // One kernel call for the lists without its skin friction, one for
@@ -284,13 +293,7 @@ impl<'a> DragWalk<'a> {
                 lin: if k == 1 { self.p.lin } else { 0.0 },
                 ..self.p
             };
-            let lists: [RangeList; 4] = std::array::from_fn(|j| {
-                let added = Added {
-                    linear: j & 2 != 0,
-                    quadratic: j & 1 != 0,
-                };
-                (&lists[j][..], added)
-            });
+            let lists: [RangeList; 4] = std::array::from_fn(|j| (&lists[j][..], Self::added(j)));
             add_drag_ranges(&mut lanes, self.atlas, &lists, &p);
         }
         let mut acc = DragAcc::default();
@@ -334,11 +337,31 @@ impl<const LINEAR: bool> MomentRun<LINEAR> {
         }
     }
 
-    /// The sums of every tile pushed.
-    fn close(mut self, prefix: &[DragMoments]) -> DragMoments {
+    /// The sums of every tile pushed (the open run closed).
+    fn close(&mut self, prefix: &[DragMoments]) -> &DragMoments {
         if let Some(done) = self.open.take() {
             self.add(prefix, done);
         }
-        self.sum
+        &self.sum
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_list_reads_back_what_it_was_chosen_by() {
+        for linear in [false, true] {
+            for (l, q) in [(false, false), (false, true), (true, false), (true, true)] {
+                let added = Added {
+                    linear: l,
+                    quadratic: q,
+                };
+                let j = DragWalk::list(linear, added);
+                assert_eq!(j / 4, usize::from(linear));
+                assert_eq!(DragWalk::added(j % 4), added);
+            }
+        }
     }
 }

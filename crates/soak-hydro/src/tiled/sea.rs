@@ -46,7 +46,7 @@ use crate::hydrostatics::options::SeaVelocity;
 use crate::hydrostatics::sea_drag::{LinearFluid, SeaDragFrame, SeaDragLanes, SeaDragSums};
 use crate::hydrostatics::sea_kernel::{self, SeaFrame, SeaRead, Taylor, add_sea_range};
 use crate::hydrostatics::sums::{BuoyancySums, SlopeSums};
-use crate::parallel::par_map;
+use crate::parallel::par_fold;
 use crate::water::{Surface, SurfacePatch};
 
 /// How far the tiled path on a sampled sea lets the surface depart from
@@ -213,7 +213,7 @@ impl TiledAtlas {
             };
             Some((ti, fluid))
         };
-        let parts = par_map(n_chunks, |k| {
+        let chunk = |k: usize| {
             let groups = &self.groups[k * GROUP_CHUNK..((k + 1) * GROUP_CHUNK).min(self.groups.len())];
             let mut part = Part::default();
             // Texel ranges for the sea kernel and, where drag is on, those
@@ -293,19 +293,28 @@ impl TiledAtlas {
             }
             part.drag = part.drag + lanes.finish();
             part
-        });
-        let mut sums = BuoyancySums::default();
-        let mut drag_sums = SeaDragSums::default();
-        let mut counts = TileCounts::default();
-        let mut shallow = false;
-        for p in parts {
-            sums = sums + p.local.rotated(&rot) + p.world;
-            drag_sums = drag_sums + p.drag;
-            counts.submerged += p.counts.submerged;
-            counts.dry += p.counts.dry;
-            counts.cut += p.counts.cut;
-            shallow |= p.shallow;
-        }
+        };
+        let (sums, drag_sums, counts, shallow) = par_fold(
+            n_chunks,
+            chunk,
+            (
+                BuoyancySums::default(),
+                SeaDragSums::default(),
+                TileCounts::default(),
+                false,
+            ),
+            |(sums, drag_sums, mut counts, shallow), p| {
+                counts.submerged += p.counts.submerged;
+                counts.dry += p.counts.dry;
+                counts.cut += p.counts.cut;
+                (
+                    sums + p.local.rotated(&rot) + p.world,
+                    drag_sums + p.drag,
+                    counts,
+                    shallow | p.shallow,
+                )
+            },
+        );
         if archimedes && shallow && sums.count == atlas.len() {
             return None;
         }
