@@ -282,6 +282,22 @@ impl DragAcc {
         k
     }
 
+    /// The blocks `A`, `B` and `D` of [`DragAcc::k`] `= [[A, B], [Bᵀ, D]]`,
+    /// each entry the same operations on the same sums as there.
+    fn k_blocks(&self) -> [Matrix3<f64>; 3] {
+        let [s, sx, sy, sz, xx, yy, zz, xy, yz, zx] = self.iso;
+        let g = |i: usize, j: usize| -self.gg[upper6(i.min(j), i.max(j))];
+        let sr = Vector3::new(sx, sy, sz).cross_matrix();
+        let rr = Matrix3::new(xx, xy, zx, xy, yy, yz, zx, yz, zz);
+        let trace = xx + yy + zz;
+        let eye = |i: usize, j: usize, x: f64| if i == j { x } else { 0.0 * x };
+        [
+            Matrix3::from_fn(|i, j| g(i, j) + eye(i, j, s)),
+            Matrix3::from_fn(|i, j| g(i, j + 3) - sr[(i, j)]),
+            Matrix3::from_fn(|i, j| g(i + 3, j + 3) + (eye(i, j, trace) - rr[(i, j)])),
+        ]
+    }
+
     /// The drag system about the centre of mass in world axes, of sums
     /// taken in object axes about the atlas origin: `rot` turns object
     /// axes into the world's, `c` is the centre of mass from the atlas
@@ -295,10 +311,7 @@ impl DragAcc {
         // In 3 × 3 blocks, K_o = [[A, B], [Bᵀ, D]] and [c]× = C (Cᵀ = −C):
         // T K_o Tᵀ = [[A, A C + B], [·, D − C B − (C B)ᵀ − C A C]], each block
         // then turned, R X Rᵀ (a third of the 6 × 6 products' work).
-        let k = self.k();
-        let a = k.fixed_view::<3, 3>(0, 0).into_owned();
-        let b = k.fixed_view::<3, 3>(0, 3).into_owned();
-        let d = k.fixed_view::<3, 3>(3, 3).into_owned();
+        let [a, b, d] = self.k_blocks();
         let cx = c.cross_matrix();
         let ac = a * cx;
         let b_c = ac + b;
@@ -307,14 +320,16 @@ impl DragAcc {
         let turn = |x: &Matrix3<f64>| rot * x * rot.transpose();
         let (a_w, b_w, d_w) = (turn(&a), turn(&b_c), turn(&d_c));
         // The same matrix to the last bit on either side of the diagonal.
-        let k = Matrix6::from_fn(|i, j| {
-            let (i, j) = (i.min(j), i.max(j));
-            match (i < 3, j < 3) {
-                (true, true) => a_w[(i, j)],
-                (true, false) => b_w[(i, j - 3)],
-                _ => d_w[(i - 3, j - 3)],
+        let mut k = Matrix6::zeros();
+        for i in 0..3 {
+            for j in 0..3 {
+                let (lo, hi) = (i.min(j), i.max(j));
+                k[(i, j)] = a_w[(lo, hi)];
+                k[(i, j + 3)] = b_w[(i, j)];
+                k[(j + 3, i)] = b_w[(i, j)];
+                k[(i + 3, j + 3)] = d_w[(lo, hi)];
             }
-        });
+        }
         let b = k.fixed_view::<6, 3>(0, 0) * u;
         DragSums { k, b }
     }
@@ -399,6 +414,30 @@ impl std::ops::Add for TexelDrag {
             acc: self.acc + o.acc,
             f: self.f + o.f,
             rf: self.rf + o.rf,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The system's blocks are those of `K` to the bit, zeros and
+        /// negative zeros included.
+        #[test]
+        fn the_blocks_are_those_of_k(
+            iso in prop::array::uniform10(prop_oneof![Just(0.0), Just(-0.0), -1e3f64..1e3]),
+            gg in prop::collection::vec(prop_oneof![Just(0.0), Just(-0.0), -1e3f64..1e3], 21),
+        ) {
+            let acc = DragAcc { iso, gg: gg.try_into().unwrap() };
+            let k = acc.k();
+            let [a, b, d] = acc.k_blocks();
+            let bits = |m: &Matrix3<f64>| m.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            prop_assert_eq!(bits(&a), bits(&k.fixed_view::<3, 3>(0, 0).into_owned()));
+            prop_assert_eq!(bits(&b), bits(&k.fixed_view::<3, 3>(0, 3).into_owned()));
+            prop_assert_eq!(bits(&d), bits(&k.fixed_view::<3, 3>(3, 3).into_owned()));
         }
     }
 }
