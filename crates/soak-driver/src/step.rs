@@ -108,8 +108,11 @@ impl<H: Handle> Driver<H> {
         // crest, found once a step.
         let mut band_crests: Vec<(*const (), f64)> = Vec::new();
 
-        // 1. Which bodies need texel work, at which predicted state (each
-        // body's options are made once its state is known, below).
+        // 1. Which bodies need texel work, at which predicted state.
+        // Each body's options are made where they are needed from what every
+        // body shares and its own effects: the work list holds its index and
+        // state alone (an `Option<AddedMass>` in every item would be copied
+        // with each body, on or off).
         let shared = SharedOptions {
             dt,
             density: self.water.density,
@@ -229,22 +232,13 @@ impl<H: Handle> Driver<H> {
         if !work.is_empty() && !self.reads_on_device() {
             self.water.surface.prepare(t);
         }
-        // Each body's options, made once for the step (with radiation, its
-        // A∞ turned to the predicted pose).
-        let options: Vec<HydroOptions> = {
-            let bodies = &self.bodies;
-            work.par_iter()
-                .with_min_len(64)
-                .map(|(k, state)| shared.of(&bodies[*k], state))
-                .collect()
-        };
         let (seas, pressed): (Vec<Option<Water>>, Vec<Option<Pressed>>) = {
             let (bodies, water, waves) = (&self.bodies, &self.water, self.waves.as_deref());
             work.par_iter()
-                .zip(&options)
-                .map(|((k, state), options)| {
+                .map(|(k, state)| {
                     let b = &bodies[*k];
-                    let sea = soak_hydro::sampled_water(&b.atlas, water, state, t, options)
+                    let options = shared.of(b, state);
+                    let sea = soak_hydro::sampled_water(&b.atlas, water, state, t, &options)
                         .ok()
                         .flatten();
                     let Some(w) = waves else {
@@ -298,9 +292,9 @@ impl<H: Handle> Driver<H> {
             let (bodies, water) = (&self.bodies, &self.water);
             work.par_iter()
                 .zip(&seas)
-                .zip(&options)
-                .map(|(((k, state), sea), options)| {
+                .map(|((k, state), sea)| {
                     let b = &bodies[*k];
+                    let options = &shared.of(b, state);
                     let water = sea.as_ref().unwrap_or(water);
                     let r = match (&b.tiled, &b.effects.drag_texels) {
                         (Some(tiled), None) => tiled.evaluate(&b.atlas, water, state, &b.mass, t, options),
@@ -355,8 +349,7 @@ impl<H: Handle> Driver<H> {
         let mut handed: Vec<Option<Handed<H>>> = Vec::with_capacity(self.bodies.len());
         {
             let water = &self.water;
-            let (results, seas, engine, planes, work, options) =
-                (&results, &seas, &engine, &planes, &work, &options);
+            let (results, seas, engine, planes, work) = (&results, &seas, &engine, &planes, &work);
             self.bodies
                 .par_iter_mut()
                 .enumerate()
@@ -369,13 +362,14 @@ impl<H: Handle> Driver<H> {
                         return None;
                     }
                     let state = &work[i].1;
+                    let options = shared.of(b, state);
                     let sea = seas[i].as_ref().unwrap_or(water);
                     let plane = planes.get(i).copied().flatten();
                     let rejected = hand(
                         b,
                         &engine[i],
                         state,
-                        &options[i],
+                        &options,
                         &results[i],
                         sea,
                         plane,
