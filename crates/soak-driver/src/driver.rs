@@ -86,6 +86,8 @@ pub struct Driver<H> {
     /// Interactive waves, when the scene has them (boxed: a pointer's
     /// width when off).
     pub(crate) waves: Option<Box<CoupledWaves>>,
+    /// The step's lists, kept across steps ([`Driver::apply`]).
+    pub(crate) scratch: crate::step::StepScratch<H>,
     #[cfg(feature = "gpu")]
     pub(crate) gpu: Option<crate::gpu::GpuBackend>,
 }
@@ -121,6 +123,7 @@ impl<H: Handle> Driver<H> {
             environment: Environment::default(),
             impacts: Vec::new(),
             waves: None,
+            scratch: crate::step::StepScratch::default(),
             #[cfg(feature = "gpu")]
             gpu: None,
         }

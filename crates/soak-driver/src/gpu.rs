@@ -4,7 +4,7 @@
 use nalgebra::Point3;
 use soak_bake::Atlas;
 use soak_hydro::gpu::{GpuAtlasId, GpuBody, GpuHydro};
-use soak_hydro::{BodyState, HydroForces, HydroOptions, Water};
+use soak_hydro::{BodyState, HydroForces, Water};
 
 use crate::body::SoakBody;
 use crate::error::SoakError;
@@ -49,27 +49,26 @@ impl GpuBackend {
         Ok(self.hydro.deform(id, positions)?)
     }
 
-    /// One batch for the bodies in `work` (index, state) with their
-    /// `options`, each on its sampled sea where `seas` has one (else on
-    /// `water`).
+    /// One batch for the bodies in `work` (index, state), each with what
+    /// `prepared` holds for it in the same order: its options, and its
+    /// sampled sea where it has one (else `water`).
     pub(crate) fn evaluate<H>(
         &self,
         bodies: &[SoakBody<H>],
         water: &Water,
-        seas: &[Option<Water>],
         work: &[(usize, BodyState)],
-        options: &dyn Fn(&SoakBody<H>, &BodyState) -> HydroOptions,
+        prepared: &[crate::step::Prepared],
         t: f64,
     ) -> Result<Vec<HydroForces>, soak_hydro::gpu::GpuHydroError> {
         let batch: Vec<GpuBody<'_>> = work
             .iter()
-            .zip(seas)
-            .map(|((k, state), sea)| GpuBody {
+            .zip(prepared)
+            .map(|((k, state), p)| GpuBody {
                 atlas: self.atlases[*k],
-                water: sea.as_ref().unwrap_or(water),
+                water: p.sea.as_ref().unwrap_or(water),
                 state: *state,
                 mass: *bodies[*k].mass_properties(),
-                options: options(&bodies[*k], state),
+                options: p.options,
             })
             .collect();
         self.hydro.evaluate_batch(&batch, t)

@@ -107,12 +107,12 @@ impl<H: Handle> Driver<H> {
         // crest, which may stand above the whole sea's: each band's highest
         // crest, found once a step.
         let mut band_crests: Vec<(*const (), f64)> = Vec::new();
+        // The step's lists, kept by the driver from step to step (emptied
+        // at its end): a step allocates none of them once they have grown
+        // to the bodies' number.
+        let mut s = std::mem::take(&mut self.scratch);
 
         // 1. Which bodies need texel work, at which predicted state.
-        // Each body's options are made where they are needed from what every
-        // body shares and its own effects: the work list holds its index and
-        // state alone (an `Option<AddedMass>` in every item would be copied
-        // with each body, on or off).
         let shared = SharedOptions {
             dt,
             density: self.water.density,
@@ -120,9 +120,8 @@ impl<H: Handle> Driver<H> {
             sea_velocity: self.sea_velocity,
             sea_band: self.sea_band,
         };
-        let mut work: Vec<(usize, BodyState)> = Vec::with_capacity(self.bodies.len());
-        // What the engine said of each body in `work`, in the same order.
-        let mut engine: Vec<EngineBody> = Vec::with_capacity(self.bodies.len());
+        // `s.work`: each body's index and predicted state; `s.engine`: what
+        // the engine said of it, in the same order.
         let mut slamming = false;
         for (k, b) in self.bodies.iter_mut().enumerate() {
             if !b.effects.needs_hydrostatics() {
@@ -210,8 +209,8 @@ impl<H: Handle> Driver<H> {
                 continue;
             }
             slamming |= b.slam.is_some();
-            work.push((k, state));
-            engine.push(rb);
+            s.work.push((k, state));
+            s.engine.push(rb);
         }
 
         // The sea, sampled once per body over its footprint, read by the
@@ -229,12 +228,15 @@ impl<H: Handle> Driver<H> {
         // bodies read it in parallel; where the device reads it, the CPU
         // does not (a step that falls back to the CPU evaluates it on its
         // first read).
-        if !work.is_empty() && !self.reads_on_device() {
+        if !s.work.is_empty() && !self.reads_on_device() {
             self.water.surface.prepare(t);
         }
-        let (seas, pressed): (Vec<Option<Water>>, Vec<Option<Pressed>>) = {
+        // Each body's options are made here, once a step, from what every
+        // body shares and its own effects.
+        {
             let (bodies, water, waves) = (&self.bodies, &self.water, self.waves.as_deref());
-            work.par_iter()
+            s.work
+                .par_iter()
                 .map(|(k, state)| {
                     let b = &bodies[*k];
                     let options = shared.of(b, state);
@@ -242,7 +244,11 @@ impl<H: Handle> Driver<H> {
                         .ok()
                         .flatten();
                     let Some(w) = waves else {
-                        return (sea, None);
+                        return Prepared {
+                            options,
+                            sea,
+                            pressed: None,
+                        };
                     };
                     let base = sea.as_ref().unwrap_or(water);
                     // A body with radiation makes its waves in its memory.
@@ -254,29 +260,27 @@ impl<H: Handle> Driver<H> {
                         Vec::new()
                     };
                     let with_velocity = options.drag.is_some();
-                    match w.solver.water_for(base, &b.atlas, state, &own, t, with_velocity) {
-                        Ok(Some(on)) => (Some(on), Some(own)),
-                        _ => (sea, None),
+                    let (sea, pressed) =
+                        match w.solver.water_for(base, &b.atlas, state, &own, t, with_velocity) {
+                            Ok(Some(on)) => (Some(on), Some(own)),
+                            _ => (sea, None),
+                        };
+                    Prepared {
+                        options,
+                        sea,
+                        pressed,
                     }
                 })
-                .unzip()
-        };
+                .collect_into_vec(&mut s.prepared);
+        }
 
         // 2. Evaluate: one GPU batch, or every body in one parallel pass on
         // the CPU (each body's sums in a fixed order: the same results for
         // any number of threads).
-        let mut results: Vec<Result<HydroForces, String>> = Vec::with_capacity(work.len());
         #[cfg(feature = "gpu")]
         if let Some(gpu) = &self.gpu {
-            match gpu.evaluate(
-                &self.bodies,
-                &self.water,
-                &seas,
-                &work,
-                &|b, state| shared.of(b, state),
-                t,
-            ) {
-                Ok(forces) => results.extend(forces.into_iter().map(Ok)),
+            match gpu.evaluate(&self.bodies, &self.water, &s.work, &s.prepared, t) {
+                Ok(forces) => s.results.extend(forces.into_iter().map(Ok)),
                 Err(e) => {
                     // Keep going on the CPU for this step; say so once per failure.
                     self.firewall.reject(
@@ -288,14 +292,15 @@ impl<H: Handle> Driver<H> {
                 }
             }
         }
-        if results.is_empty() {
+        if s.results.is_empty() {
             let (bodies, water) = (&self.bodies, &self.water);
-            work.par_iter()
-                .zip(&seas)
-                .map(|((k, state), sea)| {
+            s.work
+                .par_iter()
+                .zip(&s.prepared)
+                .map(|((k, state), p)| {
                     let b = &bodies[*k];
-                    let options = &shared.of(b, state);
-                    let water = sea.as_ref().unwrap_or(water);
+                    let options = &p.options;
+                    let water = p.sea.as_ref().unwrap_or(water);
                     let r = match (&b.tiled, &b.effects.drag_texels) {
                         (Some(tiled), None) => tiled.evaluate(&b.atlas, water, state, &b.mass, t, options),
                         (Some(tiled), Some(drag)) => {
@@ -308,19 +313,20 @@ impl<H: Handle> Driver<H> {
                     };
                     r.map_err(|e| e.to_string())
                 })
-                .collect_into_vec(&mut results);
+                .collect_into_vec(&mut s.results);
         }
 
         // The water-planes of the slamming bodies (one more pass over their
         // texels; nothing at all in a scene without slamming).
         let planes: Vec<Option<WaterPlane>> = if slamming {
             let (bodies, water) = (&self.bodies, &self.water);
-            work.par_iter()
-                .zip(&seas)
-                .map(|((k, state), sea)| {
+            s.work
+                .par_iter()
+                .zip(&s.prepared)
+                .map(|((k, state), p)| {
                     let b = &bodies[*k];
                     b.slam.as_ref()?;
-                    soak_hydro::water_plane(&b.atlas, sea.as_ref().unwrap_or(water), state, t).ok()
+                    soak_hydro::water_plane(&b.atlas, p.sea.as_ref().unwrap_or(water), state, t).ok()
                 })
                 .collect()
         } else {
@@ -329,12 +335,13 @@ impl<H: Handle> Driver<H> {
 
         // A body whose evaluation failed presses nothing.
         if let Some(w) = self.waves.as_deref_mut() {
-            let pressed = pressed
-                .into_iter()
-                .zip(&results)
-                .map(|(p, r)| p.filter(|_| r.is_ok()))
+            let pressed = s
+                .prepared
+                .iter_mut()
+                .zip(&s.results)
+                .map(|(p, r)| p.pressed.take().filter(|_| r.is_ok()))
                 .collect();
-            press_waves(w, self.bodies.len(), &work, pressed);
+            press_waves(w, self.bodies.len(), &s.work, pressed);
         }
 
         // 3. What each body hands the engine: radiation's memory and wrench,
@@ -342,14 +349,15 @@ impl<H: Handle> Driver<H> {
         // the implicit heave, for every body on its own in one parallel
         // pass (each body's in a fixed order: the same for any number of
         // threads). `work` lists the bodies in order, as does the pass.
-        let mut slot = vec![usize::MAX; self.bodies.len()];
-        for (i, (k, _)) in work.iter().enumerate() {
-            slot[*k] = i;
+        s.slot.clear();
+        s.slot.resize(self.bodies.len(), usize::MAX);
+        for (i, (k, _)) in s.work.iter().enumerate() {
+            s.slot[*k] = i;
         }
-        let mut handed: Vec<Option<Handed<H>>> = Vec::with_capacity(self.bodies.len());
         {
             let water = &self.water;
-            let (results, seas, engine, planes, work) = (&results, &seas, &engine, &planes, &work);
+            let (results, prepared, engine, planes, work, slot) =
+                (&s.results, &s.prepared, &s.engine, &planes, &s.work, &s.slot);
             self.bodies
                 .par_iter_mut()
                 .enumerate()
@@ -362,14 +370,14 @@ impl<H: Handle> Driver<H> {
                         return None;
                     }
                     let state = &work[i].1;
-                    let options = shared.of(b, state);
-                    let sea = seas[i].as_ref().unwrap_or(water);
+                    let Prepared { options, sea, .. } = &prepared[i];
+                    let sea = sea.as_ref().unwrap_or(water);
                     let plane = planes.get(i).copied().flatten();
                     let rejected = hand(
                         b,
                         &engine[i],
                         state,
-                        &options,
+                        options,
                         &results[i],
                         sea,
                         plane,
@@ -383,11 +391,11 @@ impl<H: Handle> Driver<H> {
                         rejected,
                     })
                 })
-                .collect_into_vec(&mut handed);
+                .collect_into_vec(&mut s.handed);
         }
 
         // 4. The firewall, then the engine, one body at a time.
-        for (k, h) in handed.into_iter().enumerate() {
+        for (k, h) in s.handed.drain(..).enumerate() {
             let Some(h) = h else {
                 continue;
             };
@@ -396,6 +404,8 @@ impl<H: Handle> Driver<H> {
             }
             bodies.set_wrench(h.handle, &h.applied);
         }
+        s.clear();
+        self.scratch = s;
     }
 
     /// Advances the liquid texture of every wet body by `dt` (s) at the
@@ -668,6 +678,66 @@ struct Moved {
     engine: Option<EngineMap>,
     radiation: Wrench,
     rejected: Option<String>,
+}
+
+/// What a body in the step's work list reads: its options for the step,
+/// the sea sampled over its footprint (`None`: the driver's water itself)
+/// and, with interactive waves, the cells it pressed.
+pub(crate) struct Prepared {
+    pub(crate) options: HydroOptions,
+    pub(crate) sea: Option<Water>,
+    pressed: Option<Pressed>,
+}
+
+/// The lists a step fills, kept by the driver from one step to the next so
+/// that a step allocates none of them once they have grown to the bodies'
+/// number (their contents dropped at the end of each step).
+pub(crate) struct StepScratch<H> {
+    /// The bodies that need texel work: index and predicted state.
+    work: Vec<(usize, BodyState)>,
+    /// What the engine said of each body in `work`, in the same order.
+    engine: Vec<EngineBody>,
+    /// What each body in `work` reads, in the same order.
+    prepared: Vec<Prepared>,
+    /// Each body's evaluation, in `work`'s order.
+    results: Vec<Result<HydroForces, String>>,
+    /// Each body's place in `work` (`usize::MAX`: not in it).
+    slot: Vec<usize>,
+    /// What each body hands the engine, by body.
+    handed: Vec<Option<Handed<H>>>,
+}
+
+impl<H> Default for StepScratch<H> {
+    fn default() -> Self {
+        Self {
+            work: Vec::new(),
+            engine: Vec::new(),
+            prepared: Vec::new(),
+            results: Vec::new(),
+            slot: Vec::new(),
+            handed: Vec::new(),
+        }
+    }
+}
+
+impl<H> StepScratch<H> {
+    /// Drops what the step put in the lists, keeping their room.
+    fn clear(&mut self) {
+        self.work.clear();
+        self.engine.clear();
+        self.prepared.clear();
+        self.results.clear();
+        self.slot.clear();
+        self.handed.clear();
+    }
+}
+
+impl<H> std::fmt::Debug for StepScratch<H> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("StepScratch")
+            .field("capacity", &self.work.capacity())
+            .finish_non_exhaustive()
+    }
 }
 
 /// What the step hands the engine for one body ([`hand`]): the wrench for
