@@ -194,6 +194,15 @@ pub struct TileCounts {
     pub cut: usize,
 }
 
+impl std::ops::AddAssign for TileCounts {
+    /// Adds another part's counts, kind by kind.
+    fn add_assign(&mut self, other: Self) {
+        self.submerged += other.submerged;
+        self.dry += other.dry;
+        self.cut += other.cut;
+    }
+}
+
 impl TiledAtlas {
     /// Precomputes the tile moments of `atlas` (once per bake or refresh).
     pub fn new(atlas: &Atlas) -> Self {
@@ -655,9 +664,7 @@ impl TiledAtlas {
                 if let Some(d) = d {
                     acc += &d;
                 }
-                counts.submerged += c.submerged;
-                counts.dry += c.dry;
-                counts.cut += c.cut;
+                counts += c;
                 (sums + s, acc, counts)
             },
         );

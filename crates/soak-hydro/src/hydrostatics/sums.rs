@@ -310,29 +310,55 @@ impl DragAcc {
     pub(crate) fn system(&self, rot: &Matrix3<f64>, c: &Vector3<f64>, u: &Vector3<f64>) -> DragSums {
         // In 3 × 3 blocks, K_o = [[A, B], [Bᵀ, D]] and [c]× = C (Cᵀ = −C):
         // T K_o Tᵀ = [[A, A C + B], [·, D − C B − (C B)ᵀ − C A C]], each block
-        // then turned, R X Rᵀ (a third of the 6 × 6 products' work).
+        // then turned, R X Rᵀ (a third of the 6 × 6 products' work). The
+        // diagonal blocks are symmetric: of them (and of C A C) only the
+        // entries on and above the diagonal are made, and mirrored, so
+        // that the matrix is the same to the last bit on either side.
         let [a, b, d] = self.k_blocks();
         let cx = c.cross_matrix();
-        let ac = a * cx;
+        let ac = product(&a, &cx);
         let b_c = ac + b;
-        let cb = cx * b;
-        let d_c = d - cb - cb.transpose() - cx * ac;
-        let turn = |x: &Matrix3<f64>| rot * x * rot.transpose();
-        let (a_w, b_w, d_w) = (turn(&a), turn(&b_c), turn(&d_c));
-        // The same matrix to the last bit on either side of the diagonal.
-        let mut k = Matrix6::zeros();
-        for i in 0..3 {
-            for j in 0..3 {
-                let (lo, hi) = (i.min(j), i.max(j));
-                k[(i, j)] = a_w[(lo, hi)];
-                k[(i, j + 3)] = b_w[(i, j)];
-                k[(j + 3, i)] = b_w[(i, j)];
-                k[(i + 3, j + 3)] = d_w[(lo, hi)];
-            }
-        }
+        let cb = product(&cx, &b);
+        let d_c = symmetric(|i, j| d[(i, j)] - cb[(i, j)] - cb[(j, i)] - dot_row_column(&cx, i, &ac, j));
+        let rt = rot.transpose();
+        let turn_symmetric = |x: &Matrix3<f64>| {
+            let y = product(x, &rt);
+            symmetric(|i, j| dot_row_column(rot, i, &y, j))
+        };
+        let (a_w, b_w, d_w) = (
+            turn_symmetric(&a),
+            product(&product(rot, &b_c), &rt),
+            turn_symmetric(&d_c),
+        );
+        let k = Matrix6::from_fn(|i, j| match (i < 3, j < 3) {
+            (true, true) => a_w[(i, j)],
+            (true, false) => b_w[(i, j - 3)],
+            (false, true) => b_w[(j, i - 3)],
+            (false, false) => d_w[(i - 3, j - 3)],
+        });
         let b = k.fixed_view::<6, 3>(0, 0) * u;
         DragSums { k, b }
     }
+}
+
+/// `x y`, entry by entry (three multiply-adds each).
+#[inline(always)]
+fn product(x: &Matrix3<f64>, y: &Matrix3<f64>) -> Matrix3<f64> {
+    Matrix3::from_fn(|i, j| dot_row_column(x, i, y, j))
+}
+
+/// Row `i` of `x` by column `j` of `y`.
+#[inline(always)]
+fn dot_row_column(x: &Matrix3<f64>, i: usize, y: &Matrix3<f64>, j: usize) -> f64 {
+    x[(i, 0)] * y[(0, j)] + x[(i, 1)] * y[(1, j)] + x[(i, 2)] * y[(2, j)]
+}
+
+/// The symmetric 3 × 3 matrix whose entries on and above the diagonal
+/// are `f(i, j)` (`i ≤ j`), each made once.
+#[inline(always)]
+fn symmetric(f: impl Fn(usize, usize) -> f64) -> Matrix3<f64> {
+    let (xx, yy, zz, xy, yz, xz) = (f(0, 0), f(1, 1), f(2, 2), f(0, 1), f(1, 2), f(0, 2));
+    Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
 }
 
 /// The drag of submerged texels taken one by one, each in its own fluid

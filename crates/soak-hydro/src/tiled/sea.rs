@@ -304,9 +304,7 @@ impl TiledAtlas {
                 false,
             ),
             |(sums, drag_sums, mut counts, shallow), p| {
-                counts.submerged += p.counts.submerged;
-                counts.dry += p.counts.dry;
-                counts.cut += p.counts.cut;
+                counts += p.counts;
                 (
                     sums + p.local.rotated(&rot) + p.world,
                     drag_sums + p.drag,
