@@ -165,6 +165,32 @@ fn a_seed_is_one_sea_and_another_seed_another() {
 }
 
 #[test]
+fn a_sea_whose_gravity_or_size_is_changed_is_evaluated_with_them() {
+    // The modes' wavenumbers and frequencies, made once on the first
+    // evaluation, follow the tile's public size and gravity when they are
+    // changed after it: the same fields as a sea made with them from the
+    // start (each mode one sinusoid, so a stale frequency or wavenumber
+    // would show at once).
+    let s = SeaSpectrum::jonswap(1.0, 5.0);
+    let sea = SpectralSea::realize(&s, 0.0, 100.0, 32, 7, G).unwrap();
+    let (mut changed, mut fresh) = (sea.clone(), sea.clone());
+    let before = changed.fields(3.0);
+    changed.gravity = 3.7;
+    fresh.gravity = 3.7;
+    let after = changed.fields(3.0);
+    assert_eq!(after, fresh.fields(3.0));
+    assert_ne!(after.height, before.height);
+    let mut resized = sea.clone();
+    let _ = resized.fields(3.0);
+    resized.size = 140.0;
+    let mut fresh = sea;
+    fresh.size = 140.0;
+    let after = resized.fields(3.0);
+    assert_eq!(after, fresh.fields(3.0));
+    assert_ne!(after.height_gradient[0], before.height_gradient[0]);
+}
+
+#[test]
 fn one_mode_is_the_gerstner_wave_of_its_amplitude_and_length() {
     // Mode (3, −2) of a 64 m tile: a wave 17.75 m long at −33.7°,
     // amplitude 0.4 m, choppiness 0.8: the Gerstner wave with steepness

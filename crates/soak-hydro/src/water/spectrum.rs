@@ -256,6 +256,69 @@ pub struct SpectralSea {
     /// index `i < cells/2` as itself, otherwise `i − cells`), m.
     amplitudes: Vec<Complex<f64>>,
     fft: Fft2,
+    /// What of each mode with an amplitude does not change with time
+    /// (its `k`, `k̂` and `ω`), made on the first evaluation for the tile's
+    /// size and gravity then ([`Stationary`]).
+    stationary: std::sync::OnceLock<Stationary>,
+}
+
+/// The modes of a [`SpectralSea`] that have an amplitude, each with its
+/// index and what [`SpectralSea::fields`] needs of it that does not change
+/// with time (`a` its amplitude at `t = 0`), row by row; made for the
+/// tile's `size` and `gravity` it records.
+#[derive(Clone)]
+struct Stationary {
+    size: f64,
+    gravity: f64,
+    /// Each mode's index in its row and the mode.
+    modes: Vec<(usize, Turned)>,
+    /// `rows[l]..rows[l + 1]`: row `l`'s modes in `modes`.
+    rows: Vec<usize>,
+}
+
+impl Stationary {
+    /// The modes of `sea` with an amplitude (neither the mean nor of no
+    /// amplitude), at `t = 0`.
+    fn of(sea: &SpectralSea) -> Self {
+        let n = sea.cells;
+        let dk = std::f64::consts::TAU / sea.size;
+        let mut modes = Vec::new();
+        let mut rows = Vec::with_capacity(n + 1);
+        for lz in 0..n {
+            rows.push(modes.len());
+            let kz = signed(lz, n) as f64 * dk;
+            for lx in 0..n {
+                let a = sea.amplitudes[lz * n + lx];
+                let k = [signed(lx, n) as f64 * dk, kz];
+                let kk = k[0].hypot(k[1]);
+                if kk == 0.0 || a.norm_sqr() == 0.0 {
+                    continue;
+                }
+                let omega = (sea.gravity * kk).sqrt();
+                modes.push((
+                    lx,
+                    Turned {
+                        a,
+                        k,
+                        unit: [k[0] / kk, k[1] / kk],
+                        omega,
+                    },
+                ));
+            }
+        }
+        rows.push(modes.len());
+        Self {
+            size: sea.size,
+            gravity: sea.gravity,
+            modes,
+            rows,
+        }
+    }
+
+    /// Whether it was made for `sea`'s size and gravity as they are now.
+    fn fits(&self, sea: &SpectralSea) -> bool {
+        self.size.to_bits() == sea.size.to_bits() && self.gravity.to_bits() == sea.gravity.to_bits()
+    }
 }
 
 impl std::fmt::Debug for SpectralSea {
@@ -590,6 +653,7 @@ impl SpectralSea {
             gravity,
             amplitudes,
             fft: Fft2::new(cells),
+            stationary: std::sync::OnceLock::new(),
         }
     }
 
@@ -791,25 +855,25 @@ impl SpectralSea {
     /// and `ω` (all zero for the mean and for modes of no amplitude).
     fn turned(&self, t: f64) -> Vec<Turned> {
         let n = self.cells;
-        let dk = std::f64::consts::TAU / self.size;
-        // Per mode: A e^{−iωt}, k and k̂, ω; the rows in parallel, each
-        // mode without a division.
+        // What does not change with time is made once (again, should the
+        // tile's size or gravity have been changed since): per mode with
+        // an amplitude, only `A e^{−iωt}` is made here, the rows in
+        // parallel.
+        let made;
+        let stationary = match self.stationary.get_or_init(|| Stationary::of(self)) {
+            s if s.fits(self) => s,
+            _ => {
+                made = Stationary::of(self);
+                &made
+            }
+        };
         let mut turned = vec![Turned::default(); n * n];
         turned.par_chunks_mut(n).enumerate().for_each(|(lz, row)| {
-            let kz = signed(lz, n) as f64 * dk;
-            for (lx, m) in row.iter_mut().enumerate() {
-                let a = self.amplitudes[lz * n + lx];
-                let k = [signed(lx, n) as f64 * dk, kz];
-                let kk = k[0].hypot(k[1]);
-                if kk == 0.0 || a.norm_sqr() == 0.0 {
-                    continue;
-                }
-                let omega = (self.gravity * kk).sqrt();
-                *m = Turned {
-                    a: a * Complex::from_polar(1.0, -omega * t),
-                    k,
-                    unit: [k[0] / kk, k[1] / kk],
-                    omega,
+            let modes = &stationary.modes[stationary.rows[lz]..stationary.rows[lz + 1]];
+            for &(lx, m) in modes {
+                row[lx] = Turned {
+                    a: m.a * Complex::from_polar(1.0, -m.omega * t),
+                    ..m
                 };
             }
         });
