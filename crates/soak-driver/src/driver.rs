@@ -87,7 +87,7 @@ pub struct Driver<H> {
     /// width when off).
     pub(crate) waves: Option<Box<CoupledWaves>>,
     /// The step's lists, kept across steps ([`Driver::apply`]).
-    pub(crate) scratch: crate::step::StepScratch<H>,
+    pub(crate) scratch: crate::scratch::StepScratch<H>,
     #[cfg(feature = "gpu")]
     pub(crate) gpu: Option<crate::gpu::GpuBackend>,
 }
@@ -123,7 +123,7 @@ impl<H: Handle> Driver<H> {
             environment: Environment::default(),
             impacts: Vec::new(),
             waves: None,
-            scratch: crate::step::StepScratch::default(),
+            scratch: crate::scratch::StepScratch::default(),
             #[cfg(feature = "gpu")]
             gpu: None,
         }

@@ -57,7 +57,7 @@ impl GpuBackend {
         bodies: &[SoakBody<H>],
         water: &Water,
         work: &[(usize, BodyState)],
-        prepared: &[crate::step::Prepared],
+        prepared: &[crate::scratch::Prepared],
         t: f64,
     ) -> Result<Vec<HydroForces>, soak_hydro::gpu::GpuHydroError> {
         let batch: Vec<GpuBody<'_>> = work

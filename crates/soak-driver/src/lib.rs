@@ -42,6 +42,7 @@ mod liquid;
 mod predicted_step;
 mod radiation;
 mod registry;
+mod scratch;
 mod state;
 mod step;
 mod waves;

@@ -20,6 +20,7 @@ use crate::error::SoakError;
 use crate::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
 use crate::inertial::{EngineMap, Inertial};
 use crate::radiation::{entry_weight, sea_excitation, water_motion};
+use crate::scratch::{Handed, Prepared};
 use crate::waves::{CoupledWaves, Pressed};
 use soak_seakeeping::RadiationState;
 
@@ -678,75 +679,6 @@ struct Moved {
     engine: Option<EngineMap>,
     radiation: Wrench,
     rejected: Option<String>,
-}
-
-/// What a body in the step's work list reads: its options for the step,
-/// the sea sampled over its footprint (`None`: the driver's water itself)
-/// and, with interactive waves, the cells it pressed.
-pub(crate) struct Prepared {
-    pub(crate) options: HydroOptions,
-    pub(crate) sea: Option<Water>,
-    pressed: Option<Pressed>,
-}
-
-/// The lists a step fills, kept by the driver from one step to the next so
-/// that a step allocates none of them once they have grown to the bodies'
-/// number (their contents dropped at the end of each step).
-pub(crate) struct StepScratch<H> {
-    /// The bodies that need texel work: index and predicted state.
-    work: Vec<(usize, BodyState)>,
-    /// What the engine said of each body in `work`, in the same order.
-    engine: Vec<EngineBody>,
-    /// What each body in `work` reads, in the same order.
-    prepared: Vec<Prepared>,
-    /// Each body's evaluation, in `work`'s order.
-    results: Vec<Result<HydroForces, String>>,
-    /// Each body's place in `work` (`usize::MAX`: not in it).
-    slot: Vec<usize>,
-    /// What each body hands the engine, by body.
-    handed: Vec<Option<Handed<H>>>,
-}
-
-impl<H> Default for StepScratch<H> {
-    fn default() -> Self {
-        Self {
-            work: Vec::new(),
-            engine: Vec::new(),
-            prepared: Vec::new(),
-            results: Vec::new(),
-            slot: Vec::new(),
-            handed: Vec::new(),
-        }
-    }
-}
-
-impl<H> StepScratch<H> {
-    /// Drops what the step put in the lists, keeping their room.
-    fn clear(&mut self) {
-        self.work.clear();
-        self.engine.clear();
-        self.prepared.clear();
-        self.results.clear();
-        self.slot.clear();
-        self.handed.clear();
-    }
-}
-
-impl<H> std::fmt::Debug for StepScratch<H> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("StepScratch")
-            .field("capacity", &self.work.capacity())
-            .finish_non_exhaustive()
-    }
-}
-
-/// What the step hands the engine for one body ([`hand`]): the wrench for
-/// the body `handle` names, and what the firewall rejected on the way (each
-/// quantity with the reason), in order.
-struct Handed<H> {
-    handle: H,
-    applied: Wrench,
-    rejected: Vec<(&'static str, String)>,
 }
 
 /// What body `b` hands the engine for the step `options.dt` (s) at time
