@@ -181,6 +181,11 @@ pub struct TiledAtlas {
     facing: Vec<FacingBounds>,
     /// `drag_prefix[i]` holds the sums of the drag moments of `tiles[..i]`.
     drag_prefix: Vec<DragMoments>,
+    /// Each tile's drag moments alone (two neighbouring entries of
+    /// `drag_prefix` apart), made on the first evaluation with drag on a
+    /// sampled sea, which takes them tile by tile: nothing where no body
+    /// of this atlas meets drag on a sea.
+    tile_drag: std::sync::OnceLock<Vec<DragMoments>>,
 }
 
 /// How many tiles of each kind the last evaluation met.
@@ -305,6 +310,7 @@ impl TiledAtlas {
             prefix,
             facing: facing.iter().map(HBox::bounds).collect(),
             drag_prefix,
+            tile_drag: std::sync::OnceLock::new(),
         }
     }
 
@@ -314,6 +320,15 @@ impl TiledAtlas {
     /// The tiles' moments, ordered group by group.
     pub fn tiles(&self) -> &[TileMoments] {
         &self.tiles
+    }
+
+    /// Each tile's drag moments, made on the first call.
+    fn tile_drag(&self) -> &[DragMoments] {
+        self.tile_drag.get_or_init(|| {
+            (0..self.tiles.len())
+                .map(|ti| DragMoments::of_tile(&self.drag_prefix, ti))
+                .collect()
+        })
     }
 
     /// Same as [`crate::evaluate`], using closed forms for tiles wholly under

@@ -40,7 +40,6 @@ use nalgebra::{Matrix2, Matrix2x3, Matrix3, Vector2, Vector3};
 use soak_bake::Atlas;
 
 use super::{TileCounts, TiledAtlas, add_closed_form};
-use crate::hydrostatics::drag_kernel::DragMoments;
 use crate::hydrostatics::frame::Frame;
 use crate::hydrostatics::options::SeaVelocity;
 use crate::hydrostatics::sea_drag::{LinearFluid, SeaDragFrame, SeaDragLanes, SeaDragSums};
@@ -330,9 +329,8 @@ impl TiledAtlas {
         fluid: &LinearFluid,
     ) -> bool {
         let m = &self.tiles[ti];
-        let moments = DragMoments::of_tile(&self.drag_prefix, ti);
         sums.add_tile(
-            &moments,
+            &self.tile_drag()[ti],
             &self.facing[ti],
             &m.s1,
             &m.s2,
