@@ -391,6 +391,12 @@ fn bad_parameters_are_named() {
         name(SpectralSea::from_modes(0.0, 100.0, 32, &[mode], G).unwrap_err()),
         "n"
     );
+    // The mean is no wave: its height is the sea's level.
+    let mean = SeaMode { n: 0, ..mode };
+    assert_eq!(
+        name(SpectralSea::from_modes(0.0, 100.0, 32, &[mean], G).unwrap_err()),
+        "n and l (the mean; set the level instead)"
+    );
     let mode = SeaMode {
         n: 1,
         amplitude: -1.0,

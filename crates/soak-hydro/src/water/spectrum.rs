@@ -17,6 +17,8 @@
 //! so that one mode of amplitude `a` is exactly the [`Gerstner`](super::Gerstner)
 //! wave of that amplitude with steepness `λ k a`.
 
+use std::borrow::Cow;
+
 use nalgebra::Vector2;
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
@@ -604,8 +606,9 @@ impl SpectralSea {
     ///
     /// # Errors
     /// As [`SpectralSea::realize`], and [`WaterError::Wave`] naming a mode
-    /// outside the grid (or its Nyquist row or column) or with an amplitude
-    /// or phase that is not finite (or a negative amplitude).
+    /// outside the grid (or its Nyquist row or column), the mean `n = l =
+    /// 0` (no wave: the mean height is `level`), or with an amplitude or
+    /// phase that is not finite (or a negative amplitude).
     pub fn from_modes(
         level: f64,
         size: f64,
@@ -623,6 +626,9 @@ impl SpectralSea {
             }
             if m.l.abs() >= half {
                 return Err(bad("l", m.l as f64));
+            }
+            if m.n == 0 && m.l == 0 {
+                return Err(bad("n and l (the mean; set the level instead)", 0.0));
             }
             if !(m.amplitude.is_finite() && m.amplitude >= 0.0) {
                 return Err(bad("amplitude", m.amplitude));
@@ -757,20 +763,26 @@ impl SpectralSea {
         density
     }
 
-    /// Every mode with energy: its wavenumber `(kx, kz)` (rad/m), its
-    /// angular frequency (rad/s) and `|A|²` (m²).
+    /// Every wave with energy: its wavenumber `(kx, kz)` (rad/m), its
+    /// angular frequency (rad/s) and `|A|²` (m²), row by row; the modes
+    /// [`SpectralSea::fields`] transforms (not the mean, `k = 0`, which
+    /// moves no water).
     pub fn modes(&self) -> impl Iterator<Item = ([f64; 2], f64, f64)> + '_ {
-        let n = self.cells;
-        let dk = std::f64::consts::TAU / self.size;
-        self.amplitudes
-            .iter()
-            .enumerate()
-            .filter(|(_, a)| a.norm_sqr() > 0.0)
-            .map(move |(i, a)| {
-                let k = [signed(i % n, n) as f64 * dk, signed(i / n, n) as f64 * dk];
-                let omega = (self.gravity * k[0].hypot(k[1])).sqrt();
-                (k, omega, a.norm_sqr())
-            })
+        let stationary = self.stationary();
+        (0..stationary.modes.len()).map(move |j| {
+            let m = &stationary.modes[j].1;
+            (m.k, m.omega, m.a.norm_sqr())
+        })
+    }
+
+    /// What of each mode with an amplitude does not change with time:
+    /// the kept one where it fits the tile's size and gravity as they are
+    /// now, else made anew.
+    fn stationary(&self) -> Cow<'_, Stationary> {
+        match self.stationary.get_or_init(|| Stationary::of(self)) {
+            s if s.fits(self) => Cow::Borrowed(s),
+            _ => Cow::Owned(Stationary::of(self)),
+        }
     }
 
     /// The whole tile at time `t` (s): seven inverse transforms of
@@ -859,14 +871,7 @@ impl SpectralSea {
         // tile's size or gravity have been changed since): per mode with
         // an amplitude, only `A e^{−iωt}` is made here, the rows in
         // parallel.
-        let made;
-        let stationary = match self.stationary.get_or_init(|| Stationary::of(self)) {
-            s if s.fits(self) => s,
-            _ => {
-                made = Stationary::of(self);
-                &made
-            }
-        };
+        let stationary = self.stationary();
         let mut turned = vec![Turned::default(); n * n];
         turned.par_chunks_mut(n).enumerate().for_each(|(lz, row)| {
             let modes = &stationary.modes[stationary.rows[lz]..stationary.rows[lz + 1]];
