@@ -28,6 +28,17 @@ pub enum WaterError {
         /// Its value.
         value: f64,
     },
+    /// A spectral sea's mode, given to `SpectralSea::from_modes`, has an
+    /// invalid field.
+    #[error("spectral mode {index} (of those given): `{field}` = {value} is invalid")]
+    Mode {
+        /// The mode's index in the list given.
+        index: usize,
+        /// The field.
+        field: &'static str,
+        /// Its value.
+        value: f64,
+    },
     /// A height field's sample count does not match its grid.
     #[error("height field of {nx}x{nz} samples (at least 2x2) has {len} heights")]
     HeightFieldShape {

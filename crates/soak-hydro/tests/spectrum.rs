@@ -320,7 +320,7 @@ fn bad_parameters_are_named() {
     let good = SeaSpectrum::jonswap(2.0, 8.0);
     let name = |e: WaterError| match e {
         WaterError::Parameter { name, .. } => name,
-        WaterError::Wave { field, .. } => field,
+        WaterError::Mode { field, .. } => field,
         other => panic!("{other:?}"),
     };
     let cases: [(SeaSpectrum, &str); 5] = [
@@ -396,6 +396,14 @@ fn bad_parameters_are_named() {
     assert_eq!(
         name(SpectralSea::from_modes(0.0, 100.0, 32, &[mean], G).unwrap_err()),
         "n and l (the mean; set the level instead)"
+    );
+    // Named as a mode of the list given, not as a Gerstner wave.
+    let message = SpectralSea::from_modes(0.0, 100.0, 32, &[mode, mean], G)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.starts_with("spectral mode 0 (of those given): `n`"),
+        "{message}"
     );
     let mode = SeaMode {
         n: 1,

@@ -605,7 +605,7 @@ impl SpectralSea {
     /// a side, at mean `level` (m), choppiness 1, under `gravity` (m/s²).
     ///
     /// # Errors
-    /// As [`SpectralSea::realize`], and [`WaterError::Wave`] naming a mode
+    /// As [`SpectralSea::realize`], and [`WaterError::Mode`] naming a mode
     /// outside the grid (or its Nyquist row or column), the mean `n = l =
     /// 0` (no wave: the mean height is `level`), or with an amplitude or
     /// phase that is not finite (or a negative amplitude).
@@ -620,7 +620,7 @@ impl SpectralSea {
         let half = (cells / 2) as i32;
         let mut amplitudes = vec![Complex::default(); cells * cells];
         for (index, m) in modes.iter().enumerate() {
-            let bad = |field, value| WaterError::Wave { index, field, value };
+            let bad = |field, value| WaterError::Mode { index, field, value };
             if m.n.abs() >= half {
                 return Err(bad("n", m.n as f64));
             }
