@@ -84,7 +84,7 @@ fn small_balls_drift_with_a_regular_sea_at_the_stokes_drift() {
 /// The two-wave swell of the `buoy_on_waves` scene, with default settings
 /// (Archimedes' vertical buoyancy, radiation on): the crate and the ball
 /// the issue tried, and a ball of 10 cm, with its drag, drift along the
-/// waves (0.61, 0.69 and 0.83 of the surface drift, 0.165 m/s along +x,
+/// waves (0.61, 0.71 and 0.84 of the surface drift, 0.165 m/s along +x,
 /// measured), no longer against them. Vertical buoyancy leaves the
 /// bodies' back-and-forth to the drag alone: they lag the water's orbit,
 /// and drift slower than it.

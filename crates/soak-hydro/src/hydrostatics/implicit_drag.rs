@@ -90,7 +90,7 @@ fn solve_blocks(a: &Matrix6<f64>, r: &Vector6<f64>) -> Option<Vector6<f64>> {
 
 #[cfg(test)]
 mod tests {
-    use nalgebra::{Matrix6, Vector6};
+    use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 
     use super::solve_blocks;
 
@@ -104,37 +104,50 @@ mod tests {
 
     #[test]
     fn the_block_solve_agrees_with_lu_over_scales() {
-        // `M + dt K` as the implicit drag makes it: a block-diagonal mass
-        // (mass and world inertia) plus a symmetric positive semi-definite
-        // drag, over bodies from a millimetre to a kilometre, each entry
-        // then perturbed out of symmetry by up to 1e-3 of itself.
+        // `M + dt K` as the implicit drag makes it, for bodies of length
+        // `l` from a millimetre to a kilometre: a block-diagonal mass (the
+        // mass, and a world inertia of order `m l²`, a rod's a millionth
+        // of that about its length) plus a symmetric positive semi-definite
+        // drag whose couplings scale with `l` and whose turning part with
+        // `l²`; each entry then pushed out of symmetry by up to 1e-3 of
+        // itself. The velocities solved for are of order 1 m/s and 1/l
+        // rad/s: each half is held to LU's against its own size.
         let mut seed = 7;
-        for &(mass, inertia, drag) in &[
-            (1e-6, 1e-13, 1e-9),
-            (1e-6, 1e-13, 1e-3),
-            (150.0, 12.0, 40.0),
-            (150.0, 12.0, 1e5),
-            (5e11, 1e17, 1e9),
+        for &(l, mass, drag) in &[
+            (1e-3, 5e-7, 1e-9),
+            (1e-3, 5e-7, 1e-3),
+            (1.0, 150.0, 40.0),
+            (1.0, 150.0, 1e5),
+            (1e3, 5e11, 1e9),
         ] {
-            for _ in 0..50 {
-                let g = Matrix6::from_fn(|_, _| next(&mut seed));
-                let k = g * g.transpose() * drag;
-                let mut m = Matrix6::zeros();
-                let j = Matrix6::from_fn(|_, _| next(&mut seed))
-                    .fixed_view::<3, 3>(0, 0)
-                    .into_owned();
-                let world_inertia = (j * j.transpose() + nalgebra::Matrix3::identity()) * inertia;
-                m.fixed_view_mut::<3, 3>(0, 0).fill_diagonal(mass);
-                m.fixed_view_mut::<3, 3>(3, 3).copy_from(&world_inertia);
-                let skew = Matrix6::from_fn(|_, _| next(&mut seed)) * 1e-3;
-                let a = m + k + skew.component_mul(&(m + k));
-                let r = Vector6::from_fn(|_, _| next(&mut seed)) * (mass + drag);
-                let want = a.lu().solve(&r).unwrap();
-                let got = solve_blocks(&a, &r).unwrap();
-                // Against the solution's size, through the residual too.
-                let scale = want.amax();
-                assert!((got - want).amax() <= 1e-9 * scale, "{got} vs {want}");
-                assert!((a * got - r).amax() <= 1e-9 * r.amax().max((a * want).amax()));
+            for rod in [1.0, 1e-6] {
+                for _ in 0..50 {
+                    let lever = Matrix6::from_diagonal(&Vector6::new(1.0, 1.0, 1.0, l, l, l));
+                    let g = Matrix6::from_fn(|_, _| next(&mut seed));
+                    let k = lever * g * g.transpose() * lever * drag;
+                    let turn = Matrix6::from_fn(|_, _| next(&mut seed))
+                        .fixed_view::<3, 3>(0, 0)
+                        .into_owned();
+                    let turn = nalgebra::Rotation3::from_matrix(&turn).into_inner();
+                    let axes = Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, rod)) * mass * l * l;
+                    let mut m = Matrix6::zeros();
+                    m.fixed_view_mut::<3, 3>(0, 0).fill_diagonal(mass);
+                    m.fixed_view_mut::<3, 3>(3, 3)
+                        .copy_from(&(turn * axes * turn.transpose()));
+                    let skew = Matrix6::from_fn(|_, _| next(&mut seed)) * 1e-3;
+                    let a = m + k + skew.component_mul(&(m + k));
+                    let q = Vector6::from_fn(|i, _| next(&mut seed) / if i < 3 { 1.0 } else { l });
+                    let r = a * q;
+                    let want = a.lu().solve(&r).unwrap();
+                    let got = solve_blocks(&a, &r).unwrap();
+                    for half in [0, 3] {
+                        let (w, x) = (want.fixed_rows::<3>(half), got.fixed_rows::<3>(half));
+                        assert!(
+                            (x - w).amax() <= 1e-9 * w.amax(),
+                            "l {l}, rod {rod}, rows {half}..: {x} vs {w}"
+                        );
+                    }
+                }
             }
         }
     }
