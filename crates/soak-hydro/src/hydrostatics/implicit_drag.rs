@@ -51,14 +51,29 @@ pub(crate) fn implicit_drag(
     let mut m = Matrix6::zeros();
     m.fixed_view_mut::<3, 3>(0, 0).copy_from(&linear);
     m.fixed_view_mut::<3, 3>(3, 3).copy_from(&inertia);
-    // A massless rotational axis (point mass) gets no rotational drag.
     let sys = m + d.k * dt;
     let rhs = m * q + d.b * dt;
+    let finite = |v: Vector6<f64>| v.iter().all(|c| c.is_finite()).then_some(v);
+    // Where the whole system is singular (a point mass, no inertia, whose
+    // drag has no turning part), the translation alone: a body with no
+    // inertia takes no torque, but its drag still slows it.
     let q_new = solve_blocks(&sys, &rhs)
-        .or_else(|| sys.lu().solve(&rhs))
+        .or_else(|| sys.lu().solve(&rhs).and_then(finite))
+        .or_else(|| translation_alone(&sys, &rhs, &q))
         .unwrap_or(q);
     let applied = m * (q_new - q) / dt;
     (wrench(&applied), wrench(&explicit))
+}
+
+/// The velocity with its translation solved from the first three rows of
+/// `a x = r` and its rotation kept at `q`'s: `x₁ = p⁻¹ (r₁ − b q₂)`.
+/// `None` where `p` is singular too or the solution is not finite.
+fn translation_alone(a: &Matrix6<f64>, r: &Vector6<f64>, q: &Vector6<f64>) -> Option<Vector6<f64>> {
+    let p: Matrix3<f64> = a.fixed_view::<3, 3>(0, 0).into_owned();
+    let b: Matrix3<f64> = a.fixed_view::<3, 3>(0, 3).into_owned();
+    let x = p.try_inverse()? * (r.fixed_rows::<3>(0) - b * q.fixed_rows::<3>(3));
+    let out = Vector6::new(x.x, x.y, x.z, q[3], q[4], q[5]);
+    out.iter().all(|v| v.is_finite()).then_some(out)
 }
 
 /// `x` with `a x = r`, by the 3 × 3 blocks `a = [[p, b], [c, s]]`:
@@ -90,9 +105,12 @@ fn solve_blocks(a: &Matrix6<f64>, r: &Vector6<f64>) -> Option<Vector6<f64>> {
 
 #[cfg(test)]
 mod tests {
-    use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+    use nalgebra::{Isometry3, Matrix3, Matrix6, Point3, Vector3, Vector6};
 
-    use super::solve_blocks;
+    use super::{implicit_drag, solve_blocks};
+    use crate::hydrostatics::body_state::BodyState;
+    use crate::hydrostatics::sums::DragSums;
+    use crate::mass::MassProperties;
 
     /// A small deterministic generator (no dependency for a test).
     fn next(seed: &mut u64) -> f64 {
@@ -159,5 +177,41 @@ mod tests {
         let mut a = Matrix6::zeros();
         a.fixed_view_mut::<3, 3>(0, 0).fill_diagonal(2.0);
         assert!(solve_blocks(&a, &Vector6::repeat(1.0)).is_none());
+    }
+
+    #[test]
+    fn a_point_mass_still_takes_its_translational_drag() {
+        // A point mass (no inertia) whose drag has no turning part: the
+        // whole system is singular. Its translation takes the implicit
+        // decay all the same, `v' = (m v + dt k u) / (m + dt k)` along each
+        // axis (`u` the fluid's velocity), and it takes no torque.
+        let (m, dt) = (2.0, 0.1);
+        let kd = Vector3::new(3.0, 5.0, 0.5);
+        let u = Vector3::new(0.4, 0.0, -0.2);
+        let mut k = Matrix6::zeros();
+        for i in 0..3 {
+            k[(i, i)] = kd[i];
+        }
+        let mut b = Vector6::zeros();
+        b.fixed_rows_mut::<3>(0).copy_from(&kd.component_mul(&u));
+        let sums = DragSums { k, b };
+        let mass = MassProperties {
+            mass: m,
+            center_of_mass: Point3::origin(),
+            inertia: Matrix3::zeros(),
+        };
+        let state = BodyState {
+            linear_velocity: Vector3::new(1.5, -0.7, 0.3),
+            angular_velocity: Vector3::new(0.2, 0.0, -1.0),
+            ..BodyState::at_rest(Isometry3::identity())
+        };
+        let (applied, _) = implicit_drag(&sums, &state, &mass, None, dt);
+        for i in 0..3 {
+            let v = state.linear_velocity[i];
+            let want = (m * v + dt * kd[i] * u[i]) / (m + dt * kd[i]);
+            let got = v + applied.force[i] * dt / m;
+            assert!((got - want).abs() < 1e-12, "axis {i}: {got} against {want}");
+        }
+        assert_eq!(applied.torque, Vector3::zeros());
     }
 }
