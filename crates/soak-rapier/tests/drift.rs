@@ -53,7 +53,7 @@ fn ball(name: &str, radius: f64, z: f64, extra: &str) -> String {
 /// 5 and 10 cm radius with drag, their pressure on the hull integrated
 /// (so that the wave moves them back and forth as it moves the water),
 /// drift along +x within 20 % of the Stokes drift at the surface,
-/// `a² ω k` = 0.114 m/s (0.995 and 1.009 of it measured: their radiation
+/// `a² ω k` = 0.114 m/s (0.997 and 1.009 of it measured: their radiation
 /// damps their orbit and the diffraction linear theory adds drives it), and
 /// not sideways.
 #[test]
@@ -84,7 +84,7 @@ fn small_balls_drift_with_a_regular_sea_at_the_stokes_drift() {
 /// The two-wave swell of the `buoy_on_waves` scene, with default settings
 /// (Archimedes' vertical buoyancy, radiation on): the crate and the ball
 /// the issue tried, and a ball of 10 cm, with its drag, drift along the
-/// waves (0.61, 0.71 and 0.84 of the surface drift, 0.165 m/s along +x,
+/// waves (0.61, 0.71 and 0.86 of the surface drift, 0.165 m/s along +x,
 /// measured), no longer against them. Vertical buoyancy leaves the
 /// bodies' back-and-forth to the drag alone: they lag the water's orbit,
 /// and drift slower than it.
