@@ -274,9 +274,10 @@ impl RadiationModel {
             .solve(crate::radiation::Surface::InfiniteFrequency)?
             .added_mass;
         reciprocal(&infinite)?;
-        // Potential theory makes A∞ symmetric; the panel solve leaves it a
-        // few parts in ten thousand out (the drift test's small ball's by
-        // 5e-4 of its size). The time domain takes its symmetric part, the
+        // Potential theory makes A∞ symmetric; the panel solve leaves it out
+        // by up to a few parts in a thousand of its diagonal (the drift
+        // test's small ball's by 5e-4, the model tests' sphere's by 2e-3 in
+        // its surge–sway pair). The time domain takes its symmetric part, the
         // nearest symmetric matrix: a mass matrix that is not symmetric
         // does not keep the kinetic energy it stands for.
         let infinite = (infinite + infinite.transpose()) * 0.5;
@@ -407,8 +408,9 @@ impl RadiationModel {
     }
     /// The infinite-frequency added mass, 6×6 (kg, kg·m, kg·m² by block):
     /// the symmetric part of the panel solve's, which potential theory
-    /// makes symmetric and the panels leave a few parts in ten thousand
-    /// out (a solve further out than a fifth of its scale is refused).
+    /// makes symmetric and the panels leave out by up to a few parts in a
+    /// thousand of its diagonal (a solve further out than a fifth of its
+    /// scale is refused).
     pub fn infinite(&self) -> &Matrix6<f64> {
         &self.sweep.infinite
     }
