@@ -9,6 +9,7 @@ mod hydrostatics;
 mod mass;
 mod parallel;
 mod resolution;
+mod scratch;
 mod tiled;
 mod water;
 mod water_plane;

@@ -26,6 +26,7 @@ use crate::hydrostatics::sea_drag::SeaDragFrame;
 use crate::hydrostatics::sums::{BuoyancySums, DragAcc, DragSums};
 use crate::mass::MassProperties;
 use crate::parallel::{par_fold, par_map};
+use crate::scratch::Ranges;
 use crate::water::{SurfacePatch, Water};
 
 mod drag;
@@ -612,8 +613,7 @@ impl TiledAtlas {
                     }
                 }
             };
-            let capacity = if buoyancy { 64 } else { 0 };
-            let (mut cut, mut cut_wet) = (Vec::with_capacity(capacity), Vec::with_capacity(capacity));
+            let (mut cut, mut cut_wet) = (Ranges::new(), Ranges::new());
             for group in &self.groups[c * GROUP_CHUNK..((c + 1) * GROUP_CHUNK).min(self.groups.len())] {
                 let members = group.tiles.clone();
                 match classify(&group.bounds) {

@@ -168,7 +168,7 @@ pub(super) struct DragWalk<'a> {
     pub(super) atlas: &'a Atlas,
     pub(super) p: LocalDrag,
     /// Texel ranges for the kernel, by [`DragWalk::list`].
-    pub(super) texels: [Vec<std::ops::Range<usize>>; 8],
+    pub(super) texels: [Ranges; 8],
     /// Tiles whose every texel adds its skin friction.
     pub(super) linear: MomentRun<true>,
     /// Tiles whose every texel adds `k_q h·w`.
