@@ -10,13 +10,37 @@ use std::arch::x86_64::{
 /// Texels side by side in an AVX2 kernel.
 const LANES: usize = 4;
 
-/// Lanes `i .. i + 4` of `v`, widened.
+/// Four floats, widened.
 #[target_feature(enable = "avx2,fma")]
-pub(super) fn widen(v: &[f32], i: usize) -> __m256d {
-    let v = &v[i..i + LANES];
+pub(super) fn widen(v: &[f32; LANES]) -> __m256d {
     // SAFETY: `v` holds the four floats an unaligned 128-bit load reads.
     #[allow(unsafe_code)]
     _mm256_cvtps_pd(unsafe { _mm_loadu_ps(v.as_ptr()) })
+}
+
+/// Lanes `i .. i + 4` of `v`, widened (the kernels whose groups cost
+/// more than a bounds check: the sea's).
+#[target_feature(enable = "avx2,fma")]
+pub(super) fn widen_at(v: &[f32], i: usize) -> __m256d {
+    let quad: &[f32; LANES] = v[i..i + LANES].try_into().expect("four floats");
+    widen(quad)
+}
+
+/// The texels of `range` of `column`, [`LANES`] at a time (the last
+/// `range.len() % LANES` left out), in exactly `range.len() / LANES`
+/// quadruples: a kernel that reads its columns' quadruples by one index
+/// below that length needs no bounds check (checking each load was a third
+/// of the planar kernel's instructions).
+pub(super) fn quads(column: &[f32], range: std::ops::Range<usize>) -> &[[f32; LANES]] {
+    let n = range.len() / LANES;
+    let floats = &column[range.start..range.start + n * LANES];
+    // SAFETY: `[f32; LANES]` is `LANES` floats in a row, aligned as a
+    // float, and `floats` holds `n` of them (what `<[T]>::as_chunks` does,
+    // stable after this workspace's oldest supported Rust).
+    #[allow(unsafe_code)]
+    unsafe {
+        std::slice::from_raw_parts(floats.as_ptr().cast::<[f32; LANES]>(), n)
+    }
 }
 
 /// The first four of `v` as lanes.

@@ -236,7 +236,7 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
 ) {
     use std::arch::x86_64::*;
 
-    use super::avx::{add_iso, add_rank1, h_of, load as get, store, widen as load};
+    use super::avx::{add_iso, add_rank1, h_of, load as get, quads, store, widen as load};
 
     /// All lanes set where `on`, else none.
     #[target_feature(enable = "avx2,fma")]
@@ -257,57 +257,57 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
     }
     // What the closed forms added for a list's texels: the quadratic and
     // linear parts' masks, and whether either.
-    let mut group =
-        |xs: [&[f32]; 3], avs: [&[f32]; 3], at: usize, valid: __m256d, added: (__m256d, __m256d, bool)| {
-            let (added_q, added_l, anything_added) = added;
-            let x = [load(xs[0], at), load(xs[1], at), load(xs[2], at)];
-            let d = _mm256_add_pd(alpha, _mm256_mul_pd(beta[0], x[0]));
-            let d = _mm256_add_pd(d, _mm256_mul_pd(beta[1], x[1]));
-            let d = _mm256_add_pd(d, _mm256_mul_pd(beta[2], x[2]));
-            let wet = _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(d, zero), valid);
-            if !anything_added && _mm256_movemask_pd(wet) == 0 {
+    type Quad<'a> = &'a [f32; LANES];
+    let mut group = |xs: [Quad; 3], avs: [Quad; 3], valid: __m256d, added: (__m256d, __m256d, bool)| {
+        let (added_q, added_l, anything_added) = added;
+        let x = xs.map(|v| load(v));
+        let d = _mm256_add_pd(alpha, _mm256_mul_pd(beta[0], x[0]));
+        let d = _mm256_add_pd(d, _mm256_mul_pd(beta[1], x[1]));
+        let d = _mm256_add_pd(d, _mm256_mul_pd(beta[2], x[2]));
+        let wet = _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(d, zero), valid);
+        if !anything_added && _mm256_movemask_pd(wet) == 0 {
+            return;
+        }
+        let a = avs.map(|v| load(v));
+        let h = h_of(&x, &a);
+        let mut s = zero;
+        let mut any = zero;
+        if QUADRATIC {
+            let mut f = _mm256_mul_pd(h[0], w[0]);
+            for j in 1..6 {
+                f = _mm256_fmadd_pd(h[j], w[j], f);
+            }
+            let taken = _mm256_and_pd(wet, _mm256_cmp_pd::<_CMP_GT_OQ>(f, zero));
+            let kf = _mm256_mul_pd(kq, f);
+            let signed = _mm256_blendv_pd(_mm256_xor_pd(kf, neg), kf, taken);
+            let counted = _mm256_and_pd(_mm256_xor_pd(taken, added_q), valid);
+            s = _mm256_and_pd(signed, counted);
+            any = counted;
+        }
+        let mut wl = zero;
+        if LINEAR {
+            let counted = _mm256_and_pd(_mm256_xor_pd(wet, added_l), valid);
+            any = _mm256_or_pd(any, counted);
+            if _mm256_movemask_pd(any) == 0 {
                 return;
             }
-            let a = [load(avs[0], at), load(avs[1], at), load(avs[2], at)];
-            let h = h_of(&x, &a);
-            let mut s = zero;
-            let mut any = zero;
-            if QUADRATIC {
-                let mut f = _mm256_mul_pd(h[0], w[0]);
-                for j in 1..6 {
-                    f = _mm256_fmadd_pd(h[j], w[j], f);
-                }
-                let taken = _mm256_and_pd(wet, _mm256_cmp_pd::<_CMP_GT_OQ>(f, zero));
-                let kf = _mm256_mul_pd(kq, f);
-                let signed = _mm256_blendv_pd(_mm256_xor_pd(kf, neg), kf, taken);
-                let counted = _mm256_and_pd(_mm256_xor_pd(taken, added_q), valid);
-                s = _mm256_and_pd(signed, counted);
-                any = counted;
-            }
-            let mut wl = zero;
-            if LINEAR {
-                let counted = _mm256_and_pd(_mm256_xor_pd(wet, added_l), valid);
-                any = _mm256_or_pd(any, counted);
-                if _mm256_movemask_pd(any) == 0 {
-                    return;
-                }
-                let aa = _mm256_fmadd_pd(a[2], a[2], _mm256_fmadd_pd(a[1], a[1], _mm256_mul_pd(a[0], a[0])));
-                let area = _mm256_sqrt_pd(aa);
-                let counted = _mm256_and_pd(counted, _mm256_cmp_pd::<_CMP_GT_OQ>(area, zero));
-                let ds = _mm256_mul_pd(lin, area);
-                let dw = _mm256_div_pd(lin, area);
-                let ds = _mm256_blendv_pd(_mm256_xor_pd(ds, neg), ds, wet);
-                let dw = _mm256_blendv_pd(_mm256_xor_pd(dw, neg), dw, wet);
-                s = _mm256_add_pd(s, _mm256_and_pd(ds, counted));
-                wl = _mm256_and_pd(dw, counted);
-            } else if _mm256_movemask_pd(any) == 0 {
-                return;
-            }
-            add_iso(&mut iso, s, &x);
-            if LINEAR {
-                add_rank1(&mut gg, wl, &h);
-            }
-        };
+            let aa = _mm256_fmadd_pd(a[2], a[2], _mm256_fmadd_pd(a[1], a[1], _mm256_mul_pd(a[0], a[0])));
+            let area = _mm256_sqrt_pd(aa);
+            let counted = _mm256_and_pd(counted, _mm256_cmp_pd::<_CMP_GT_OQ>(area, zero));
+            let ds = _mm256_mul_pd(lin, area);
+            let dw = _mm256_div_pd(lin, area);
+            let ds = _mm256_blendv_pd(_mm256_xor_pd(ds, neg), ds, wet);
+            let dw = _mm256_blendv_pd(_mm256_xor_pd(dw, neg), dw, wet);
+            s = _mm256_add_pd(s, _mm256_and_pd(ds, counted));
+            wl = _mm256_and_pd(dw, counted);
+        } else if _mm256_movemask_pd(any) == 0 {
+            return;
+        }
+        add_iso(&mut iso, s, &x);
+        if LINEAR {
+            add_rank1(&mut gg, wl, &h);
+        }
+    };
     let all = mask(true);
     for (range, added) in lists.iter().flat_map(|(ranges, added)| {
         let masks = (
@@ -319,8 +319,18 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
     }) {
         let (start, end) = (range.start, range.end);
         let whole = end - (end - start) % LANES;
-        for i in (start..whole).step_by(LANES) {
-            group(t.xs, t.avs, i, all, added);
+        let (x0, x1, x2) = (
+            quads(t.xs[0], start..whole),
+            quads(t.xs[1], start..whole),
+            quads(t.xs[2], start..whole),
+        );
+        let (a0, a1, a2) = (
+            quads(t.avs[0], start..whole),
+            quads(t.avs[1], start..whole),
+            quads(t.avs[2], start..whole),
+        );
+        for k in 0..x0.len() {
+            group([&x0[k], &x1[k], &x2[k]], [&a0[k], &a1[k], &a2[k]], all, added);
         }
         if whole < end {
             let k = end - whole;
@@ -336,13 +346,7 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
                 if k > 2 { -1 } else { 0 },
                 0,
             ));
-            group(
-                xs.each_ref().map(|v| &v[..]),
-                avs.each_ref().map(|v| &v[..]),
-                0,
-                valid,
-                added,
-            );
+            group(xs.each_ref(), avs.each_ref(), valid, added);
         }
     }
     for (out, v) in acc.iso.iter_mut().zip(iso) {

@@ -229,7 +229,7 @@ fn planar_lanes_avx2<const PRESSURE: bool, const DRY: bool>(
 ) -> PlanarLanes {
     use std::arch::x86_64::*;
 
-    use super::avx::{store as lanes, widen as load};
+    use super::avx::{quads, store as lanes, widen as load};
 
     let zero = _mm256_setzero_pd();
     let one = _mm256_set1_pd(1.0);
@@ -238,10 +238,11 @@ fn planar_lanes_avx2<const PRESSURE: bool, const DRY: bool>(
     let g = p.g.map(|g| _mm256_set1_pd(g));
     let (mut vol, mut wd, mut area_sum, mut count) = (zero, zero, zero, zero);
     let (mut wr, mut f, mut rxf, mut d2a) = ([zero; 3], [zero; 3], [zero; 3], [zero; 3]);
-    // One group from where `at` finds it (`xs`, `avs`, `areas`), `valid`
-    // masking the lanes that hold texels.
-    let mut group = |xs: [&[f32]; 3], avs: [&[f32]; 3], areas: &[f32], at: usize, valid: __m256d| {
-        let r = [load(xs[0], at), load(xs[1], at), load(xs[2], at)];
+    // One group of texels (`xs`, `avs`, `areas`), `valid` masking the
+    // lanes that hold texels.
+    type Quad<'a> = &'a [f32; LANES];
+    let mut group = |xs: [Quad; 3], avs: [Quad; 3], areas: Quad, valid: __m256d| {
+        let r = xs.map(|v| load(v));
         let d = _mm256_fmadd_pd(b[0], r[0], alpha);
         let d = _mm256_fmadd_pd(b[1], r[1], d);
         let d = _mm256_fmadd_pd(b[2], r[2], d);
@@ -256,12 +257,12 @@ fn planar_lanes_avx2<const PRESSURE: bool, const DRY: bool>(
         }
         // A lane not taken adds zeros: its depth and area masked to +0.
         let d = _mm256_and_pd(d, taken);
-        let area = _mm256_and_pd(load(areas, at), taken);
+        let area = _mm256_and_pd(load(areas), taken);
         count = _mm256_add_pd(count, _mm256_and_pd(one, taken));
         let da = [
-            _mm256_mul_pd(d, load(avs[0], at)),
-            _mm256_mul_pd(d, load(avs[1], at)),
-            _mm256_mul_pd(d, load(avs[2], at)),
+            _mm256_mul_pd(d, load(avs[0])),
+            _mm256_mul_pd(d, load(avs[1])),
+            _mm256_mul_pd(d, load(avs[2])),
         ];
         let w = _mm256_fmadd_pd(
             g[2],
@@ -291,8 +292,19 @@ fn planar_lanes_avx2<const PRESSURE: bool, const DRY: bool>(
     for range in ranges {
         let (start, end) = (range.start, range.end);
         let whole = end - (end - start) % LANES;
-        for i in (start..whole).step_by(LANES) {
-            group(t.xs, t.avs, t.areas, i, all);
+        let (x0, x1, x2) = (
+            quads(t.xs[0], start..whole),
+            quads(t.xs[1], start..whole),
+            quads(t.xs[2], start..whole),
+        );
+        let (a0, a1, a2) = (
+            quads(t.avs[0], start..whole),
+            quads(t.avs[1], start..whole),
+            quads(t.avs[2], start..whole),
+        );
+        let areas = quads(t.areas, start..whole);
+        for k in 0..areas.len() {
+            group([&x0[k], &x1[k], &x2[k]], [&a0[k], &a1[k], &a2[k]], &areas[k], all);
         }
         if whole < end {
             let k = end - whole;
@@ -308,13 +320,7 @@ fn planar_lanes_avx2<const PRESSURE: bool, const DRY: bool>(
                 if k > 2 { -1 } else { 0 },
                 0,
             ));
-            group(
-                xs.each_ref().map(|v| &v[..]),
-                avs.each_ref().map(|v| &v[..]),
-                &areas,
-                0,
-                valid,
-            );
+            group(xs.each_ref(), avs.each_ref(), &areas, valid);
         }
     }
     PlanarLanes {

@@ -443,7 +443,7 @@ fn sea_drag_lanes_avx2<V>(
 ) where
     V: FnMut(&[std::arch::x86_64::__m256d; 3], std::arch::x86_64::__m256d) -> [std::arch::x86_64::__m256d; 3],
 {
-    use super::avx::{add_iso, add_rank1, h_of, load, store, widen};
+    use super::avx::{add_iso, add_rank1, h_of, load, store, widen_at as widen};
     use std::arch::x86_64::*;
 
     let n = atlas.len();

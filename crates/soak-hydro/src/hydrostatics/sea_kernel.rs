@@ -180,7 +180,7 @@ mod avx2 {
     use soak_bake::Atlas;
 
     use super::{RENORMALISE, SeaFrame, Taylor};
-    use crate::hydrostatics::avx::{load as vector_of, store as lanes, widen as load};
+    use crate::hydrostatics::avx::{load as vector_of, store as lanes, widen_at as load};
     use crate::hydrostatics::sums::BuoyancySums;
 
     const LANES: usize = 4;
