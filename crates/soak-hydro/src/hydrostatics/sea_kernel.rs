@@ -180,7 +180,7 @@ mod avx2 {
     use soak_bake::Atlas;
 
     use super::{RENORMALISE, SeaFrame, Taylor};
-    use crate::hydrostatics::avx::{load as vector_of, store as lanes, widen_at as load};
+    use crate::hydrostatics::avx::{load as vector_of, quads, store as lanes, widen as load};
     use crate::hydrostatics::sums::BuoyancySums;
 
     const LANES: usize = 4;
@@ -355,115 +355,127 @@ mod avx2 {
             )
         };
 
-        // One group from where `at` finds it; `valid` masks the lanes that
-        // hold texels; `out` receives the depths of the lanes.
-        let mut group =
-            |xs: [&[f32]; 3], avs: [&[f32]; 3], areas: &[f32], at: usize, valid: __m256d| -> [f64; LANES] {
-                let x = [load(xs[0], at), load(xs[1], at), load(xs[2], at)];
-                let r: [__m256d; 3] = std::array::from_fn(|i| {
-                    _mm256_fmadd_pd(
-                        rot[i][2],
-                        x[2],
-                        _mm256_fmadd_pd(rot[i][1], x[1], _mm256_mul_pd(rot[i][0], x[0])),
-                    )
-                });
-                let p = [
-                    _mm256_add_pd(ow[0], r[0]),
-                    _mm256_add_pd(ow[1], r[1]),
-                    _mm256_add_pd(ow[2], r[2]),
-                ];
-                let below = _mm256_and_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(p[1], top), valid);
-                if _mm256_movemask_pd(below) == 0 {
-                    return [-1.0; LANES];
-                }
-                let (h, sx, sz) = if TAYLOR {
-                    polynomial(p[0], p[2])
-                } else {
-                    surface(p[0], p[2])
-                };
-                let depth = _mm256_sub_pd(h, p[1]);
-                let taken = _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(depth, zero), below);
-                // A dry lane reports a depth ≤ 0 (above the top: its height over it).
-                let reported = lanes(_mm256_blendv_pd(_mm256_min_pd(depth, zero), depth, taken));
-                if !SUMS || _mm256_movemask_pd(taken) == 0 {
-                    return reported;
-                }
-                let d = _mm256_and_pd(depth, taken);
-                let area = _mm256_and_pd(load(areas, at), taken);
-                acc.count = _mm256_add_pd(acc.count, _mm256_and_pd(one, taken));
-                acc.area = _mm256_add_pd(acc.area, area);
-                let a = [load(avs[0], at), load(avs[1], at), load(avs[2], at)];
-                let aw: [__m256d; 3] = std::array::from_fn(|i| {
-                    _mm256_fmadd_pd(
-                        rot[i][2],
-                        a[2],
-                        _mm256_fmadd_pd(rot[i][1], a[1], _mm256_mul_pd(rot[i][0], a[0])),
-                    )
-                });
-                // w = −A_y d (zero on lanes not taken).
-                let w = _mm256_mul_pd(_mm256_sub_pd(zero, aw[1]), d);
-                acc.vol = _mm256_add_pd(acc.vol, w);
-                acc.wr = std::array::from_fn(|c| _mm256_fmadd_pd(w, r[c], acc.wr[c]));
-                acc.wd = _mm256_fmadd_pd(w, d, acc.wd);
-                if ARCHIMEDES {
-                    let dd = _mm256_mul_pd(d, d);
-                    acc.d2a = std::array::from_fn(|c| _mm256_fmadd_pd(dd, aw[c], acc.d2a[c]));
-                    // ρ × s with ρ = r − (c − o), s = (s_x, 0, s_z):
-                    // (ρ_y s_z, ρ_z s_x − ρ_x s_z, −ρ_y s_x).
-                    let rho = [
-                        _mm256_sub_pd(r[0], com[0]),
-                        _mm256_sub_pd(r[1], com[1]),
-                        _mm256_sub_pd(r[2], com[2]),
-                    ];
-                    let wy = _mm256_mul_pd(w, rho[1]);
-                    acc.wrs[0] = _mm256_fmadd_pd(wy, sz, acc.wrs[0]);
-                    acc.wrs[1] = _mm256_fmadd_pd(
-                        w,
-                        _mm256_fmsub_pd(rho[2], sx, _mm256_mul_pd(rho[0], sz)),
-                        acc.wrs[1],
-                    );
-                    acc.wrs[2] = _mm256_fnmadd_pd(wy, sx, acc.wrs[2]);
-                    acc.ayr = _mm256_fmadd_pd(_mm256_and_pd(aw[1], taken), r[1], acc.ayr);
-                    // Π min(d/δ, 1) over the taken lanes.
-                    let factor =
-                        _mm256_blendv_pd(one, _mm256_min_pd(_mm256_mul_pd(depth, inv_delta), one), taken);
-                    acc.product = _mm256_mul_pd(acc.product, factor);
-                    if _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(acc.product, renormalise)) != 0 {
-                        let mut product = lanes(acc.product);
-                        for (k, pk) in product.iter_mut().enumerate() {
-                            if *pk < RENORMALISE {
-                                acc.shallow[k] += pk.ln();
-                                *pk = 1.0;
-                            }
-                        }
-                        acc.product = vector_of(&product);
-                    }
-                } else {
-                    // Σ −d A and Σ r × (−d A), the signs applied at the end.
-                    let da = [
-                        _mm256_mul_pd(d, aw[0]),
-                        _mm256_mul_pd(d, aw[1]),
-                        _mm256_mul_pd(d, aw[2]),
-                    ];
-                    acc.f = std::array::from_fn(|c| _mm256_add_pd(acc.f[c], da[c]));
-                    acc.rxf[0] = _mm256_fmadd_pd(r[1], da[2], _mm256_fnmadd_pd(r[2], da[1], acc.rxf[0]));
-                    acc.rxf[1] = _mm256_fmadd_pd(r[2], da[0], _mm256_fnmadd_pd(r[0], da[2], acc.rxf[1]));
-                    acc.rxf[2] = _mm256_fmadd_pd(r[0], da[1], _mm256_fnmadd_pd(r[1], da[0], acc.rxf[2]));
-                }
-                reported
+        // One group of texels; `valid` masks the lanes that hold texels;
+        // the depths of the lanes are returned.
+        type Quad<'a> = &'a [f32; LANES];
+        let mut group = |xs: [Quad; 3], avs: [Quad; 3], areas: Quad, valid: __m256d| -> [f64; LANES] {
+            let x = xs.map(|v| load(v));
+            let r: [__m256d; 3] = std::array::from_fn(|i| {
+                _mm256_fmadd_pd(
+                    rot[i][2],
+                    x[2],
+                    _mm256_fmadd_pd(rot[i][1], x[1], _mm256_mul_pd(rot[i][0], x[0])),
+                )
+            });
+            let p = [
+                _mm256_add_pd(ow[0], r[0]),
+                _mm256_add_pd(ow[1], r[1]),
+                _mm256_add_pd(ow[2], r[2]),
+            ];
+            let below = _mm256_and_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(p[1], top), valid);
+            if _mm256_movemask_pd(below) == 0 {
+                return [-1.0; LANES];
+            }
+            let (h, sx, sz) = if TAYLOR {
+                polynomial(p[0], p[2])
+            } else {
+                surface(p[0], p[2])
             };
+            let depth = _mm256_sub_pd(h, p[1]);
+            let taken = _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(depth, zero), below);
+            // A dry lane reports a depth ≤ 0 (above the top: its height over it).
+            let reported = lanes(_mm256_blendv_pd(_mm256_min_pd(depth, zero), depth, taken));
+            if !SUMS || _mm256_movemask_pd(taken) == 0 {
+                return reported;
+            }
+            let d = _mm256_and_pd(depth, taken);
+            let area = _mm256_and_pd(load(areas), taken);
+            acc.count = _mm256_add_pd(acc.count, _mm256_and_pd(one, taken));
+            acc.area = _mm256_add_pd(acc.area, area);
+            let a = avs.map(|v| load(v));
+            let aw: [__m256d; 3] = std::array::from_fn(|i| {
+                _mm256_fmadd_pd(
+                    rot[i][2],
+                    a[2],
+                    _mm256_fmadd_pd(rot[i][1], a[1], _mm256_mul_pd(rot[i][0], a[0])),
+                )
+            });
+            // w = −A_y d (zero on lanes not taken).
+            let w = _mm256_mul_pd(_mm256_sub_pd(zero, aw[1]), d);
+            acc.vol = _mm256_add_pd(acc.vol, w);
+            acc.wr = std::array::from_fn(|c| _mm256_fmadd_pd(w, r[c], acc.wr[c]));
+            acc.wd = _mm256_fmadd_pd(w, d, acc.wd);
+            if ARCHIMEDES {
+                let dd = _mm256_mul_pd(d, d);
+                acc.d2a = std::array::from_fn(|c| _mm256_fmadd_pd(dd, aw[c], acc.d2a[c]));
+                // ρ × s with ρ = r − (c − o), s = (s_x, 0, s_z):
+                // (ρ_y s_z, ρ_z s_x − ρ_x s_z, −ρ_y s_x).
+                let rho = [
+                    _mm256_sub_pd(r[0], com[0]),
+                    _mm256_sub_pd(r[1], com[1]),
+                    _mm256_sub_pd(r[2], com[2]),
+                ];
+                let wy = _mm256_mul_pd(w, rho[1]);
+                acc.wrs[0] = _mm256_fmadd_pd(wy, sz, acc.wrs[0]);
+                acc.wrs[1] = _mm256_fmadd_pd(
+                    w,
+                    _mm256_fmsub_pd(rho[2], sx, _mm256_mul_pd(rho[0], sz)),
+                    acc.wrs[1],
+                );
+                acc.wrs[2] = _mm256_fnmadd_pd(wy, sx, acc.wrs[2]);
+                acc.ayr = _mm256_fmadd_pd(_mm256_and_pd(aw[1], taken), r[1], acc.ayr);
+                // Π min(d/δ, 1) over the taken lanes.
+                let factor =
+                    _mm256_blendv_pd(one, _mm256_min_pd(_mm256_mul_pd(depth, inv_delta), one), taken);
+                acc.product = _mm256_mul_pd(acc.product, factor);
+                if _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(acc.product, renormalise)) != 0 {
+                    let mut product = lanes(acc.product);
+                    for (k, pk) in product.iter_mut().enumerate() {
+                        if *pk < RENORMALISE {
+                            acc.shallow[k] += pk.ln();
+                            *pk = 1.0;
+                        }
+                    }
+                    acc.product = vector_of(&product);
+                }
+            } else {
+                // Σ −d A and Σ r × (−d A), the signs applied at the end.
+                let da = [
+                    _mm256_mul_pd(d, aw[0]),
+                    _mm256_mul_pd(d, aw[1]),
+                    _mm256_mul_pd(d, aw[2]),
+                ];
+                acc.f = std::array::from_fn(|c| _mm256_add_pd(acc.f[c], da[c]));
+                acc.rxf[0] = _mm256_fmadd_pd(r[1], da[2], _mm256_fnmadd_pd(r[2], da[1], acc.rxf[0]));
+                acc.rxf[1] = _mm256_fmadd_pd(r[2], da[0], _mm256_fnmadd_pd(r[0], da[2], acc.rxf[1]));
+                acc.rxf[2] = _mm256_fmadd_pd(r[0], da[1], _mm256_fnmadd_pd(r[1], da[0], acc.rxf[2]));
+            }
+            reported
+        };
 
         let all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
         let (start, end) = (range.start, range.end);
         // One call of `group` in the loop (the last texels of the range, a
         // group of their own, read from padded copies): the compiler then
         // keeps the running sums in registers.
-        let mut i = start;
-        while i < end {
+        let (x0, x1, x2) = (
+            quads(xs[0], start..end),
+            quads(xs[1], start..end),
+            quads(xs[2], start..end),
+        );
+        let (a0, a1, a2) = (
+            quads(avs[0], start..end),
+            quads(avs[1], start..end),
+            quads(avs[2], start..end),
+        );
+        let ar = quads(areas, start..end);
+        let groups = ar.len() + usize::from(ar.len() * LANES < end - start);
+        for q in 0..groups {
+            let i = start + q * LANES;
             let k = (end - i).min(LANES);
             let (pxs, pavs, pareas);
-            let (gx, ga, gar, at, valid) = if k == LANES {
-                (xs, avs, areas, i, all)
+            let (gx, ga, gar, valid) = if q < ar.len() {
+                ([&x0[q], &x1[q], &x2[q]], [&a0[q], &a1[q], &a2[q]], &ar[q], all)
             } else {
                 let pad = |v: &[f32]| {
                     let mut padded = [0.0f32; LANES];
@@ -477,19 +489,12 @@ mod avx2 {
                     if k > 2 { -1 } else { 0 },
                     0,
                 ));
-                (
-                    pxs.each_ref().map(|v| &v[..]),
-                    pavs.each_ref().map(|v| &v[..]),
-                    &pareas[..],
-                    0,
-                    valid,
-                )
+                (pxs.each_ref(), pavs.each_ref(), &pareas, valid)
             };
-            let d = group(gx, ga, gar, at, valid);
+            let d = group(gx, ga, gar, valid);
             if let Some(out) = depths.as_deref_mut() {
                 out[i - start..i - start + k].copy_from_slice(&d[..k]);
             }
-            i += k;
         }
 
         if !SUMS {
