@@ -18,6 +18,12 @@ pub(super) fn widen(v: &[f32; LANES]) -> __m256d {
     _mm256_cvtps_pd(unsafe { _mm_loadu_ps(v.as_ptr()) })
 }
 
+/// [`quads`] of three columns (a texel's coordinates, or its area
+/// vector's), each exactly `range.len() / LANES` long.
+pub(super) fn quads3(columns: [&[f32]; 3], range: std::ops::Range<usize>) -> [&[[f32; LANES]]; 3] {
+    columns.map(|c| quads(c, range.clone()))
+}
+
 /// Lanes `i .. i + 4` of `v`, widened (the kernels whose groups cost
 /// more than a bounds check: the sea's).
 #[target_feature(enable = "avx2,fma")]

@@ -236,7 +236,7 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
 ) {
     use std::arch::x86_64::*;
 
-    use super::avx::{add_iso, add_rank1, h_of, load as get, quads, store, widen as load};
+    use super::avx::{add_iso, add_rank1, h_of, load as get, quads3, store, widen as load};
 
     /// All lanes set where `on`, else none.
     #[target_feature(enable = "avx2,fma")]
@@ -319,18 +319,14 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
     }) {
         let (start, end) = (range.start, range.end);
         let whole = end - (end - start) % LANES;
-        let (x0, x1, x2) = (
-            quads(t.xs[0], start..whole),
-            quads(t.xs[1], start..whole),
-            quads(t.xs[2], start..whole),
-        );
-        let (a0, a1, a2) = (
-            quads(t.avs[0], start..whole),
-            quads(t.avs[1], start..whole),
-            quads(t.avs[2], start..whole),
-        );
-        for k in 0..x0.len() {
-            group([&x0[k], &x1[k], &x2[k]], [&a0[k], &a1[k], &a2[k]], all, added);
+        let (x, a) = (quads3(t.xs, start..whole), quads3(t.avs, start..whole));
+        for k in 0..x[0].len() {
+            group(
+                [&x[0][k], &x[1][k], &x[2][k]],
+                [&a[0][k], &a[1][k], &a[2][k]],
+                all,
+                added,
+            );
         }
         if whole < end {
             let k = end - whole;

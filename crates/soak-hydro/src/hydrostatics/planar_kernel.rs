@@ -229,7 +229,7 @@ fn planar_lanes_avx2<const PRESSURE: bool, const DRY: bool>(
 ) -> PlanarLanes {
     use std::arch::x86_64::*;
 
-    use super::avx::{quads, store as lanes, widen as load};
+    use super::avx::{quads, quads3, store as lanes, widen as load};
 
     let zero = _mm256_setzero_pd();
     let one = _mm256_set1_pd(1.0);
@@ -292,19 +292,15 @@ fn planar_lanes_avx2<const PRESSURE: bool, const DRY: bool>(
     for range in ranges {
         let (start, end) = (range.start, range.end);
         let whole = end - (end - start) % LANES;
-        let (x0, x1, x2) = (
-            quads(t.xs[0], start..whole),
-            quads(t.xs[1], start..whole),
-            quads(t.xs[2], start..whole),
-        );
-        let (a0, a1, a2) = (
-            quads(t.avs[0], start..whole),
-            quads(t.avs[1], start..whole),
-            quads(t.avs[2], start..whole),
-        );
+        let (x, a) = (quads3(t.xs, start..whole), quads3(t.avs, start..whole));
         let areas = quads(t.areas, start..whole);
         for k in 0..areas.len() {
-            group([&x0[k], &x1[k], &x2[k]], [&a0[k], &a1[k], &a2[k]], &areas[k], all);
+            group(
+                [&x[0][k], &x[1][k], &x[2][k]],
+                [&a[0][k], &a[1][k], &a[2][k]],
+                &areas[k],
+                all,
+            );
         }
         if whole < end {
             let k = end - whole;

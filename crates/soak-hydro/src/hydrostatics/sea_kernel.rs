@@ -180,7 +180,7 @@ mod avx2 {
     use soak_bake::Atlas;
 
     use super::{RENORMALISE, SeaFrame, Taylor};
-    use crate::hydrostatics::avx::{load as vector_of, quads, store as lanes, widen as load};
+    use crate::hydrostatics::avx::{load as vector_of, quads, quads3, store as lanes, widen as load};
     use crate::hydrostatics::sums::BuoyancySums;
 
     const LANES: usize = 4;
@@ -355,18 +355,21 @@ mod avx2 {
             )
         };
 
+        // A vector of the body's axes in the world's: `rot v`, lane by lane.
+        let turn = |v: [__m256d; 3]| -> [__m256d; 3] {
+            std::array::from_fn(|i| {
+                _mm256_fmadd_pd(
+                    rot[i][2],
+                    v[2],
+                    _mm256_fmadd_pd(rot[i][1], v[1], _mm256_mul_pd(rot[i][0], v[0])),
+                )
+            })
+        };
         // One group of texels; `valid` masks the lanes that hold texels;
         // the depths of the lanes are returned.
         type Quad<'a> = &'a [f32; LANES];
         let mut group = |xs: [Quad; 3], avs: [Quad; 3], areas: Quad, valid: __m256d| -> [f64; LANES] {
-            let x = xs.map(|v| load(v));
-            let r: [__m256d; 3] = std::array::from_fn(|i| {
-                _mm256_fmadd_pd(
-                    rot[i][2],
-                    x[2],
-                    _mm256_fmadd_pd(rot[i][1], x[1], _mm256_mul_pd(rot[i][0], x[0])),
-                )
-            });
+            let r = turn(xs.map(|v| load(v)));
             let p = [
                 _mm256_add_pd(ow[0], r[0]),
                 _mm256_add_pd(ow[1], r[1]),
@@ -392,14 +395,7 @@ mod avx2 {
             let area = _mm256_and_pd(load(areas), taken);
             acc.count = _mm256_add_pd(acc.count, _mm256_and_pd(one, taken));
             acc.area = _mm256_add_pd(acc.area, area);
-            let a = avs.map(|v| load(v));
-            let aw: [__m256d; 3] = std::array::from_fn(|i| {
-                _mm256_fmadd_pd(
-                    rot[i][2],
-                    a[2],
-                    _mm256_fmadd_pd(rot[i][1], a[1], _mm256_mul_pd(rot[i][0], a[0])),
-                )
-            });
+            let aw = turn(avs.map(|v| load(v)));
             // w = −A_y d (zero on lanes not taken).
             let w = _mm256_mul_pd(_mm256_sub_pd(zero, aw[1]), d);
             acc.vol = _mm256_add_pd(acc.vol, w);
@@ -458,16 +454,7 @@ mod avx2 {
         // One call of `group` in the loop (the last texels of the range, a
         // group of their own, read from padded copies): the compiler then
         // keeps the running sums in registers.
-        let (x0, x1, x2) = (
-            quads(xs[0], start..end),
-            quads(xs[1], start..end),
-            quads(xs[2], start..end),
-        );
-        let (a0, a1, a2) = (
-            quads(avs[0], start..end),
-            quads(avs[1], start..end),
-            quads(avs[2], start..end),
-        );
+        let (x, a) = (quads3(xs, start..end), quads3(avs, start..end));
         let ar = quads(areas, start..end);
         let groups = ar.len() + usize::from(ar.len() * LANES < end - start);
         for q in 0..groups {
@@ -475,7 +462,12 @@ mod avx2 {
             let k = (end - i).min(LANES);
             let (pxs, pavs, pareas);
             let (gx, ga, gar, valid) = if q < ar.len() {
-                ([&x0[q], &x1[q], &x2[q]], [&a0[q], &a1[q], &a2[q]], &ar[q], all)
+                (
+                    [&x[0][q], &x[1][q], &x[2][q]],
+                    [&a[0][q], &a[1][q], &a[2][q]],
+                    &ar[q],
+                    all,
+                )
             } else {
                 let pad = |v: &[f32]| {
                     let mut padded = [0.0f32; LANES];
