@@ -18,14 +18,8 @@ pub(super) fn widen(v: &[f32; LANES]) -> __m256d {
     _mm256_cvtps_pd(unsafe { _mm_loadu_ps(v.as_ptr()) })
 }
 
-/// [`quads`] of three columns (a texel's coordinates, or its area
-/// vector's), each exactly `range.len() / LANES` long.
-pub(super) fn quads3(columns: [&[f32]; 3], range: std::ops::Range<usize>) -> [&[[f32; LANES]]; 3] {
-    columns.map(|c| quads(c, range.clone()))
-}
-
-/// Lanes `i .. i + 4` of `v`, widened (the kernels whose groups cost
-/// more than a bounds check: the sea's).
+/// Lanes `i .. i + 4` of `v`, widened, checked against `v` (the sea's
+/// drag kernel, whose groups cost far more than the check).
 #[target_feature(enable = "avx2,fma")]
 pub(super) fn widen_at(v: &[f32], i: usize) -> __m256d {
     let quad: &[f32; LANES] = v[i..i + LANES].try_into().expect("four floats");
@@ -47,6 +41,12 @@ pub(super) fn quads(column: &[f32], range: std::ops::Range<usize>) -> &[[f32; LA
     unsafe {
         std::slice::from_raw_parts(floats.as_ptr().cast::<[f32; LANES]>(), n)
     }
+}
+
+/// [`quads`] of three columns (a texel's coordinates, or its area
+/// vector's), each exactly `range.len() / LANES` long.
+pub(super) fn quads3(columns: [&[f32]; 3], range: std::ops::Range<usize>) -> [&[[f32; LANES]]; 3] {
+    columns.map(|c| quads(c, range.clone()))
 }
 
 /// The first four of `v` as lanes.
