@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use soak_report::scaling::{self, ScalingOptions, markdown_table, text_table, write_figure};
+use soak_report::scaling::{self, ScalingOptions, markdown_table, phases_table, text_table, write_figure};
 
 /// Arguments of `soak bench`.
 #[derive(clap::Args, Debug)]
@@ -53,6 +53,11 @@ pub struct Args {
     /// its own texels
     #[arg(long, value_name = "K")]
     pub drag_coarsening: Option<u32>,
+    /// Also print where the generator's step goes: each phase of its step
+    /// (predicting the poses, preparing, evaluating, handing over, the
+    /// wrenches to Rapier), the mean over the timed steps, per case
+    #[arg(long, conflicts_with = "json")]
+    pub phases: bool,
 }
 
 /// A water of the bench by its label.
@@ -102,6 +107,9 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         print!("{}", markdown_table(&report));
     } else {
         print!("{}", text_table(&report));
+    }
+    if args.phases {
+        print!("{}", phases_table(&report));
     }
     let figure = write_figure(&report, &args.out)?;
     eprintln!("wrote {}", figure.display());

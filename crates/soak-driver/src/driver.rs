@@ -88,6 +88,8 @@ pub struct Driver<H> {
     pub(crate) waves: Option<Box<CoupledWaves>>,
     /// The step's lists, kept across steps ([`Driver::apply`]).
     pub(crate) scratch: crate::scratch::StepScratch<H>,
+    /// How long the last [`Driver::apply`]'s phases took.
+    pub(crate) phases: crate::StepPhases,
     #[cfg(feature = "gpu")]
     pub(crate) gpu: Option<crate::gpu::GpuBackend>,
 }
@@ -124,6 +126,7 @@ impl<H: Handle> Driver<H> {
             impacts: Vec::new(),
             waves: None,
             scratch: crate::scratch::StepScratch::default(),
+            phases: crate::StepPhases::default(),
             #[cfg(feature = "gpu")]
             gpu: None,
         }
@@ -310,6 +313,13 @@ impl<H: Handle> Driver<H> {
     /// Steps taken.
     pub fn steps(&self) -> u64 {
         self.steps
+    }
+
+    /// How long each phase of the last [`Driver::apply`] took, wall time
+    /// (all zero before the first): where a step's time goes, the bodies'
+    /// evaluations against the driver's own work around them.
+    pub fn last_step_phases(&self) -> crate::StepPhases {
+        self.phases
     }
 
     /// The registered bodies, in registration order.

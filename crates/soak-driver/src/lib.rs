@@ -39,6 +39,7 @@ mod gpu;
 mod implicit;
 mod inertial;
 mod liquid;
+mod phases;
 mod predicted_step;
 mod radiation;
 mod registry;
@@ -54,6 +55,7 @@ pub use self::engine::{Bodies, BodiesMut, EngineBody, EngineMass, Handle, StepPa
 pub use self::error::SoakError;
 pub use self::firewall::{FIREWALL_MEMORY, Firewall, FirewallEvent};
 pub use self::free_bodies::{FreeBodies, FreeHandle};
+pub use self::phases::StepPhases;
 pub use self::predicted_step::{PredictedStep, predict_step};
 pub use self::state::{BodyRunState, GeneratorState};
 pub use self::waves::{CoupledWavesState, WaveCoupling};

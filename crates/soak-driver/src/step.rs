@@ -19,6 +19,7 @@ use crate::engine::{Bodies, BodiesMut, EngineBody, Handle, StepParams};
 use crate::error::SoakError;
 use crate::implicit::{IMPLICIT_NEGLIGIBLE, implicit_heave, implicit_weight};
 use crate::inertial::{EngineMap, Inertial};
+use crate::phases::PhaseClock;
 use crate::radiation::{entry_weight, sea_excitation, water_motion};
 use crate::scratch::{Handed, Prepared};
 use crate::waves::{CoupledWaves, Pressed};
@@ -80,6 +81,7 @@ impl<H: Handle> Driver<H> {
     /// again (exactly so for a linear restoring force), so a floating body
     /// bobs for minutes without its amplitude growing or decaying.
     pub fn apply<B: BodiesMut<Handle = H> + ?Sized>(&mut self, bodies: &mut B, step_params: &StepParams) {
+        let mut clock = PhaseClock::start();
         let dt = step_params.dt;
         let substeps = step_params.substeps_f64();
         let lookahead = (substeps - 1.0) / (2.0 * substeps) * dt;
@@ -229,6 +231,7 @@ impl<H: Handle> Driver<H> {
         // bodies read it in parallel; where the device reads it, the CPU
         // does not (a step that falls back to the CPU evaluates it on its
         // first read).
+        clock.mark();
         if !s.work.is_empty() && !self.reads_on_device() {
             self.water.surface.prepare(t);
         }
@@ -275,6 +278,7 @@ impl<H: Handle> Driver<H> {
                 .collect_into_vec(&mut s.prepared);
         }
 
+        clock.mark();
         // 2. Evaluate: one GPU batch, or every body in one parallel pass on
         // the CPU (each body's sums in a fixed order: the same results for
         // any number of threads).
@@ -345,6 +349,7 @@ impl<H: Handle> Driver<H> {
             press_waves(w, self.bodies.len(), &s.work, pressed);
         }
 
+        clock.mark();
         // 3. What each body hands the engine: radiation's memory and wrench,
         // the inertia the step moves, slamming, the firewall's checks and
         // the implicit heave, for every body on its own in one parallel
@@ -395,6 +400,7 @@ impl<H: Handle> Driver<H> {
                 .collect_into_vec(&mut s.handed);
         }
 
+        clock.mark();
         // 4. The firewall, then the engine, one body at a time.
         for (k, h) in s.handed.drain(..).enumerate() {
             let Some(h) = h else {
@@ -407,6 +413,8 @@ impl<H: Handle> Driver<H> {
         }
         s.clear();
         self.scratch = s;
+        clock.mark();
+        self.phases = clock.phases();
     }
 
     /// Advances the liquid texture of every wet body by `dt` (s) at the

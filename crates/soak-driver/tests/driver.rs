@@ -1,7 +1,8 @@
 //! The driver on its own engine ([`FreeBodies`]): bodies float at their
 //! analytic draft, a body the engine lost is handled, a retired body costs
 //! nothing and stays retired through a save, a body reading a band of a
-//! sea's waves is taken as dry only above that band's crest.
+//! sea's waves is taken as dry only above that band's crest, a step's
+//! phases are timed.
 
 use std::sync::Arc;
 
@@ -180,4 +181,27 @@ fn a_body_reading_a_band_is_dry_only_above_the_bands_crest() {
             "lowest point {lowest} m: {skips} dry skips"
         );
     }
+}
+
+/// The phases of a step are zero before the first and sum to the step's
+/// `apply` after it: the bodies' evaluations take time, and `apply` takes
+/// no less than its phases.
+#[test]
+fn a_steps_phases_are_timed() {
+    let atlas = crate_atlas();
+    let mut engine = FreeBodies::new(9.81);
+    let mut soak = Driver::new(Water::calm(0.0));
+    for k in 0..8 {
+        let h = engine.insert(Isometry3::translation(3.0 * k as f64, 0.0, 0.0));
+        soak.register(&mut engine, h, desc("crate", &atlas, 500.0))
+            .unwrap();
+    }
+    assert_eq!(soak.last_step_phases(), soak_driver::StepPhases::default());
+    let start = std::time::Instant::now();
+    soak.apply(&mut engine, &STEP);
+    let elapsed = start.elapsed();
+    let p = soak.last_step_phases();
+    assert!(p.evaluate > std::time::Duration::ZERO, "{p:?}");
+    assert!(p.total() <= elapsed, "{p:?} against {elapsed:?}");
+    assert_eq!(p.total(), p.predict + p.prepare + p.evaluate + p.hand + p.engine);
 }

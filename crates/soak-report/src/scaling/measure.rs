@@ -11,7 +11,8 @@ use soak_rapier::soak_seakeeping::{FloatingBody, RadiationModel};
 use soak_rapier::{BodyDesc, Effects, ForceGenerator, SoakError, radiation_settings};
 
 use super::{
-    Case, Column, Device, Measurement, ScalingError, ScalingOptions, ScalingReport, Variant, WaterKind,
+    Case, Column, Device, Measurement, PhaseMeans, ScalingError, ScalingOptions, ScalingReport, Variant,
+    WaterKind,
 };
 
 /// Solid density of every body, kg/m³.
@@ -287,6 +288,8 @@ struct Running {
     rss_growth_mb: Option<f64>,
     /// Step times, ms.
     times: Vec<f64>,
+    /// The generator's phases summed over the timed steps, ms.
+    phases: PhaseMeans,
 }
 
 impl Running {
@@ -313,6 +316,7 @@ impl Running {
             rss_mb,
             rss_growth_mb: rss_mb.zip(before).map(|(a, b)| a - b),
             times: Vec::new(),
+            phases: PhaseMeans::default(),
         })
     }
 
@@ -321,6 +325,16 @@ impl Running {
         let s = Instant::now();
         step(&mut self.world, &mut self.soak)?;
         self.times.push(s.elapsed().as_secs_f64() * 1e3);
+        if let Some(soak) = &self.soak {
+            let p = soak.driver().last_step_phases();
+            let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+            let sum = &mut self.phases;
+            sum.predict_ms += ms(p.predict);
+            sum.prepare_ms += ms(p.prepare);
+            sum.evaluate_ms += ms(p.evaluate);
+            sum.hand_ms += ms(p.hand);
+            sum.engine_ms += ms(p.engine);
+        }
         Ok(())
     }
 
@@ -355,6 +369,17 @@ impl Running {
             rss_growth_mb: self.rss_growth_mb,
             submerged,
             firewall: self.soak.as_ref().map_or(0, |s| s.firewall().count()),
+            phases: self.soak.as_ref().map(|_| {
+                let n = times.len().max(1) as f64;
+                let p = self.phases;
+                PhaseMeans {
+                    predict_ms: p.predict_ms / n,
+                    prepare_ms: p.prepare_ms / n,
+                    evaluate_ms: p.evaluate_ms / n,
+                    hand_ms: p.hand_ms / n,
+                    engine_ms: p.engine_ms / n,
+                }
+            }),
         }
     }
 }

@@ -36,7 +36,7 @@ use serde::Serialize;
 pub use error::ScalingError;
 pub use figure::{figure, write_figure};
 pub use measure::{Fleet, run};
-pub use table::{format_ms, markdown_table, text_table};
+pub use table::{format_ms, markdown_table, phases_table, text_table};
 
 /// Body counts of the full bench.
 pub const FULL_SIZES: [usize; 5] = [1, 10, 100, 1_000, 10_000];
@@ -317,6 +317,30 @@ pub struct Measurement {
     /// Quantities the generator's firewall rejected (a GPU step that fell
     /// back to the CPU counts here too).
     pub firewall: u64,
+    /// The generator's step phase by phase, the mean over the timed steps
+    /// (none for Rapier alone).
+    pub phases: Option<PhaseMeans>,
+}
+
+/// The mean wall time of each phase of the generator's step over a case's
+/// timed steps, ms ([`soak_rapier::soak_driver::StepPhases`]); the rest of
+/// a step is Rapier's.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct PhaseMeans {
+    /// Reading each body from Rapier and predicting its pose (one body at
+    /// a time), ms.
+    pub predict_ms: f64,
+    /// The water readied and each body's options and sampled sea
+    /// (parallel), ms.
+    pub prepare_ms: f64,
+    /// The bodies' buoyancy and drag (parallel), ms.
+    pub evaluate_ms: f64,
+    /// What each body hands Rapier: the implicit heave, radiation, the
+    /// firewall's checks (parallel), ms.
+    pub hand_ms: f64,
+    /// The wrenches handed to Rapier one body at a time and the step's
+    /// lists emptied, ms.
+    pub engine_ms: f64,
 }
 
 /// A run of the bench.

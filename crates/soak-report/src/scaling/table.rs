@@ -156,6 +156,52 @@ pub fn text_table(report: &ScalingReport) -> String {
     out
 }
 
+/// Where the generator's step goes, per body count and column: the mean
+/// of each of its phases over the timed steps, and the rest of the mean
+/// step (Rapier's own step and what surrounds the generator's).
+pub fn phases_table(report: &ScalingReport) -> String {
+    let mut out = String::new();
+    w!(
+        out,
+        "soak's step phase by phase (mean over the timed steps): predict (the bodies read from Rapier, their poses \
+         predicted; serial), prepare (options, sampled seas; parallel), evaluate (buoyancy and drag; parallel), hand \
+         (implicit heave, radiation, firewall; parallel), engine (wrenches handed to Rapier; serial), rest (Rapier)"
+    );
+    w!(
+        out,
+        "{:>6}  {:<34}  {:>9}  {:>9}  {:>9}  {:>9}  {:>9}  {:>9}  {:>9}",
+        "N",
+        "column",
+        "step",
+        "predict",
+        "prepare",
+        "evaluate",
+        "hand",
+        "engine",
+        "rest"
+    );
+    for m in &report.measurements {
+        let Some(p) = m.phases else {
+            continue;
+        };
+        let soak = p.predict_ms + p.prepare_ms + p.evaluate_ms + p.hand_ms + p.engine_ms;
+        w!(
+            out,
+            "{:>6}  {:<34}  {:>9}  {:>9}  {:>9}  {:>9}  {:>9}  {:>9}  {:>9}",
+            count(m.case.bodies),
+            m.case.column.label(),
+            format_ms(m.mean_ms),
+            format_ms(p.predict_ms),
+            format_ms(p.prepare_ms),
+            format_ms(p.evaluate_ms),
+            format_ms(p.hand_ms),
+            format_ms(p.engine_ms),
+            format_ms(m.mean_ms - soak),
+        );
+    }
+    out
+}
+
 /// The bench as a Markdown table (rows N, columns the variants per water),
 /// then setup and notes as a list.
 pub fn markdown_table(report: &ScalingReport) -> String {
