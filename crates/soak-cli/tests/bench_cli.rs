@@ -1,27 +1,27 @@
 //! `soak bench` prints its measurements as JSON and writes its plot (the
 //! bench itself is tested in soak-report).
 
-use std::process::Command;
+use std::path::Path;
+use std::process::{Command, Output};
+
+/// `soak bench` with `args`, two timed steps a case at most, its plot in
+/// `dir`; it must succeed.
+fn bench(args: &[&str], dir: &Path) -> Output {
+    let out = Command::new(env!("CARGO_BIN_EXE_soak"))
+        .arg("bench")
+        .args(args)
+        .args(["--max-steps", "2", "--budget", "0", "--out"])
+        .arg(dir)
+        .output()
+        .expect("run soak bench");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    out
+}
 
 #[test]
 fn bench_prints_its_measurements_and_writes_its_plot() {
     let dir = std::env::temp_dir().join(format!("soak-bench-cli-{}", std::process::id()));
-    let out = Command::new(env!("CARGO_BIN_EXE_soak"))
-        .args([
-            "bench",
-            "--json",
-            "--sizes",
-            "1,2",
-            "--max-steps",
-            "2",
-            "--budget",
-            "0",
-            "--out",
-        ])
-        .arg(&dir)
-        .output()
-        .expect("run soak bench");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = bench(&["--json", "--sizes", "1,2"], &dir);
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
         panic!(
             "soak bench printed no JSON ({e}); stderr:\n{}",
@@ -60,24 +60,7 @@ fn bench_prints_its_measurements_and_writes_its_plot() {
 #[test]
 fn bench_phases_prints_a_row_per_generator_column() {
     let dir = std::env::temp_dir().join(format!("soak-bench-phases-{}", std::process::id()));
-    let out = Command::new(env!("CARGO_BIN_EXE_soak"))
-        .args([
-            "bench",
-            "--phases",
-            "--sizes",
-            "1",
-            "--water",
-            "calm",
-            "--max-steps",
-            "2",
-            "--budget",
-            "0",
-            "--out",
-        ])
-        .arg(&dir)
-        .output()
-        .expect("run soak bench");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = bench(&["--phases", "--sizes", "1", "--water", "calm"], &dir);
     let text = String::from_utf8_lossy(&out.stdout);
     let table: Vec<&str> = text
         .lines()
