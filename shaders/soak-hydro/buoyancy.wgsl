@@ -14,8 +14,9 @@
 // (K = [[Kvv, Kvw], [Kvwᵀ, Kww]] is symmetric; d2a = Σ (d²/2) A and
 // wrs = Σ w ρ × s are Archimedes' torque sums, `BuoyancySums::d2a` and
 // `SlopeSums` of hydrostatics.rs, as are ayr = Σ A_y r_y and
-// shallow = Σ ln min(d/δ, 1), δ the mean thickness at most the bounding
-// radius (`deep_scale` of hydrostatics/frame.rs); those three only in
+// shallow = Σ ln min(d/δ, 1), δ the mean thickness (widened to g dt²)
+// at most the bounding radius (`deep_scale` of hydrostatics/frame.rs;
+// the body's drag.w, the radius where it is 0); those three only in
 // Archimedes mode under a surface that is not a plane.)
 
 const SLOTS: u32 = 12u;

@@ -470,7 +470,7 @@ impl TiledAtlas {
         options: &HydroOptions,
         buoyancy: bool,
     ) -> Result<Evaluation, HydroError> {
-        let frame = Frame::new(atlas, water, state, mass, t);
+        let frame = Frame::new(atlas, water, state, mass, t, options.dt);
         if frame.plane.is_none() {
             // A sampled sea (handed in, or sampled here as `evaluate` would):
             // tiles under the waves in closed form. Any other surface per

@@ -158,6 +158,16 @@ fn across_the_cliff_the_sliver_keeps_its_energy() {
     ]);
 }
 
+/// The 2 mm rod, 10 µm thick, floating over the cliff at 1/240 s: with a
+/// texel deep past the rod's thickness (7.5 µm) the volume its force took
+/// jumped by half the rod's between steps, and it gained 1.05 times its
+/// energy allowance; past `g dt²` (0.17 mm), more than a step's heave, it
+/// gains 0.05 of it.
+#[test]
+fn the_millimetre_sliver_over_the_cliff_steps_across_its_deep_ramp() {
+    assert_cells_pass(&["sliver/1e-3m/0.9/1/240/cliff/buoyancy"]);
+}
+
 /// The radiation level on floating bodies of every kind of water, scale
 /// and step the matrix has (the level is the full matrix's alone, see
 /// docs/stress.md). The boat at density 0.5 gained

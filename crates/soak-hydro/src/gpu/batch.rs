@@ -13,6 +13,7 @@ use crate::hydrostatics::evaluation::sample_patch_around;
 use crate::hydrostatics::finish::finish;
 use crate::hydrostatics::forces::HydroForces;
 use crate::hydrostatics::frame::Frame;
+use crate::hydrostatics::frame::deep_thickness;
 use crate::hydrostatics::options::{BuoyancyMode, HydroOptions};
 use crate::hydrostatics::sums::{BuoyancySums, DragSums, SlopeSums};
 use crate::mass::MassProperties;
@@ -197,7 +198,13 @@ impl GpuHydro {
                     drag.map_or(0.0, |d| d.linear) as f32,
                     if drag.is_some() { 1.0 } else { 0.0 },
                     if slope_sums { 1.0 } else { 0.0 },
-                    entry.thickness as f32,
+                    // The depth past which a texel is deep, before the
+                    // kernel bounds it by the radius (zero: the radius).
+                    if entry.thickness > 0.0 {
+                        deep_thickness(entry.thickness, b.water.gravity, b.options.dt) as f32
+                    } else {
+                        0.0
+                    },
                 ],
                 slot: [b.atlas.0, 0, 0, 0],
                 ..Body::default()

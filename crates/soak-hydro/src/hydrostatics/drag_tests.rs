@@ -63,7 +63,7 @@ fn reference_sums(
     mass: &MassProperties,
     drag: &Drag,
 ) -> DragSums {
-    let frame = Frame::new(atlas, water, state, mass, 0.0);
+    let frame = Frame::new(atlas, water, state, mass, 0.0, 0.0);
     let mut s = DragSums::default();
     for i in 0..atlas.len() {
         let (x, a) = texel(atlas, i);
@@ -527,7 +527,7 @@ fn whole_bodies_match_the_reference() {
                     for drag in &drags {
                         let what = format!("{name} {wname} pose {pi} motion {mi} {drag:?}");
                         let want = reference_sums(atlas, &water, &state, mass, drag);
-                        let frame = Frame::new(atlas, &water, &state, mass, 0.0);
+                        let frame = Frame::new(atlas, &water, &state, mass, 0.0, 0.0);
                         let options = HydroOptions {
                             drag: Some(*drag),
                             ..HydroOptions::default()
@@ -586,7 +586,7 @@ fn no_drag_where_nothing_is_wet_or_nothing_drags() {
             },
         ),
     ] {
-        let frame = Frame::new(&atlas, &water, &state, &mass, 0.0);
+        let frame = Frame::new(&atlas, &water, &state, &mass, 0.0, 0.0);
         let options = HydroOptions {
             drag: Some(drag),
             ..HydroOptions::default()

@@ -107,7 +107,7 @@ pub fn evaluate(
 ) -> Result<HydroForces, HydroError> {
     water.validate()?;
     state.check()?;
-    let frame = Frame::new(atlas, water, state, mass, t);
+    let frame = Frame::new(atlas, water, state, mass, t, options.dt);
     let pressure = options.buoyancy == BuoyancyMode::Pressure;
     let sums = match frame.local_plane {
         // Planar water: depth is affine in object coordinates, so sum there

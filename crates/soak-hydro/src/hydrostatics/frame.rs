@@ -30,12 +30,30 @@ pub(crate) struct Frame {
 
 /// The depth `δ` past which a texel of `atlas` counts as deep under a
 /// surface that is not a plane, m: the atlas' mean thickness `3V/A`
-/// ([`Atlas::mean_thickness`]), at most its bounding radius (which it is
-/// where the samples enclose no volume). For a compact body the two are
-/// alike; a rod's or a slab's thickness is its width, not its length.
-pub(crate) fn deep_scale(atlas: &Atlas) -> f64 {
+/// ([`Atlas::mean_thickness`]) or `g dt²`, the distance the velocity
+/// gravity gives a body in a step of `dt` seconds carries it in the next,
+/// the larger ([`deep_thickness`]), at most the
+/// bounding radius (which it is where the samples enclose no volume). For
+/// a compact body the thickness and the radius are alike; a rod's or a
+/// slab's thickness is its width, not its length.
+pub(crate) fn deep_scale(atlas: &Atlas, gravity: f64, dt: f64) -> f64 {
     let (t, r) = (atlas.mean_thickness(), atlas.bounding_radius());
-    if t > 0.0 { t.min(r) } else { r }
+    if t > 0.0 {
+        deep_thickness(t, gravity, dt).min(r)
+    } else {
+        r
+    }
+}
+
+/// The thickness `t` (m, positive) widened to `g dt²` (gravity in m/s²,
+/// the step `dt` in s), where that is larger: the ramp of
+/// [`deep_volume`](super::deep_volume::deep_volume) from the samples'
+/// sum to the enclosed volume then spans more than a step's heave under
+/// gravity, so that a step does not jump across it. A zero step (or one
+/// whose `g dt²` is not finite) leaves the thickness.
+pub(crate) fn deep_thickness(t: f64, gravity: f64, dt: f64) -> f64 {
+    let drop = gravity * dt * dt;
+    if drop.is_finite() { t.max(drop) } else { t }
 }
 
 impl Frame {
@@ -45,6 +63,7 @@ impl Frame {
         state: &BodyState,
         mass: &MassProperties,
         t: f64,
+        dt: f64,
     ) -> Self {
         let rot = state.pose.rotation.to_rotation_matrix().into_inner();
         let ow = (state.pose * atlas.origin()).coords;
@@ -63,7 +82,7 @@ impl Frame {
             plane,
             texels: atlas.len(),
             depth_scale: atlas.bounding_radius(),
-            deep_scale: deep_scale(atlas),
+            deep_scale: deep_scale(atlas, water.gravity, dt),
         }
     }
 
@@ -101,4 +120,30 @@ pub(crate) fn texel(atlas: &Atlas, i: usize) -> (Vector3<f64>, Vector3<f64>) {
         Vector3::new(x[0] as f64, x[1] as f64, x[2] as f64),
         Vector3::new(a[0] as f64, a[1] as f64, a[2] as f64),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use soak_bake::{BakeOptions, builtin};
+
+    /// A 2 mm rod 10 µm thick: at 1/240 s the ramp is `g dt²`, not the
+    /// thickness; at 1/10 s the radius bounds it; a 1 m cube at 1/60 s
+    /// keeps its thickness, and no step leaves the thickness as it is.
+    #[test]
+    fn the_deep_scale_is_the_thickness_widened_to_a_steps_heave() {
+        let g = 9.81;
+        let rod = Atlas::bake(&builtin::cuboid(2e-3, 1e-5, 1e-5), BakeOptions::square(32)).unwrap();
+        let (t, r) = (rod.mean_thickness(), rod.bounding_radius());
+        assert!(t < 1e-5 && r > 9e-4, "thickness {t}, radius {r}");
+        let dt = 1.0 / 240.0;
+        assert_eq!(deep_scale(&rod, g, dt), g * dt * dt);
+        assert_eq!(deep_scale(&rod, g, 0.1), r);
+        assert_eq!(deep_scale(&rod, g, 0.0), t);
+        assert_eq!(deep_thickness(t, g, f64::INFINITY), t);
+        let cube = Atlas::bake(&builtin::cuboid(1.0, 1.0, 1.0), BakeOptions::square(32)).unwrap();
+        let t = cube.mean_thickness();
+        assert!((t - 0.5).abs() < 1e-3, "the cube's thickness {t}");
+        assert_eq!(deep_scale(&cube, g, 1.0 / 60.0), t);
+    }
 }
