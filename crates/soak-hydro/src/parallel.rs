@@ -203,20 +203,25 @@ where
     slots.into_iter().filter_map(OnceLock::into_inner).collect()
 }
 
-/// [`par_map`] folded in index order, `add(…add(add(init, f(0)), f(1))…,
-/// f(n − 1))`: the same result on any number of threads. A single item
-/// (a body whose tiles make one chunk) is computed and folded on the
-/// calling thread, with no list.
-pub(crate) fn par_fold<T, A, F, G>(n: usize, f: F, init: A, mut add: G) -> A
+/// [`par_map`] folded into `acc` in index order, `add(acc, f(0))`,
+/// `add(acc, f(1))`, …, `add(acc, f(n − 1))`: the same result on any
+/// number of threads. A single item (a body whose tiles make one chunk) is
+/// computed and folded on the calling thread, with no list. The
+/// accumulator is added to in place (a body's sums are a few hundred
+/// bytes, which a fold by value would move out and back for each item).
+pub(crate) fn par_fold<T, A, F, G>(n: usize, f: F, acc: &mut A, mut add: G)
 where
     T: Send + Sync,
     F: Fn(usize) -> T + Sync,
-    G: FnMut(A, T) -> A,
+    G: FnMut(&mut A, T),
 {
     if n == 1 {
-        return add(init, f(0));
+        add(acc, f(0));
+        return;
     }
-    par_map(n, f).into_iter().fold(init, add)
+    for item in par_map(n, f) {
+        add(acc, item);
+    }
 }
 
 #[cfg(test)]
@@ -234,15 +239,8 @@ mod tests {
     #[test]
     fn a_fold_adds_in_index_order() {
         for n in [0, 1, 2, 5, 100] {
-            let folded = par_fold(
-                n,
-                |i| i,
-                Vec::new(),
-                |mut v, i| {
-                    v.push(i);
-                    v
-                },
-            );
+            let mut folded = Vec::new();
+            par_fold(n, |i| i, &mut folded, |v, i| v.push(i));
             assert_eq!(folded, (0..n).collect::<Vec<_>>());
         }
     }

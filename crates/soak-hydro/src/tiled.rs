@@ -671,16 +671,18 @@ impl TiledAtlas {
             }
             (local.rotated(&rot), drag.as_mut().map(DragWalk::finish), counts)
         };
-        let (sums, acc, counts) = par_fold(
+        let (mut sums, mut acc, mut counts) =
+            (BuoyancySums::default(), DragAcc::default(), TileCounts::default());
+        par_fold(
             n_chunks,
             work,
-            (BuoyancySums::default(), DragAcc::default(), TileCounts::default()),
-            |(sums, mut acc, mut counts), (s, d, c)| {
+            &mut (&mut sums, &mut acc, &mut counts),
+            |(sums, acc, counts), (s, d, c)| {
                 if let Some(d) = d {
-                    acc += &d;
+                    **acc += &d;
                 }
-                counts += c;
-                (sums + s, acc, counts)
+                **counts += c;
+                **sums += s;
             },
         );
         let drag = options.drag.map(|d| match uniform {

@@ -74,11 +74,18 @@ pub(crate) struct SeaDragSums {
 impl std::ops::Add for SeaDragSums {
     type Output = Self;
     fn add(mut self, o: Self) -> Self {
+        self += o;
+        self
+    }
+}
+
+impl std::ops::AddAssign for SeaDragSums {
+    #[inline]
+    fn add_assign(&mut self, o: Self) {
         self.acc += &o.acc;
         for (x, y) in self.b.iter_mut().zip(&o.b) {
             *x += y;
         }
-        self
     }
 }
 

@@ -63,6 +63,23 @@ impl std::ops::Add for BuoyancySums {
     }
 }
 
+/// In place, the same operations as [`Add`](std::ops::Add) (a tile's
+/// sums added to a chunk's without moving the chunk's out and back).
+impl std::ops::AddAssign for BuoyancySums {
+    #[inline]
+    fn add_assign(&mut self, o: Self) {
+        self.vol += o.vol;
+        self.wr += o.wr;
+        self.wd2 += o.wd2;
+        self.f += o.f;
+        self.rxf += o.rxf;
+        self.area += o.area;
+        self.count += o.count;
+        self.d2a += o.d2a;
+        self.slope += o.slope;
+    }
+}
+
 impl BuoyancySums {
     #[inline]
     pub(crate) fn add_texel(&mut self, r: &Vector3<f64>, a: &Vector3<f64>, area: f64, d: f64) {
@@ -102,9 +119,10 @@ pub(crate) struct SlopeSums {
     /// Σ A_y r_y, `r` the texel's position from the atlas origin: once
     /// every texel is under water, the enclosed volume the samples give.
     pub ayr: f64,
-    /// Σ ln min(d/δ, 1), `δ` the body's bounding radius: `exp` of it is 1
-    /// for a body whose every texel is deeper than `δ` and falls to 0 as
-    /// any one of them comes up to the surface.
+    /// Σ ln min(d/δ, 1), `δ` the depth past which a texel is deep (the
+    /// frame's `deep_scale`): `exp` of it is 1 for a body whose every
+    /// texel is deeper than `δ` and falls to 0 as any one of them comes up
+    /// to the surface.
     pub shallow: f64,
 }
 
@@ -116,6 +134,15 @@ impl std::ops::Add for SlopeSums {
             ayr: self.ayr + o.ayr,
             shallow: self.shallow + o.shallow,
         }
+    }
+}
+
+impl std::ops::AddAssign for SlopeSums {
+    #[inline]
+    fn add_assign(&mut self, o: Self) {
+        self.wrs += o.wrs;
+        self.ayr += o.ayr;
+        self.shallow += o.shallow;
     }
 }
 

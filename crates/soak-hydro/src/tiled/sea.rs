@@ -290,26 +290,23 @@ impl TiledAtlas {
                 let fluid = fluid.as_ref().map(|(_, f)| f);
                 lanes.add(atlas, r.clone(), &depths, drag, fluid);
             }
-            part.drag = part.drag + lanes.finish();
+            part.drag += lanes.finish();
             part
         };
-        let (sums, drag_sums, counts, shallow) = par_fold(
+        let mut sums = BuoyancySums::default();
+        let mut drag_sums = SeaDragSums::default();
+        let mut counts = TileCounts::default();
+        let mut shallow = false;
+        par_fold(
             n_chunks,
             chunk,
-            (
-                BuoyancySums::default(),
-                SeaDragSums::default(),
-                TileCounts::default(),
-                false,
-            ),
-            |(sums, drag_sums, mut counts, shallow), p| {
-                counts += p.counts;
-                (
-                    sums + p.local.rotated(&rot) + p.world,
-                    drag_sums + p.drag,
-                    counts,
-                    shallow | p.shallow,
-                )
+            &mut (&mut sums, &mut drag_sums, &mut counts, &mut shallow),
+            |(sums, drag_sums, counts, shallow), p| {
+                **counts += p.counts;
+                **sums += p.local.rotated(&rot);
+                **sums += p.world;
+                **drag_sums += p.drag;
+                **shallow |= p.shallow;
             },
         );
         if archimedes && shallow && sums.count == atlas.len() {
@@ -450,14 +447,13 @@ impl TiledAtlas {
                 0.5 * (xxz * n00 + 2.0 * xzz * n01 + zzz * n11),
             );
             second += rho_c.cross(&ds2);
-            part.world.slope = part.world.slope
-                + SlopeSums {
-                    wrs: w * rho_c.cross(&s3) + (c.rot * first).cross(&s3) + rho_c.cross(&ds3) - dc * second,
-                    ayr: c.g.dot(&(m.s1 * c.g)),
-                    shallow: 0.0,
-                };
+            part.world.slope += SlopeSums {
+                wrs: w * rho_c.cross(&s3) + (c.rot * first).cross(&s3) + rho_c.cross(&ds3) - dc * second,
+                ayr: c.g.dot(&(m.s1 * c.g)),
+                shallow: 0.0,
+            };
         }
-        part.local = part.local + t;
+        part.local += t;
         SeaTile::Closed
     }
 }
