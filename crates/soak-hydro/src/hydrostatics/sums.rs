@@ -48,23 +48,15 @@ impl BuoyancySums {
 
 impl std::ops::Add for BuoyancySums {
     type Output = Self;
-    fn add(self, o: Self) -> Self {
-        Self {
-            vol: self.vol + o.vol,
-            wr: self.wr + o.wr,
-            wd2: self.wd2 + o.wd2,
-            f: self.f + o.f,
-            rxf: self.rxf + o.rxf,
-            area: self.area + o.area,
-            count: self.count + o.count,
-            d2a: self.d2a + o.d2a,
-            slope: self.slope + o.slope,
-        }
+    #[inline]
+    fn add(mut self, o: Self) -> Self {
+        self += o;
+        self
     }
 }
 
-/// In place, the same operations as [`Add`](std::ops::Add) (a tile's
-/// sums added to a chunk's without moving the chunk's out and back).
+/// In place (a tile's sums added to a chunk's without moving the chunk's
+/// out and back); [`Add`](std::ops::Add) is written through it.
 impl std::ops::AddAssign for BuoyancySums {
     #[inline]
     fn add_assign(&mut self, o: Self) {
@@ -128,12 +120,10 @@ pub(crate) struct SlopeSums {
 
 impl std::ops::Add for SlopeSums {
     type Output = Self;
-    fn add(self, o: Self) -> Self {
-        Self {
-            wrs: self.wrs + o.wrs,
-            ayr: self.ayr + o.ayr,
-            shallow: self.shallow + o.shallow,
-        }
+    #[inline]
+    fn add(mut self, o: Self) -> Self {
+        self += o;
+        self
     }
 }
 
