@@ -187,33 +187,6 @@ pub struct TiledAtlas {
     /// sampled sea, which takes them tile by tile: nothing where no body
     /// of this atlas meets drag on a sea.
     tile_drag: std::sync::OnceLock<Vec<DragMoments>>,
-    /// The tiles by neighbouring twos a side within each group, with their
-    /// moments summed: made on the first evaluation on a sampled sea,
-    /// which takes a quad wholly under the waves and small against their
-    /// curvature in one closed form (`sea.rs`); nothing on calm water.
-    sea_quads: std::sync::OnceLock<SeaQuads>,
-}
-
-/// The tiles of one group whose first texels lie in one 2 × 2 block of
-/// the tile grid (two or more; more than four where charts share the
-/// block), their moments summed ([`TiledAtlas::sea_quads`]).
-#[derive(Clone, Debug)]
-struct Quad {
-    /// The summed moments, about a bounding sphere and box around all the
-    /// tiles; `range` is `(0, texels)` (the tiles' texels are not one
-    /// range of the atlas).
-    moments: TileMoments,
-    /// Its tiles: bit `i` for the group's tile `i` (its index in the tile
-    /// list less the group's first's).
-    members: u64,
-}
-
-/// Every group's quads of two or more tiles: `quads[start[g]..start[g + 1]]`
-/// are group `g`'s.
-#[derive(Clone, Debug, Default)]
-struct SeaQuads {
-    quads: Vec<Quad>,
-    start: Vec<usize>,
 }
 
 /// How many tiles of each kind the last evaluation met.
@@ -339,7 +312,6 @@ impl TiledAtlas {
             facing: facing.iter().map(HBox::bounds).collect(),
             drag_prefix,
             tile_drag: std::sync::OnceLock::new(),
-            sea_quads: std::sync::OnceLock::new(),
         }
     }
 
@@ -357,45 +329,6 @@ impl TiledAtlas {
             (0..self.tiles.len())
                 .map(|ti| DragMoments::of_tile(&self.drag_prefix, ti))
                 .collect()
-        })
-    }
-
-    /// Each group's quads of two or more tiles (those in one 2 × 2 block
-    /// of its tile grid), made on the first call from `atlas` (this
-    /// tiling's). A group
-    /// of more than 64 tiles (not one this tiling makes) has none.
-    fn sea_quads(&self, atlas: &Atlas) -> &SeaQuads {
-        self.sea_quads.get_or_init(|| {
-            let ts = atlas.tile_size().max(1);
-            let block = |m: &TileMoments| {
-                let [x, y] = atlas.texels().get(m.range.0 as usize).copied().unwrap_or([0, 0]);
-                ((u32::from(y) / ts) / 2, (u32::from(x) / ts) / 2)
-            };
-            let mut out = SeaQuads::default();
-            for group in &self.groups {
-                out.start.push(out.quads.len());
-                let tiles = &self.tiles[group.tiles.clone()];
-                if tiles.len() > 64 {
-                    continue;
-                }
-                let mut keys: Vec<((u32, u32), u8)> = tiles
-                    .iter()
-                    .enumerate()
-                    .map(|(i, m)| (block(m), i as u8))
-                    .collect();
-                keys.sort_unstable();
-                for same in keys.chunk_by(|a, b| a.0 == b.0) {
-                    if same.len() < 2 {
-                        continue;
-                    }
-                    out.quads.push(Quad {
-                        moments: sum_moments(same.iter().map(|&(_, i)| &tiles[usize::from(i)])),
-                        members: same.iter().fold(0, |bits, &(_, i)| bits | 1 << i),
-                    });
-                }
-            }
-            out.start.push(out.quads.len());
-            out
         })
     }
 
@@ -828,31 +761,6 @@ impl Moments for TileMoments {
     }
 }
 
-/// The moments of a set of tiles together, about a bounding sphere and
-/// box around them all (as a group's bounds are made); `range` is
-/// `(0, texels)`.
-fn sum_moments<'a>(tiles: impl Iterator<Item = &'a TileMoments> + Clone) -> TileMoments {
-    let mut m = TileMoments::empty((0, 0));
-    let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
-    for t in tiles.clone() {
-        m.s0 += t.s0;
-        m.s1 += t.s1;
-        for j in 0..3 {
-            m.s2[j] += t.s2[j];
-        }
-        m.area += t.area;
-        m.range.1 += t.range.1 - t.range.0;
-        lo = lo.inf(&(t.centre - t.half_extent));
-        hi = hi.sup(&(t.centre + t.half_extent));
-    }
-    m.centre = (lo + hi) * 0.5;
-    m.half_extent = (hi - lo) * 0.5;
-    m.radius = tiles
-        .map(|t| (t.centre - m.centre).norm() + t.radius)
-        .fold(0.0, f64::max);
-    m
-}
-
 /// Adds the planar closed form of the tile with moments `m` under the
 /// depth `α + β·x` (object axes) to `s`, and returns `S1ᵀ g` and
 /// `Σ_j g_j S2_j` (the moments weighted by the area vectors' up component,
@@ -893,59 +801,4 @@ fn add_closed_form<M: Moments>(
     s.area += m.area();
     s.count += m.texels() as usize;
     (t1, t2)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use soak_bake::{BakeOptions, builtin};
-
-    /// Every quad holds two or more tiles of its group, none twice, its
-    /// moments their sums, its bounds around theirs.
-    #[test]
-    fn a_quad_is_its_tiles_summed() {
-        let mesh = builtin::cuboid(1.0, 0.6, 0.8);
-        let atlas = Atlas::bake(&mesh, BakeOptions::square(128)).unwrap();
-        let tiled = TiledAtlas::new(&atlas);
-        let quads = tiled.sea_quads(&atlas);
-        assert_eq!(quads.start.len(), tiled.groups.len() + 1);
-        let mut in_quads = 0;
-        for (g, group) in tiled.groups.iter().enumerate() {
-            let mut seen = 0u64;
-            for q in &quads.quads[quads.start[g]..quads.start[g + 1]] {
-                let n = q.members.count_ones();
-                assert!(n >= 2, "{n} tiles");
-                assert_eq!(seen & q.members, 0, "a tile in two quads");
-                seen |= q.members;
-                in_quads += n as usize;
-                let members: Vec<&TileMoments> = (0..64)
-                    .filter(|i| q.members >> i & 1 == 1)
-                    .map(|i| &tiled.tiles[group.tiles.start + i])
-                    .collect();
-                let m = &q.moments;
-                let s0: Vector3<f64> = members.iter().map(|t| t.s0).sum();
-                let area: f64 = members.iter().map(|t| t.area).sum();
-                let texels: u32 = members.iter().map(|t| t.range.1 - t.range.0).sum();
-                assert!((m.s0 - s0).norm() <= 1e-12 * area, "{} against {}", m.s0, s0);
-                assert!((m.area - area).abs() <= 1e-12 * area);
-                assert_eq!(m.range, (0, texels));
-                for t in members {
-                    assert!((t.centre - m.centre).norm() + t.radius <= m.radius * (1.0 + 1e-12));
-                    let reach = (t.centre - m.centre).abs() + t.half_extent;
-                    assert!(
-                        reach
-                            .iter()
-                            .zip(m.half_extent.iter())
-                            .all(|(r, h)| *r <= h * (1.0 + 1e-12) + 1e-15)
-                    );
-                }
-            }
-        }
-        // Most tiles of a box's faces have neighbours to make quads with.
-        assert!(
-            2 * in_quads > tiled.tiles.len(),
-            "{in_quads} of {}",
-            tiled.tiles.len()
-        );
-    }
 }

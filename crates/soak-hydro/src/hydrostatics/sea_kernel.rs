@@ -91,19 +91,6 @@ impl Taylor {
         }
     }
 
-    /// The polynomial's height at world `(x, z)`, m.
-    pub fn height(&self, x: f64, z: f64) -> f64 {
-        let (dx, dz) = (x - self.at[0], z - self.at[1]);
-        let [hxx, hxz, hzz] = self.hess;
-        let [xxx, xxz, xzz, zzz] = self.third;
-        self.h
-            + self.slope[0] * dx
-            + self.slope[1] * dz
-            + 0.5 * (hxx * dx * dx + 2.0 * hxz * dx * dz + hzz * dz * dz)
-            + (xxx * dx * dx * dx + 3.0 * xxz * dx * dx * dz + 3.0 * xzz * dx * dz * dz + zzz * dz * dz * dz)
-                / 6.0
-    }
-
     /// Height (m) and slope at `(x, z)`, world: the portable form of what
     /// the kernel reads, and its reference.
     #[cfg(test)]

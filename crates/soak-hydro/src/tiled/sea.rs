@@ -33,25 +33,13 @@
 //! wholly above the waves is skipped. For a 1024² atlas of a half-metre body on a metres-long
 //! swell the remainder is below a micrometre and nearly every tile under
 //! water takes the closed form.
-//!
-//! Before its tiles, each group tries its quads (its tiles by 2 × 2
-//! blocks of the tile grid, their moments summed): a quad wholly under
-//! the waves, within the tolerance of its remainder, small enough against
-//! the waves' curvature that the quadratic part taken at its centre stays
-//! within the same tolerance ([`SEA_QUAD`]), and, where it reaches over
-//! more than one cell of the patch, its polynomial within the tolerance
-//! of the interpolant at its corners there (the interpolant's second
-//! derivatives jump across the node lines, which the polynomial misses)
-//! takes one closed form for all its tiles, with one Taylor read. Its
-//! tiles' drag is summed tile by tile as
-//! any tile's in closed form.
 
 use std::ops::Range;
 
 use nalgebra::{Matrix2, Matrix2x3, Matrix3, Vector2, Vector3};
 use soak_bake::Atlas;
 
-use super::{TileCounts, TileMoments, TiledAtlas, add_closed_form};
+use super::{TileCounts, TiledAtlas, add_closed_form};
 use crate::hydrostatics::frame::Frame;
 use crate::hydrostatics::options::SeaVelocity;
 use crate::hydrostatics::sea_drag::{LinearFluid, SeaDragFrame, SeaDragLanes, SeaDragSums};
@@ -89,20 +77,6 @@ pub const SEA_TILE_TOLERANCE: f64 = 1e-4;
 /// digits). The polynomial's read costs a few multiply-adds a texel, the
 /// patch's cells far more.
 const SEA_DRAG_DEPTH_TOLERANCE: f64 = 1e-2;
-
-/// How large a quad of tiles may be against the waves' curvature to be
-/// taken in one closed form: `SEA_QUAD |H| ρ³` within the tolerance, `|H|`
-/// the surface's second derivatives (their largest row sum), `ρ` the
-/// quad's radius.
-///
-/// A tile's closed form takes the depth's quadratic part exactly in the
-/// sums linear in the depth and at the tile's centre in those with a
-/// further factor of the position or the depth (the centre of buoyancy,
-/// the torque, Archimedes' slope sums): an error of about `½ |H| ρ³` a
-/// unit area. Tiles are small enough for it not to matter; a quad, twice
-/// as wide, is taken whole only where it stays under the same tolerance
-/// as the cubic remainder, and its tiles one by one otherwise.
-const SEA_QUAD: f64 = 0.5;
 
 /// Groups of tiles per parallel task.
 const GROUP_CHUNK: usize = 32;
@@ -218,7 +192,6 @@ impl TiledAtlas {
             archimedes,
         };
         let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
-        let quads = self.sea_quads(atlas);
         // Over tiles, a tile's texels take the fluid's velocity to first
         // order about its centre (object axes); texel by texel, each its
         // own.
@@ -246,37 +219,16 @@ impl TiledAtlas {
             // of tiles in closed form whose drag is summed texel by texel;
             // each with the fluid's velocity over it where it is one.
             let (mut texels, mut closed) = (Ranges::default(), Ranges::default());
-            for (gi, group) in groups.iter().enumerate() {
+            for group in groups {
                 let b = &group.bounds;
                 if (c.ow + rot * b.centre).y - b.radius >= c.top {
                     part.counts.dry += group.tiles.len();
                     continue;
                 }
-                // Quads wholly under the waves and small against their
-                // curvature: one closed form for their tiles.
-                let gi = k * GROUP_CHUNK + gi;
-                let mut in_quads = 0u64;
-                for q in &quads.quads[quads.start[gi]..quads.start[gi + 1]] {
-                    if let SeaTile::Closed = self.sea_moments(&c, &q.moments, true, &mut part) {
-                        in_quads |= q.members;
-                        part.counts.submerged += q.members.count_ones() as usize;
-                    }
-                }
                 for ti in group.tiles.clone() {
                     let m = &self.tiles[ti];
                     let range = m.range.0 as usize..m.range.1 as usize;
-                    let tile = if in_quads >> (ti - group.tiles.start) & 1 == 1 {
-                        SeaTile::Closed
-                    } else {
-                        let tile = self.sea_moments(&c, m, false, &mut part);
-                        match tile {
-                            SeaTile::Dry => part.counts.dry += 1,
-                            SeaTile::Closed => part.counts.submerged += 1,
-                            SeaTile::Texels(_) => part.counts.cut += 1,
-                        }
-                        tile
-                    };
-                    match tile {
+                    match self.sea_tile(&c, ti, &mut part) {
                         SeaTile::Dry => {}
                         SeaTile::Texels(taylor) => texels.push(range, tile_fluid(ti), taylor),
                         SeaTile::Closed => match (drag, tile_fluid(ti)) {
@@ -385,17 +337,15 @@ impl TiledAtlas {
         )
     }
 
-    /// Settles a tile of moments `m`: skipped, in closed form into `part`,
-    /// or left to the kernel. With `quad` (`m` a quad's, its tiles'
-    /// together) only the closed form is taken, and only where the quad is
-    /// small against the waves' curvature as well (see [`SEA_QUAD`]):
-    /// anything else is `Texels(None)`, its tiles left to be settled one
-    /// by one.
-    fn sea_moments(&self, c: &SeaTiles, m: &TileMoments, quad: bool, part: &mut Part) -> SeaTile {
+    /// Settles tile `ti`: skipped, in closed form into `part`, or left to
+    /// the kernel.
+    fn sea_tile(&self, c: &SeaTiles, ti: usize, part: &mut Part) -> SeaTile {
+        let m = &self.tiles[ti];
         let (rho, centre) = (m.radius, m.centre);
         let p = c.ow + c.rot * centre;
         if p.y - rho >= c.top {
-            return if quad { SeaTile::Texels(None) } else { SeaTile::Dry };
+            part.counts.dry += 1;
+            return SeaTile::Dry;
         }
         let taylor = Taylor::of(c.patch, p.x, p.z);
         let Taylor {
@@ -419,34 +369,19 @@ impl TiledAtlas {
         // |β| ρ and |β|·(half the box), as under a plane.
         let linear = (beta.norm() * rho).min(beta.abs().dot(&m.half_extent));
         let reach = linear + 0.5 * hm.norm() * rho * rho + remainder;
-        if quad {
-            // The closed form takes the quadratic part at the centre in
-            // the sums with a further factor of the position or the
-            // depth: an error of the curvature times ρ³, held to the same
-            // tolerance as the remainder. And across a node line of the
-            // patch the interpolant's second derivatives jump, which the
-            // polynomial read at the centre misses: a quad over more than
-            // one cell is taken whole only where the polynomial stays
-            // within the tolerance of the interpolant at its corners.
-            let curvature = (hess[0].abs() + hess[1].abs()).max(hess[1].abs() + hess[2].abs());
-            if dc - reach <= 0.0
-                || remainder > c.tolerance
-                || SEA_QUAD * curvature * rho * rho * rho > c.tolerance
-                || !follows_across(c.patch, &taylor, rho, c.tolerance)
-            {
-                return SeaTile::Texels(None);
-            }
-        }
         if dc + reach <= 0.0 {
+            part.counts.dry += 1;
             return SeaTile::Dry;
         }
         if dc - reach <= 0.0 || remainder > c.tolerance {
+            part.counts.cut += 1;
             // A tile small against the waves reads them from the polynomial
             // the closed forms take, to third order: within the same
             // tolerance (a looser one for the drag alone), and a few
             // multiply-adds a texel.
             return SeaTile::Texels((remainder <= c.texel_tolerance).then_some(taylor));
         }
+        part.counts.submerged += 1;
         if !c.buoyancy {
             return SeaTile::Closed;
         }
@@ -521,23 +456,6 @@ impl TiledAtlas {
         part.local += t;
         SeaTile::Closed
     }
-}
-
-/// Whether `taylor`'s polynomial stays within `tolerance` (m) of the
-/// patch's interpolant at the corners of the square of half-side `r` (m)
-/// about its point that lie in another cell of the patch than the point:
-/// past a node line the polynomial departs from the interpolant with the
-/// square of the distance, most at the far corners. (Within the point's
-/// cell the polynomial is the cell's bicubic to third order, which the
-/// remainder's estimate takes.)
-fn follows_across(patch: &SurfacePatch, taylor: &Taylor, r: f64, tolerance: f64) -> bool {
-    let [x, z] = taylor.at;
-    let cell = patch.cell_at(x, z);
-    [(-r, -r), (r, -r), (-r, r), (r, r)].into_iter().all(|(dx, dz)| {
-        let (xc, zc) = (x + dx, z + dz);
-        patch.cell_at(xc, zc) == cell
-            || (taylor.height(xc, zc) - patch.height_slope(xc, zc).0).abs() <= tolerance
-    })
 }
 
 /// A symmetric 3 × 3 matrix by its entries `SYM`.

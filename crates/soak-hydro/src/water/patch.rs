@@ -466,13 +466,6 @@ impl SurfacePatch {
         }
     }
 
-    /// The interpolant's cell whose bicubic is read at `(x, z)` (past the
-    /// patch's edges, the edge cell's), as an index.
-    #[inline]
-    pub(crate) fn cell_at(&self, x: f64, z: f64) -> usize {
-        self.place(x, z).cell
-    }
-
     /// The interpolant's Taylor coefficients at `(x, z)`, in one read:
     /// height (m), slope `(∂f/∂x, ∂f/∂z)`, second derivatives
     /// `(∂²f/∂x², ∂²f/∂x∂z, ∂²f/∂z²)` (1/m) and third derivatives
