@@ -11,7 +11,8 @@
 //! at 1024² and 128²; the scaling bench's box at 128² with and without
 //! drag (and over a 32² drag bake); the boat at 1024², per texel and tiled; the sphere
 //! at 2048², beyond the cache; a step of the interactive wave surface; a
-//! spectral sea's tile evaluated at one time.
+//! spectral sea's tile evaluated at one time; the world bench's box and
+//! sphere level at their draft and above the water, with and without drag.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
@@ -430,6 +431,81 @@ criterion_group!(
     boat,
     beyond_the_cache,
     waves,
-    spectral
+    spectral,
+    level
 );
 criterion_main!(benches);
+
+/// The world bench's two bodies (`soak bench`: the box and the sphere at
+/// 128², solid at half the water's density) level at their floating draft
+/// on calm water, heaving at 1 mm/s and drifting and turning a tenth of
+/// that, as the bench's bodies float: each without drag and with its drag
+/// over its atlas coarsened by 4 (`{body}`, `{body}_drag`); heaving down
+/// (`{body}_down_drag`); and 3 m above the water (`{body}_dry`,
+/// `{body}_dry_drag`), where a body's sums are nothing but an evaluation's
+/// fixed costs.
+fn level(c: &mut Criterion) {
+    let mut g = c.benchmark_group("level");
+    for (name, mesh) in [
+        ("box", builtin::cuboid(1.0, 0.6, 0.8)),
+        ("sphere", builtin::sphere(0.5, 64, 32)),
+    ] {
+        let (atlas, mass) = baked(&mesh, 128);
+        let tiled = TiledAtlas::new(&atlas);
+        let state = BodyState {
+            linear_velocity: Vector3::new(1e-4, 1e-3, -1e-4),
+            angular_velocity: Vector3::new(1e-4, -1e-4, 1e-4),
+            ..BodyState::at_rest(Isometry3::identity())
+        };
+        let water = Water::calm(0.0);
+        let still = HydroOptions::default();
+        let drag = HydroOptions {
+            drag: Some(Drag {
+                coefficient: 0.8,
+                linear: 20.0,
+            }),
+            ..still
+        };
+        let merged = DragTexels::coarsened(atlas.clone().into(), DragTexels::COARSENING).unwrap();
+        g.bench_function(name.to_string(), |b| {
+            b.iter(|| {
+                tiled
+                    .evaluate(&atlas, &water, &state, &mass, 0.0, &still)
+                    .unwrap()
+            })
+        });
+        g.bench_function(format!("{name}_drag"), |b| {
+            b.iter(|| {
+                tiled
+                    .evaluate_with_drag(&atlas, &merged, &water, &state, &mass, 0.0, &drag)
+                    .unwrap()
+            })
+        });
+        let high = BodyState {
+            pose: Isometry3::translation(0.0, 3.0, 0.0),
+            ..state
+        };
+        g.bench_function(format!("{name}_dry"), |b| {
+            b.iter(|| tiled.evaluate(&atlas, &water, &high, &mass, 0.0, &still).unwrap())
+        });
+        g.bench_function(format!("{name}_dry_drag"), |b| {
+            b.iter(|| {
+                tiled
+                    .evaluate_with_drag(&atlas, &merged, &water, &high, &mass, 0.0, &drag)
+                    .unwrap()
+            })
+        });
+        let down = BodyState {
+            linear_velocity: Vector3::new(1e-4, -1e-3, -1e-4),
+            ..state
+        };
+        g.bench_function(format!("{name}_down_drag"), |b| {
+            b.iter(|| {
+                tiled
+                    .evaluate_with_drag(&atlas, &merged, &water, &down, &mass, 0.0, &drag)
+                    .unwrap()
+            })
+        });
+    }
+    g.finish();
+}

@@ -436,7 +436,25 @@ impl TiledAtlas {
         // body's buoyancy taking the threads the drag leaves it (each sums
         // in a fixed order whatever the threads).
         let (body, coarse) = if atlas.len() + drag.atlas.len() <= SIDE_BY_SIDE {
-            (run(0), run(1))
+            let body = run(0)?;
+            // Under a plane, the drag texels' sums read the body's frame
+            // where it is theirs too (the same origin and plane): one frame
+            // and one evaluation's records made and moved, not two.
+            if body.frame.serves(atlas, &drag.atlas, water, t) {
+                let (_, coarse, _) =
+                    drag.tiled
+                        .sums(&drag.atlas, water, state, &body.frame, t, options, false);
+                return Ok(finish(
+                    &body.frame,
+                    water,
+                    state,
+                    mass,
+                    &body.sums,
+                    coarse.as_ref(),
+                    options,
+                ));
+            }
+            (Ok(body), run(1))
         } else {
             let mut both = par_map(2, run).into_iter();
             let (Some(body), Some(coarse)) = (both.next(), both.next()) else {

@@ -86,6 +86,17 @@ impl Frame {
         }
     }
 
+    /// Whether this frame, made for `body` (an atlas of the same pose),
+    /// is `other`'s too under planar water: the same origin and the same
+    /// plane (where there is no free surface, the plane above the body is
+    /// placed by the atlas' radius). The planar sums read nothing else of
+    /// a frame.
+    pub(crate) fn serves(&self, body: &Atlas, other: &Atlas, water: &Water, t: f64) -> bool {
+        self.plane.is_some()
+            && body.origin() == other.origin()
+            && Self::surface_plane(water, t, &self.ow, other.bounding_radius()) == self.plane
+    }
+
     /// The water's surface as a plane `(normal, offset)` at time `t`, if it
     /// is one, for a body whose atlas origin is at `ow` within `radius`.
     pub(crate) fn surface_plane(

@@ -285,6 +285,15 @@ impl<'a> DragWalk<'a> {
     /// The chunk's sums.
     pub(super) fn finish(&mut self) -> DragAcc {
         let prefix = &self.tiled.drag_prefix;
+        let mut acc = DragAcc::default();
+        // A chunk with nothing under water adds nothing (every sum below
+        // would add zeros to zeros).
+        if self.texels.iter().all(|ranges| ranges.is_empty())
+            && self.linear.is_empty()
+            && self.quadratic.is_empty()
+        {
+            return acc;
+        }
         let mut lanes = DragLanes::default();
         // One kernel call for the lists without its skin friction, one for
         // those with: each list's ranges in turn.
@@ -296,7 +305,6 @@ impl<'a> DragWalk<'a> {
             let lists: [RangeList; 4] = std::array::from_fn(|j| (&lists[j][..], Self::added(j)));
             add_drag_ranges(&mut lanes, self.atlas, &lists, &p);
         }
-        let mut acc = DragAcc::default();
         lanes.add_to(&mut acc);
         self.linear.close(prefix).add_linear(&mut acc, &self.p);
         self.quadratic.close(prefix).add_quadratic(&mut acc, &self.p);
@@ -315,6 +323,12 @@ pub(super) struct MomentRun<const LINEAR: bool> {
 }
 
 impl<const LINEAR: bool> MomentRun<LINEAR> {
+    /// Whether no tile was pushed (a run, once open, stays open until
+    /// [`MomentRun::close`]).
+    fn is_empty(&self) -> bool {
+        self.open.is_none()
+    }
+
     /// Adds `tiles`, extending the open run where they follow it.
     fn push(&mut self, prefix: &[DragMoments], tiles: std::ops::Range<usize>) {
         match self.open.as_mut() {
@@ -349,6 +363,80 @@ impl<const LINEAR: bool> MomentRun<LINEAR> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::hydrostatics::finish::finish;
+    use crate::{Drag, MassModel, Unbounded};
+    use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+    use soak_bake::{BakeOptions, builtin};
+
+    /// Under a plane, the drag texels' sums taken in the body's frame (the
+    /// same origin and plane) are the sums taken in their own, to the bit:
+    /// afloat, wholly under, wholly above (nothing to sum), and in a medium
+    /// with no free surface (whose plane above the body is placed by each
+    /// atlas' own radius).
+    #[test]
+    fn the_drag_texels_read_the_bodys_frame_as_their_own() {
+        let mesh = builtin::cuboid(1.0, 0.6, 0.8);
+        let atlas = std::sync::Arc::new(Atlas::bake(&mesh, BakeOptions::square(128)).unwrap());
+        let tiled = TiledAtlas::new(&atlas);
+        let mass = MassModel::Solid { density: 500.0 }
+            .mass_properties(&atlas)
+            .unwrap();
+        let options = HydroOptions {
+            drag: Some(Drag {
+                coefficient: 0.8,
+                linear: 20.0,
+            }),
+            ..HydroOptions::default()
+        };
+        let still = HydroOptions {
+            drag: None,
+            ..options
+        };
+        let coarsened = DragTexels::coarsened(atlas.clone(), DragTexels::COARSENING).unwrap();
+        let baked = DragTexels::bake(&mesh, 32).unwrap();
+        let current = || {
+            Water::new(Unbounded {
+                current: [0.5, 0.0, -0.2],
+            })
+        };
+        let mut served = 0;
+        for drag in [&coarsened, &baked] {
+            for (water, heights) in [(Water::calm(0.0), &[0.1, -2.0, 3.0][..]), (current(), &[0.0][..])] {
+                for &y in heights {
+                    let state = BodyState {
+                        linear_velocity: Vector3::new(0.3, -0.4, 0.1),
+                        angular_velocity: Vector3::new(0.2, 0.1, -0.3),
+                        ..BodyState::at_rest(Isometry3::from_parts(
+                            Vector3::new(0.2, y, -0.1).into(),
+                            UnitQuaternion::from_euler_angles(0.3, -0.2, 0.5),
+                        ))
+                    };
+                    let got = tiled
+                        .evaluate_with_drag(&atlas, drag, &water, &state, &mass, 0.0, &options)
+                        .unwrap();
+                    let body = tiled
+                        .evaluation(&atlas, &water, &state, &mass, 0.0, &still, true)
+                        .unwrap();
+                    let own = drag
+                        .tiled
+                        .evaluation(&drag.atlas, &water, &state, &mass, 0.0, &options, false)
+                        .unwrap();
+                    let want = finish(
+                        &body.frame,
+                        &water,
+                        &state,
+                        &mass,
+                        &body.sums,
+                        own.drag.as_ref(),
+                        &options,
+                    );
+                    assert_eq!(got, want, "drag texels of {} at y = {y}", drag.atlas.len());
+                    served += usize::from(body.frame.serves(&atlas, &drag.atlas, &water, 0.0));
+                }
+            }
+        }
+        assert!(served >= 3, "the body's frame served {served} times");
+    }
 
     #[test]
     fn a_list_reads_back_what_it_was_chosen_by() {
