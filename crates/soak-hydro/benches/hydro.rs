@@ -34,6 +34,17 @@ fn baked(mesh: &Mesh, n: u32) -> (Atlas, MassProperties) {
     (atlas, mass)
 }
 
+/// The drag of the world bench's drag columns (`soak bench`).
+fn bench_drag() -> HydroOptions {
+    HydroOptions {
+        drag: Some(Drag {
+            coefficient: 0.8,
+            linear: 20.0,
+        }),
+        ..HydroOptions::default()
+    }
+}
+
 /// The two-wave swell of `buoy_on_waves.toml`.
 fn swell() -> Water {
     Water::new(Gerstner::new(0.0, GerstnerWave::SWELL.to_vec(), 9.80665).unwrap())
@@ -266,13 +277,7 @@ fn bench_box(c: &mut Criterion) {
     };
     let water = Water::calm(0.0);
     let still = HydroOptions::default();
-    let drag = HydroOptions {
-        drag: Some(Drag {
-            coefficient: 0.8,
-            linear: 20.0,
-        }),
-        ..still
-    };
+    let drag = bench_drag();
     let mut g = c.benchmark_group("box_128");
     g.bench_function("tiled", |b| {
         b.iter(|| {
@@ -459,13 +464,7 @@ fn level(c: &mut Criterion) {
         };
         let water = Water::calm(0.0);
         let still = HydroOptions::default();
-        let drag = HydroOptions {
-            drag: Some(Drag {
-                coefficient: 0.8,
-                linear: 20.0,
-            }),
-            ..still
-        };
+        let drag = bench_drag();
         let merged = DragTexels::coarsened(atlas.clone().into(), DragTexels::COARSENING).unwrap();
         g.bench_function(name.to_string(), |b| {
             b.iter(|| {
