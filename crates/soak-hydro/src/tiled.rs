@@ -687,24 +687,32 @@ impl TiledAtlas {
                     add_planar_ranges(&mut local, atlas, &ranges, alpha, &beta, &g, pressure, side);
                 }
             }
-            (local.rotated(&rot), drag.as_mut().map(DragWalk::finish), counts)
+            (
+                local.rotated(&rot),
+                drag.as_mut().and_then(DragWalk::finish),
+                counts,
+            )
         };
         let (mut sums, mut acc, mut counts) =
             (BuoyancySums::default(), DragAcc::default(), TileCounts::default());
+        let mut wet = false;
         par_fold(
             n_chunks,
             work,
-            &mut (&mut sums, &mut acc, &mut counts),
-            |(sums, acc, counts), (s, d, c)| {
+            &mut (&mut sums, &mut acc, &mut counts, &mut wet),
+            |(sums, acc, counts, wet), (s, d, c)| {
                 if let Some(d) = d {
                     **acc += &d;
+                    **wet = true;
                 }
                 **counts += c;
                 **sums += s;
             },
         );
         let drag = options.drag.map(|d| match uniform {
-            Some((_, u)) => acc.system(&rot, &c, &u),
+            Some((_, u)) if wet => acc.system(&rot, &c, &u),
+            // No drag texel under water: no drag.
+            Some(_) => DragSums::default(),
             // The fluid's velocity varies: per texel, with it where it is.
             None => drag_sums(atlas, water, state, frame, &d, t, 0..atlas.len()),
         });

@@ -550,6 +550,23 @@ fn whole_bodies_match_the_reference() {
                         let ft = tiled
                             .evaluate(atlas, &water, &state, mass, 0.0, &options)
                             .unwrap();
+                        // Where no texel takes drag (the quadratic drag
+                        // of a body whose wetted texels all face away from
+                        // the flow), the drag is zero: exactly, where the
+                        // solve hands back rounding.
+                        let (applied, explicit) = if want.k == Matrix6::zeros() && want.b == Vector6::zeros()
+                        {
+                            let momentum = mass.mass * state.linear_velocity.norm()
+                                + mass.inertia.norm() * state.angular_velocity.norm();
+                            let noise = applied.force.norm().max(applied.torque.norm());
+                            assert!(
+                                noise <= 1e-12 * momentum / options.dt,
+                                "{what}: the solve's {noise:e}"
+                            );
+                            (Wrench::default(), Wrench::default())
+                        } else {
+                            (applied, explicit)
+                        };
                         for (path, f) in [("per texel", &f), ("tiled", &ft)] {
                             for (got, expected) in [(&f.drag, &applied), (&f.drag_explicit, &explicit)] {
                                 let d = wrench_difference(got, expected, &want);

@@ -54,6 +54,9 @@ pub(crate) fn finish(
         BuoyancyMode::Off => Wrench::default(),
     };
     let (drag, drag_explicit) = match drag {
+        // No texel under water: no drag, and no system to solve (the
+        // solve's rounding would hand back a few ulps of the momentum).
+        Some(d) if d.is_zero() => (Wrench::default(), Wrench::default()),
         Some(d) => {
             let added = options
                 .added_mass

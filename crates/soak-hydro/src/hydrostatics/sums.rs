@@ -167,6 +167,14 @@ pub(crate) struct DragSums {
     pub b: Vector6<f64>,
 }
 
+impl DragSums {
+    /// Whether the system is all zeros (nothing under water): no drag,
+    /// whatever the velocity.
+    pub(crate) fn is_zero(&self) -> bool {
+        self.k.iter().all(|x| *x == 0.0) && self.b.iter().all(|x| *x == 0.0)
+    }
+}
+
 impl Default for DragSums {
     fn default() -> Self {
         Self {

@@ -282,18 +282,17 @@ impl<'a> DragWalk<'a> {
         }
     }
 
-    /// The chunk's sums.
-    pub(super) fn finish(&mut self) -> DragAcc {
+    /// The chunk's sums; `None` when none of its texels is under water
+    /// (every sum would add zeros to zeros).
+    pub(super) fn finish(&mut self) -> Option<DragAcc> {
         let prefix = &self.tiled.drag_prefix;
-        let mut acc = DragAcc::default();
-        // A chunk with nothing under water adds nothing (every sum below
-        // would add zeros to zeros).
         if self.texels.iter().all(|ranges| ranges.is_empty())
             && self.linear.is_empty()
             && self.quadratic.is_empty()
         {
-            return acc;
+            return None;
         }
+        let mut acc = DragAcc::default();
         let mut lanes = DragLanes::default();
         // One kernel call for the lists without its skin friction, one for
         // those with: each list's ranges in turn.
@@ -308,7 +307,7 @@ impl<'a> DragWalk<'a> {
         lanes.add_to(&mut acc);
         self.linear.close(prefix).add_linear(&mut acc, &self.p);
         self.quadratic.close(prefix).add_quadratic(&mut acc, &self.p);
-        acc
+        Some(acc)
     }
 }
 
