@@ -16,7 +16,7 @@ use crate::hydrostatics::drag_kernel::{
     Added, DragLanes, DragMoments, Facing, FacingBounds, HBox, LocalDrag, RangeList, add_drag_ranges,
     uniform_velocity,
 };
-use crate::hydrostatics::evaluation::{drag_sums, exact_sums, patch_sums, sample_patch};
+use crate::hydrostatics::evaluation::{drag_sums, exact_sums, patch_sums, plane_around, sample_patch};
 use crate::hydrostatics::finish::finish;
 use crate::hydrostatics::forces::HydroForces;
 use crate::hydrostatics::frame::{Frame, texel};
@@ -361,6 +361,11 @@ impl TiledAtlas {
     ) -> Result<(HydroForces, TileCounts), HydroError> {
         water.validate()?;
         state.check()?;
+        // A sea read as one plane over the body: its tiles under that plane.
+        if let Some(plane) = plane_around(atlas.origin(), atlas.bounding_radius(), water, state, t, options)?
+        {
+            return self.evaluate_counted(atlas, &plane, state, mass, t, options);
+        }
         let e = self.evaluation(atlas, water, state, mass, t, options, true)?;
         let forces = finish(&e.frame, water, state, mass, &e.sums, e.drag.as_ref(), options);
         Ok((forces, e.counts))

@@ -9,7 +9,7 @@ use super::sea::DeviceSeas;
 use super::surface::{HeightFields, encode_surface};
 use crate::error::HydroError;
 use crate::hydrostatics::body_state::BodyState;
-use crate::hydrostatics::evaluation::sample_patch_around;
+use crate::hydrostatics::evaluation::read_water_around;
 use crate::hydrostatics::finish::finish;
 use crate::hydrostatics::forces::HydroForces;
 use crate::hydrostatics::frame::Frame;
@@ -89,9 +89,10 @@ fn check(index: usize, b: &GpuBody<'_>) -> Result<(), GpuHydroError> {
 }
 
 /// The body's water with its surface sampled once over the body's
-/// footprint, when its options and its surface ask for it (a sea with
-/// [`crate::SeaSampling::PerWavelength`]), as [`crate::evaluate`] does;
-/// `None` to read the water as it is.
+/// footprint, or read as one plane over it, when its options and its
+/// surface ask for it (a sea with [`crate::SeaSampling::PerWavelength`]
+/// or [`crate::SeaSampling::Plane`]), as [`crate::evaluate`] does; `None`
+/// to read the water as it is.
 fn sampled(
     index: usize,
     b: &GpuBody<'_>,
@@ -99,16 +100,10 @@ fn sampled(
     radius: f64,
     t: f64,
 ) -> Result<Option<Water>, GpuHydroError> {
-    let patch =
-        sample_patch_around(origin, radius, b.water, &b.state, t, &b.options).map_err(|e| match e {
-            HydroError::Water(source) => GpuHydroError::Water { body: index, source },
-            other => GpuHydroError::Mass(other),
-        })?;
-    Ok(patch.map(|patch| Water {
-        surface: Box::new(patch),
-        density: b.water.density,
-        gravity: b.water.gravity,
-    }))
+    read_water_around(origin, radius, b.water, &b.state, t, &b.options).map_err(|e| match e {
+        HydroError::Water(source) => GpuHydroError::Water { body: index, source },
+        other => GpuHydroError::Mass(other),
+    })
 }
 
 impl GpuHydro {
@@ -183,7 +178,8 @@ impl GpuHydro {
             let ow = (b.state.pose * entry.origin).coords;
             let com = (b.state.pose * b.mass.center_of_mass).coords;
             let drag = b.options.drag;
-            let plane = Frame::surface_plane(b.water, t, &ow, 0.0);
+            let water = sampled_waters[i].as_ref().unwrap_or(b.water);
+            let plane = Frame::surface_plane(water, t, &ow, 0.0);
             // Archimedes' slope sum per texel only under a surface that is
             // not a plane: a plane's follows from the other sums in `finish`.
             let slope_sums = b.options.buoyancy == BuoyancyMode::Archimedes && plane.is_none();
@@ -209,7 +205,6 @@ impl GpuHydro {
                 slot: [b.atlas.0, 0, 0, 0],
                 ..Body::default()
             };
-            let water = sampled_waters[i].as_ref().unwrap_or(b.water);
             // A spectral sea read as it is: its tile evaluated and read on
             // the device.
             match water

@@ -107,6 +107,10 @@ pub fn evaluate(
 ) -> Result<HydroForces, HydroError> {
     water.validate()?;
     state.check()?;
+    // A sea read as one plane over the body: the planar path on that plane.
+    if let Some(plane) = plane_around(atlas.origin(), atlas.bounding_radius(), water, state, t, options)? {
+        return evaluate(atlas, &plane, state, mass, t, options);
+    }
     let frame = Frame::new(atlas, water, state, mass, t, options.dt);
     let pressure = options.buoyancy == BuoyancyMode::Pressure;
     let sums = match frame.local_plane {
@@ -368,12 +372,7 @@ pub(crate) fn sample_patch_around(
     if !matches!(water.surface.kind(t), SurfaceKind::General) {
         return Ok(None);
     }
-    // The waves the body reads: all, or a band of them long against it.
-    let surface = match options.sea_band.wavelength(radius)? {
-        Some(wavelength) => water.surface.band_limited(wavelength),
-        None => None,
-    }
-    .unwrap_or(&*water.surface);
+    let surface = read_surface(water, radius, options)?;
     let Some(length) = surface.sampling_length(t) else {
         return Ok(None);
     };
@@ -404,12 +403,91 @@ pub(crate) fn sample_patch_around(
     )?))
 }
 
-/// The water with its surface sampled once around a body at `state`, for
-/// evaluations of that body at time `t` (s) near that pose (an implicit
-/// solve that shifts it vertically): `None` when [`HydroOptions::sea`] or
-/// the surface asks for the exact read (see [`SeaSampling`]); evaluate on
-/// `water` itself then. [`evaluate`] on the returned water reads the patch
-/// and samples nothing.
+/// The waves a body of bounding radius `radius` (m) reads of `water`'s
+/// surface, as [`HydroOptions::sea_band`] asks: all of them, or a band of
+/// them long against it.
+fn read_surface<'a>(
+    water: &'a Water,
+    radius: f64,
+    options: &HydroOptions,
+) -> Result<&'a dyn Surface, HydroError> {
+    Ok(match options.sea_band.wavelength(radius)? {
+        Some(wavelength) => water.surface.band_limited(wavelength),
+        None => None,
+    }
+    .unwrap_or(&*water.surface))
+}
+
+/// Where the plane of [`SeaSampling::Plane`] reads the surface, as a
+/// fraction of the body's bounding radius: at the centre and at this
+/// distance either way along x and z, the five heights' mean is the mean
+/// of any quadratic surface over the disc of the bounding radius
+/// (`κ ρ²/5 = κ r²/8`), and their central differences its slope at the
+/// centre.
+pub(crate) const PLANE_READ_REACH: f64 = 0.790_569_415_042_094_9; // √(5/8)
+
+/// The water a body read as one plane ([`SeaSampling::Plane`]) sees: the
+/// plane through the mean of the surface's heights at the centre of its
+/// bounding sphere (`origin` in object axes, `radius` in m, at `state`)
+/// and at four points [`PLANE_READ_REACH`] of the radius away along x and
+/// z, tilted by their central differences, carrying the fluid's velocity
+/// at that centre (with drag; still water without) as a uniform current.
+/// `None` where the options read the sea otherwise or the surface is a
+/// plane already (or no free surface).
+pub(crate) fn plane_around(
+    origin: Point3<f64>,
+    radius: f64,
+    water: &Water,
+    state: &BodyState,
+    t: f64,
+    options: &HydroOptions,
+) -> Result<Option<Water>, HydroError> {
+    if options.sea != SeaSampling::Plane || !matches!(water.surface.kind(t), SurfaceKind::General) {
+        return Ok(None);
+    }
+    let surface = read_surface(water, radius, options)?;
+    let c = state.pose * origin;
+    let mut hint = [0.0; 2];
+    let (depth, velocity) = surface.probe(&c, t, options.drag.is_some(), &mut hint);
+    let centre = c.y + depth;
+    let rho = PLANE_READ_REACH * radius;
+    let (level, slope) = if rho > 0.0 {
+        let height = |dx: f64, dz: f64| {
+            let mut h = hint;
+            let p = Point3::new(c.x + dx, c.y, c.z + dz);
+            c.y + surface.probe(&p, t, false, &mut h).0
+        };
+        let (xp, xm, zp, zm) = (
+            height(rho, 0.0),
+            height(-rho, 0.0),
+            height(0.0, rho),
+            height(0.0, -rho),
+        );
+        (
+            (centre + xp + xm + zp + zm) / 5.0,
+            [(xp - xm) / (2.0 * rho), (zp - zm) / (2.0 * rho)],
+        )
+    } else {
+        (centre, surface.slope(c.x, c.z, t, &hint))
+    };
+    let plane = crate::water::Plane::tilted(
+        Point3::new(c.x, level, c.z),
+        Vector3::new(-slope[0], 1.0, -slope[1]),
+    )?;
+    Ok(Some(Water {
+        surface: Box::new(plane.with_current(velocity)),
+        density: water.density,
+        gravity: water.gravity,
+    }))
+}
+
+/// The water with its surface sampled once around a body at `state` (or
+/// read as one plane over it, [`SeaSampling::Plane`]), for evaluations of
+/// that body at time `t` (s) near that pose (an implicit solve that shifts
+/// it vertically): `None` when [`HydroOptions::sea`] or the surface asks
+/// for the exact read (see [`SeaSampling`]); evaluate on `water` itself
+/// then. [`evaluate`] on the returned water reads the patch (or the
+/// plane) and samples nothing.
 pub fn sampled_water(
     atlas: &Atlas,
     water: &Water,
@@ -419,11 +497,32 @@ pub fn sampled_water(
 ) -> Result<Option<Water>, HydroError> {
     water.validate()?;
     state.check()?;
-    Ok(sample_patch(atlas, water, state, t, options)?.map(|patch| Water {
-        surface: Box::new(patch),
-        density: water.density,
-        gravity: water.gravity,
-    }))
+    read_water_around(atlas.origin(), atlas.bounding_radius(), water, state, t, options)
+}
+
+/// [`sampled_water`] for a body known by its atlas origin (object frame,
+/// m) and the radius of a sphere about it that holds every texel (m): the
+/// sea sampled over its footprint ([`SeaSampling::PerWavelength`]) or read
+/// as one plane over it ([`SeaSampling::Plane`]); `None` to read the water
+/// as it is.
+pub(crate) fn read_water_around(
+    origin: Point3<f64>,
+    radius: f64,
+    water: &Water,
+    state: &BodyState,
+    t: f64,
+    options: &HydroOptions,
+) -> Result<Option<Water>, HydroError> {
+    if let Some(plane) = plane_around(origin, radius, water, state, t, options)? {
+        return Ok(Some(plane));
+    }
+    Ok(
+        sample_patch_around(origin, radius, water, state, t, options)?.map(|patch| Water {
+            surface: Box::new(patch),
+            density: water.density,
+            gravity: water.gravity,
+        }),
+    )
 }
 
 /// Drag sums over the submerged texels of `range`.

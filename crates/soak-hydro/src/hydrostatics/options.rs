@@ -134,6 +134,20 @@ pub enum SeaSampling {
     /// two-wave sea of `buoy_on_waves.toml` are within 1e-5 of their
     /// volume and diagonal of the exact read (`soak accuracy`'s sea rows).
     PerWavelength(f64),
+    /// The body reads the sea as one plane fitted over its footprint, the
+    /// fluid's velocity at its centre as a uniform current: the planar
+    /// path's cost (a calm-water evaluation and five reads of the
+    /// surface), for bodies small against the waves, where a game wants
+    /// many of them. The plane goes through the mean of the surface's
+    /// heights at the centre of the body's bounding sphere and at four
+    /// points `√(5/8)` of its radius `r` away along x and z (for a
+    /// quadratic surface, its mean over the disc of radius `r`), tilted by
+    /// their central differences (its slope at the centre). It drops the
+    /// surface's curvature over the hull and the fluid velocity's change
+    /// across it: `soak accuracy`'s plane rows give what that costs
+    /// against the exact read. Any surface that is not a plane is read so,
+    /// height fields and surfaces of your own too.
+    Plane,
 }
 
 /// Which of a sea's waves a body reads where the sea is sampled over its

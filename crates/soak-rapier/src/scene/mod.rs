@@ -10,7 +10,7 @@
 //! level = 0.0             # m
 //! density = 1000.0        # kg/m³
 //! waves = [{ amplitude = 0.3, wavelength = 8.0, direction_deg = 0.0, steepness = 0.5 }]
-//! sampling = { per_wavelength = 16 }  # the default; or "exact" (every texel inverts the sea)
+//! sampling = { per_wavelength = 16 }  # the default; or "exact" (every texel inverts the sea), or "plane" (each body reads one plane fitted over it)
 //! velocity = "per_tile"              # drag reads the sea's velocity once per tile (default); or "per_texel"
 //! # Or a spectral sea (`kind = "spectrum"`, see `WaterSpec::spectral_sea`):
 //! #   spectrum = "jonswap"  # or "pierson_moskowitz"

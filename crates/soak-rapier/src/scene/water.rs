@@ -57,8 +57,10 @@ pub struct WaterSpec {
     pub spacing: Option<[f64; 2]>,
     /// How the texels read a Gerstner sea: `{ per_wavelength = 16 }` (the
     /// default: the sea sampled once per step over each body, 16 nodes per
-    /// shortest wavelength) or `"exact"` (every texel inverts the Gerstner
-    /// map: the reference, far slower).
+    /// shortest wavelength), `"exact"` (every texel inverts the Gerstner
+    /// map: the reference, far slower) or `"plane"` (each body reads one
+    /// plane fitted over its footprint and the sea's velocity at its centre:
+    /// a calm-water evaluation's cost, see [`SeaSampling::Plane`]).
     pub sampling: Option<SeaSampling>,
     /// The spectral sea's spectrum: `"jonswap"` (the default) or
     /// `"pierson_moskowitz"`.

@@ -1,0 +1,205 @@
+//! A sea read as one plane over each body ([`SeaSampling::Plane`]): on a
+//! surface that is a plane it is that plane (current and all, on every
+//! path), and on a sine wave its error against the exact read falls with
+//! the wave's curvature over the body.
+
+use std::sync::Arc;
+
+use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
+use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
+use soak_hydro::{
+    BodyState, BuoyancyMode, Drag, DragTexels, Gerstner, GerstnerWave, HeightField, HydroForces,
+    HydroOptions, MassModel, MassProperties, Plane, SeaSampling, TiledAtlas, Water, evaluate, sampled_water,
+};
+
+fn baked(mesh: &Mesh, n: u32) -> (Atlas, MassProperties) {
+    let atlas = Atlas::bake(mesh, BakeOptions::square(n)).unwrap();
+    let mass = MassModel::Solid { density: 500.0 }
+        .mass_properties(&atlas)
+        .unwrap();
+    (atlas, mass)
+}
+
+/// A body moving and turning, tilted, its centre near `y`.
+fn moving(x: f64, y: f64, z: f64) -> BodyState {
+    let pose = Isometry3::from_parts(
+        Vector3::new(x, y, z).into(),
+        UnitQuaternion::from_euler_angles(0.3, 0.5, -0.2),
+    );
+    BodyState {
+        linear_velocity: Vector3::new(0.7, -0.3, 0.2),
+        angular_velocity: Vector3::new(0.2, 0.5, -0.1),
+        ..BodyState::at_rest(pose)
+    }
+}
+
+/// The worst difference between two evaluations' buoyancy, explicit drag
+/// and implicit drag, force over `scale` and torque over `scale` times
+/// `length`.
+fn difference(a: &HydroForces, b: &HydroForces, scale: f64, length: f64) -> f64 {
+    [
+        (&a.buoyancy, &b.buoyancy),
+        (&a.drag_explicit, &b.drag_explicit),
+        (&a.drag, &b.drag),
+    ]
+    .iter()
+    .map(|(x, y)| ((x.force - y.force).norm() / scale).max((x.torque - y.torque).norm() / (scale * length)))
+    .fold(0.0, f64::max)
+}
+
+/// A height field sampling the plane `y = 0.1 + 0.08 x − 0.05 z` (which its
+/// bilinear read reproduces) with a current is read as that plane, with
+/// that current, by the per-texel path, the tiled path, the tiled path with
+/// coarse drag texels and the sampled water the driver hands them, in both
+/// buoyancy modes.
+#[test]
+fn a_plane_read_as_a_plane_is_that_plane() {
+    let mesh = builtin::cuboid(1.0, 0.6, 0.4);
+    let (atlas, mass) = baked(&mesh, 64);
+    let atlas = Arc::new(atlas);
+    let tiled = TiledAtlas::new(&atlas);
+    let coarse = DragTexels::coarsened(atlas.clone(), 4).unwrap();
+    let (n, spacing, origin) = (41, 0.5, -10.0);
+    let height = |x: f64, z: f64| 0.1 + 0.08 * x - 0.05 * z;
+    let heights = (0..n * n)
+        .map(|k| {
+            height(
+                origin + (k % n) as f64 * spacing,
+                origin + (k / n) as f64 * spacing,
+            )
+        })
+        .collect();
+    let current = [0.3, 0.0, -0.2];
+    let field = HeightField {
+        current,
+        ..HeightField::new([origin; 2], [spacing; 2], n, n, heights).unwrap()
+    };
+    let sea = Water::new(field);
+    let plane = Water::new(
+        Plane::tilted(Point3::new(0.0, 0.1, 0.0), Vector3::new(-0.08, 1.0, 0.05))
+            .unwrap()
+            .with_current(current.into()),
+    );
+    let weight = mass.mass * 9.80665;
+    let length = 2.0 * atlas.bounding_radius();
+    for buoyancy in [BuoyancyMode::Archimedes, BuoyancyMode::Pressure] {
+        let options = HydroOptions {
+            buoyancy,
+            drag: Some(Drag {
+                coefficient: 0.8,
+                linear: 20.0,
+            }),
+            sea: SeaSampling::Plane,
+            ..HydroOptions::default()
+        };
+        for state in [
+            moving(0.4, 0.05, -0.3),
+            moving(-2.0, -0.15, 1.5),
+            moving(3.0, -0.6, 2.0),
+        ] {
+            let want = evaluate(&atlas, &plane, &state, &mass, 0.0, &options).unwrap();
+            assert!(
+                want.buoyancy.force.norm() > 0.1 * weight,
+                "{buoyancy:?}: the body floats: {want:?}, weight {weight}"
+            );
+            assert!(
+                want.drag_explicit.force.norm() > 1e-3 * weight,
+                "{buoyancy:?}: drag acts"
+            );
+            let read = sampled_water(&atlas, &sea, &state, 0.0, &options)
+                .unwrap()
+                .unwrap();
+            let got = [
+                evaluate(&atlas, &sea, &state, &mass, 0.0, &options).unwrap(),
+                tiled
+                    .evaluate(&atlas, &sea, &state, &mass, 0.0, &options)
+                    .unwrap(),
+                evaluate(&atlas, &read, &state, &mass, 0.0, &options).unwrap(),
+            ];
+            for (k, g) in got.iter().enumerate() {
+                let e = difference(g, &want, weight, length);
+                assert!(e < 1e-9, "{buoyancy:?}, path {k}: {e:e} of the weight");
+            }
+            // The coarse drag texels against the same texels under the plane.
+            let want = tiled
+                .evaluate_with_drag(&atlas, &coarse, &plane, &state, &mass, 0.0, &options)
+                .unwrap();
+            let got = tiled
+                .evaluate_with_drag(&atlas, &coarse, &sea, &state, &mass, 0.0, &options)
+                .unwrap();
+            let e = difference(&got, &want, weight, length);
+            assert!(e < 1e-9, "{buoyancy:?}, coarse drag: {e:e} of the weight");
+        }
+    }
+}
+
+/// The worst difference of the plane read from the exact read of a sine
+/// wave of amplitude `a` and wavelength `lambda` (m) along +x, over the
+/// body at eight places along the wave: buoyancy force over the weight of
+/// the water the body would displace whole, and torque over that times
+/// the bounding diameter.
+fn sine_error(mesh: &Mesh, a: f64, lambda: f64) -> (f64, f64) {
+    let (atlas, mass) = baked(mesh, 64);
+    let wave = GerstnerWave {
+        amplitude: a,
+        wavelength: lambda,
+        direction_deg: 0.0,
+        steepness: 0.0,
+        phase: 0.0,
+    };
+    let water = Water::new(Gerstner::new(0.0, vec![wave], 9.80665).unwrap());
+    let weight = 1000.0 * 9.80665 * mesh.volume();
+    let length = 2.0 * atlas.bounding_radius();
+    let exact = HydroOptions {
+        sea: SeaSampling::Exact,
+        ..HydroOptions::default()
+    };
+    let plane = HydroOptions {
+        sea: SeaSampling::Plane,
+        ..HydroOptions::default()
+    };
+    let worst = (0..8)
+        .map(|k| {
+            let x = lambda * k as f64 / 8.0;
+            let y = a * (std::f64::consts::TAU * x / lambda).cos();
+            let state = BodyState::at_rest(Isometry3::from_parts(
+                Vector3::new(x, y, 0.3).into(),
+                UnitQuaternion::from_euler_angles(0.2, 0.3, 0.1),
+            ));
+            let e = evaluate(&atlas, &water, &state, &mass, 0.0, &exact).unwrap();
+            let p = evaluate(&atlas, &water, &state, &mass, 0.0, &plane).unwrap();
+            ((e.buoyancy.force - p.buoyancy.force).norm() / weight)
+                .max((e.buoyancy.torque - p.buoyancy.torque).norm() / (weight * length))
+        })
+        .fold(0.0, f64::max);
+    (worst, atlas.bounding_radius())
+}
+
+/// On a sine wave the plane drops the surface's curvature over the body:
+/// the error is within `a k² r² / 8` (the mean over the disc of the
+/// bounding radius `r` of the height a curvature of `a k²` puts between
+/// the surface and its tangent plane), and doubling the wavelength at the
+/// same amplitude takes at least two thirds of it away (a quarter of it is
+/// left of a curvature term; less where the five heights' mean takes it
+/// out: the sphere's waterplane is the disc the mean is made for).
+#[test]
+fn a_sine_wave_read_as_a_plane_errs_by_its_curvature_over_the_body() {
+    for (name, mesh) in [
+        ("box", builtin::cuboid(1.0, 0.6, 0.4)),
+        ("sphere", builtin::sphere(0.5, 48, 24)),
+    ] {
+        let a = 0.3;
+        let lengths = [8.0, 16.0, 32.0];
+        let mut errors = Vec::new();
+        for l in lengths {
+            let (e, r) = sine_error(&mesh, a, l);
+            let k = std::f64::consts::TAU / l;
+            let bound = a * k * k * r * r / 8.0;
+            assert!(e > 0.0 && e < bound, "{name}: {e:e} at {l} m, over {bound:e}");
+            errors.push(e);
+        }
+        for w in errors.windows(2) {
+            assert!(w[1] < w[0] / 3.0, "{name}: {errors:?}");
+        }
+    }
+}
