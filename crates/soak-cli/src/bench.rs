@@ -53,6 +53,12 @@ pub struct Args {
     /// its own texels
     #[arg(long, value_name = "K")]
     pub drag_coarsening: Option<u32>,
+    /// How the bodies read the seas: `plane` (one plane fitted over each
+    /// body, the sea's velocity at its centre), `exact` (every texel), or
+    /// a number of nodes per shortest wave (the sea sampled over each
+    /// body) [default: 16 nodes per wave; the GPU's JONSWAP exactly]
+    #[arg(long, value_name = "READ", value_parser = parse_sea)]
+    pub sea_sampling: Option<soak_hydro::SeaSampling>,
     /// Also print where the generator's step goes: each phase of its step
     /// (predicting the poses, preparing, evaluating, handing over, the
     /// wrenches to Rapier), the mean over the timed steps, per case
@@ -64,6 +70,21 @@ pub struct Args {
 fn parse_water(label: &str) -> Result<scaling::WaterKind, String> {
     scaling::WaterKind::from_label(label)
         .ok_or_else(|| format!("no water `{label}` in the bench (calm, swell or jonswap)"))
+}
+
+/// How the bench's bodies read the seas, from `plane`, `exact` or a
+/// number of nodes per shortest wave.
+fn parse_sea(read: &str) -> Result<soak_hydro::SeaSampling, String> {
+    match read {
+        "plane" => Ok(soak_hydro::SeaSampling::Plane),
+        "exact" => Ok(soak_hydro::SeaSampling::Exact),
+        n => match n.parse::<f64>() {
+            Ok(n) if n.is_finite() && n > 0.0 => Ok(soak_hydro::SeaSampling::PerWavelength(n)),
+            _ => Err(format!(
+                "no sea read `{read}` (plane, exact, or a positive number of nodes per shortest wave)"
+            )),
+        },
+    }
 }
 
 /// Runs `soak bench`.
@@ -90,6 +111,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     options.gpu_max_bodies = args.gpu_max_bodies;
     options.interleave = args.interleave;
     options.drag_coarsening = args.drag_coarsening;
+    options.sea_sampling = args.sea_sampling;
     let report = scaling::run(&options, |m| {
         eprintln!(
             "{:>6} bodies, {:<34} {:>10} per step ({} steps, setup {})",

@@ -145,3 +145,31 @@ fn small_balls_drift_with_a_spectral_sea_at_the_stokes_drift() {
         assert!(vz.abs() < 0.3 * drift.x, "{name}: {vz} m/s across the sea");
     }
 }
+
+/// The regular sea above read as one plane over each ball (`sampling =
+/// "plane"`: the plane fitted over the ball, the water's velocity at its
+/// centre as the current): the balls still drift along +x within 20 % of
+/// the Stokes drift, and not sideways.
+#[test]
+fn small_balls_reading_the_sea_as_a_plane_drift_at_the_stokes_drift() {
+    let wave = GerstnerWave {
+        amplitude: 0.25,
+        wavelength: 9.0,
+        direction_deg: 0.0,
+        steepness: 0.0,
+        phase: 0.0,
+    };
+    let drift = Gerstner::new(0.0, vec![wave], G).unwrap().stokes_drift(0.0).x;
+    let text = format!(
+        "dt = 0.0166667\nduration = 70.0\n[water]\nkind = \"gerstner\"\nlevel = 0.0\nsampling = \"plane\"\n\
+         waves = [\n{{ amplitude = 0.25, wavelength = 9.0, direction_deg = 0.0, steepness = 0.0 }},\n]\n{}{}",
+        ball("small", 0.05, 0.0, "buoyancy = \"pressure\""),
+        ball("ball", 0.1, 3.0, "buoyancy = \"pressure\""),
+    );
+    for (name, vx, vz) in drifts(&text, 70.0, 10.0) {
+        let ratio = vx / drift;
+        println!("{name}: {vx:.4} m/s along the wave ({ratio:.3} of the drift), {vz:.4} across");
+        assert!((ratio - 1.0).abs() < 0.2, "{name}: {vx} m/s against {drift}");
+        assert!(vz.abs() < 0.2 * drift, "{name}: {vz} m/s across the wave");
+    }
+}

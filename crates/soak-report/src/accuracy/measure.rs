@@ -256,6 +256,7 @@ pub fn compute(quick: bool, out: &Path, mut gpu: Option<&mut Gpu>) -> Result<Rep
         sea: super::sea::sea_rows(if quick { 128 } else { 1024 }, plan.runs)?,
         spectral: super::sea::spectral_rows(if quick { 128 } else { 1024 }, plan.runs)?,
         band: super::band::band_rows(if quick { 128 } else { 1024 }, plan.runs)?,
+        plane: super::plane::plane_rows(if quick { 128 } else { 1024 }, plan.runs)?,
         drag_texels: super::drag_texels::drag_texel_rows(if quick { 256 } else { 1024 }, plan.runs)?,
         files: Vec::new(),
         seconds: 0.0,

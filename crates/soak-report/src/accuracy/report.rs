@@ -131,6 +131,10 @@ pub struct Report {
     /// A band of the spectral sea's waves read against every wave, per
     /// cut-off.
     pub band: Vec<super::band::BandRow>,
+    /// The spectral seas read as one plane over each body, against their
+    /// exact read, per mesh and sea.
+    #[serde(default)]
+    pub plane: Vec<super::plane::PlaneRow>,
     /// The drag over coarser bakes against the drag over the body's own
     /// texels, per drag resolution.
     pub drag_texels: Vec<super::drag_texels::DragTexelRow>,

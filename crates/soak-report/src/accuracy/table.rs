@@ -4,6 +4,7 @@ use std::path::Path;
 
 use super::band::band_cells;
 use super::drag_texels::drag_texel_cells;
+use super::plane::plane_cells;
 use super::sea::sea_cells;
 
 use super::report::{Report, Row};
@@ -128,6 +129,10 @@ pub fn text_table(report: &Report) -> String {
         s.push_str("\non the same sea, a band of its waves against every wave (`SeaBand::BodyLengths`, worst of six poses)\n");
         s.push_str(&aligned(&band_cells(&report.band), false));
     }
+    if !report.plane.is_empty() {
+        s.push_str("\nspectral seas read as one plane over each body against the exact read (`SeaSampling::Plane`, worst of six poses)\n");
+        s.push_str(&aligned(&plane_cells(&report.plane), false));
+    }
     if !report.drag_texels.is_empty() {
         s.push_str("\ndrag over a coarser bake of the mesh or the atlas coarsened, against the drag over the body's own texels (worst of six moving poses)\n");
         s.push_str(&aligned(&drag_texel_cells(&report.drag_texels), true));
@@ -171,6 +176,20 @@ at 16 nodes per shortest wavelength read, the same six poses (the barge's spread
 Errors are the worst over the poses, of the volume (and so the force) over the body's volume and \
 of the centre of buoyancy and Archimedes' torque (over ρgV) over the bounding diameter; the times \
 are the tiled path's per evaluation, sampling included.\n\n";
+
+/// What the plane rows are, before their table.
+const PLANE_INTRO: &str = "## A sea read as one plane over each body\n\n\
+The bench's box and sphere and the boat, on the bench's JONSWAP sea (significant height 2 m, peak \
+period 8 s, its shortest wave 12.5 m) and on the short sea above (its shortest wave 1.75 m), each \
+read as one plane over the body (`SeaSampling::Plane`: the plane through the mean of the sea's \
+heights at the centre of the body's bounding sphere and at four points √(5/8) of its radius away, \
+tilted by their differences, the sea's velocity at the centre as a uniform current) against the \
+exact read at every texel (`SeaSampling::Exact`). Six poses along each sea, the body's centre 0.1 m \
+under the sea there, tilted and turned; the drag's poses the same, moving at 0.7 m/s and turning at \
+0.46 rad/s (C_d = 0.8, skin friction 20 N·s/m³). Errors as in the rows above, the drag's as the \
+worst relative difference of its force; beside them the default sampled read's (16 nodes per \
+shortest wave) against the same reference. Times are the tiled path's per evaluation with drag, \
+the plane's reads or the patch's sampling included.\n\n";
 
 /// What the drag-texel rows are, before their table.
 const DRAG_TEXELS_INTRO: &str = "## Drag over a coarser bake\n\n\
@@ -306,6 +325,11 @@ pub fn markdown(report: &Report, path: &Path) -> String {
     if !report.band.is_empty() {
         s.push_str(BAND_INTRO);
         s.push_str(&markdown_rows(&band_cells(&report.band), 4));
+        s.push('\n');
+    }
+    if !report.plane.is_empty() {
+        s.push_str(PLANE_INTRO);
+        s.push_str(&markdown_rows(&plane_cells(&report.plane), 3));
         s.push('\n');
     }
     if !report.drag_texels.is_empty() {

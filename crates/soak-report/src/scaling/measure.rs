@@ -184,6 +184,7 @@ fn build(
     n: usize,
     column: &Column,
     gpu: &dyn Fn(ForceGenerator) -> Result<ForceGenerator, ScalingError>,
+    sea: Option<SeaSampling>,
 ) -> Result<(PhysicsWorld, Option<ForceGenerator>), ScalingError> {
     let mut world = PhysicsWorld::new();
     world.integration_parameters.dt = 1.0 / 60.0;
@@ -195,12 +196,16 @@ fn build(
         None => None,
         Some(w) => {
             let g = ForceGenerator::new(water(w)?);
-            Some(match (column.device, w) {
+            let g = match (column.device, w) {
                 (Device::Cpu, _) => g,
                 // The spectral sea's tile evaluated on the device in the
                 // step's own submission, every texel reading it there.
                 (Device::Gpu, WaterKind::Jonswap) => gpu(g)?.with_sea_sampling(SeaSampling::Exact),
                 (Device::Gpu, _) => gpu(g)?,
+            };
+            Some(match sea {
+                Some(s) => g.with_sea_sampling(s),
+                None => g,
             })
         }
     };
@@ -302,7 +307,7 @@ impl Running {
     ) -> Result<Self, ScalingError> {
         let before = rss_mb();
         let start = Instant::now();
-        let (mut world, mut soak) = build(fleet, case.bodies, &case.column, gpu)?;
+        let (mut world, mut soak) = build(fleet, case.bodies, &case.column, gpu, options.sea_sampling)?;
         let setup_ms = start.elapsed().as_secs_f64() * 1e3;
         let rss_mb = rss_mb();
         for _ in 0..options.settle_steps {

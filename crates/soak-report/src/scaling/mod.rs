@@ -252,6 +252,11 @@ pub struct ScalingOptions {
     /// than over its own texels. `None`: the own texels.
     #[serde(default)]
     pub drag_coarsening: Option<u32>,
+    /// How the bodies read the seas (the swell and JONSWAP columns):
+    /// `None` the generator's default (sampled over each body's footprint;
+    /// the GPU's JONSWAP column exactly, on the device).
+    #[serde(default)]
+    pub sea_sampling: Option<soak_hydro::SeaSampling>,
 }
 
 impl ScalingOptions {
@@ -271,6 +276,7 @@ impl ScalingOptions {
             waters: WaterKind::ALL.to_vec(),
             interleave: false,
             drag_coarsening: None,
+            sea_sampling: None,
         }
     }
 

@@ -110,6 +110,12 @@ fn header(report: &ScalingReport) -> String {
         coarse = match o.drag_coarsening {
             Some(k) => format!("; drag over the atlases coarsened by {k} ({k} × {k} texels merged)"),
             None => String::new(),
+        } + &match o.sea_sampling {
+            Some(soak_hydro::SeaSampling::Plane) => "; the seas read as one plane over each body".to_string(),
+            Some(soak_hydro::SeaSampling::Exact) => "; the seas read exactly at every texel".to_string(),
+            Some(soak_hydro::SeaSampling::PerWavelength(n)) =>
+                format!("; the seas sampled {n} nodes per shortest wave"),
+            None => String::new(),
         },
     )
 }
