@@ -600,6 +600,31 @@ fn sampled_swell_drag_parity() {
     run_parity_read(256, swell, 20, Some(DRAG), 13, "drag, swell, sampled", sampled);
 }
 
+/// A sea read as one plane over each body (`SeaSampling::Plane`): the
+/// plane fitted on the CPU for both, the device summing under it as under
+/// any tilted plane with a current.
+#[test]
+fn plane_read_parity() {
+    run_parity_read(
+        256,
+        spectral,
+        20,
+        Some(DRAG),
+        17,
+        "drag, JONSWAP sea read as a plane",
+        SeaSampling::Plane,
+    );
+    run_parity_read(
+        256,
+        swell,
+        20,
+        None,
+        18,
+        "swell read as a plane",
+        SeaSampling::Plane,
+    );
+}
+
 /// A spectral sea, read through each body's patch sampled on the CPU as
 /// the Gerstner sea is, agrees alike.
 #[test]
