@@ -9,7 +9,8 @@ use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, DragTexels, Gerstner, GerstnerWave, HeightField, HydroForces,
-    HydroOptions, MassModel, MassProperties, Plane, SeaSampling, TiledAtlas, Water, evaluate, sampled_water,
+    HydroOptions, MassModel, MassProperties, Plane, SeaSampling, Surface, TiledAtlas, Water, evaluate,
+    sampled_water,
 };
 
 fn baked(mesh: &Mesh, n: u32) -> (Atlas, MassProperties) {
@@ -200,6 +201,31 @@ fn a_sine_wave_read_as_a_plane_errs_by_its_curvature_over_the_body() {
         }
         for w in errors.windows(2) {
             assert!(w[1] < w[0] / 3.0, "{name}: {errors:?}");
+        }
+    }
+}
+
+/// `Surface::heights_at`, which the plane read takes its heights from,
+/// gives each point's `Surface::height` on the Gerstner sea (the default,
+/// point by point) and on a spectral sea (its tile looked up once), the
+/// hint carried from point to point: within Newton's tolerance of it.
+#[test]
+fn heights_at_are_the_surfaces_heights() {
+    let gerstner = Water::new(Gerstner::new(0.0, GerstnerWave::SWELL.to_vec(), 9.80665).unwrap());
+    let spectral = Water::spectral(&soak_hydro::SeaSpectrum::jonswap(2.0, 8.0), 3).unwrap();
+    let points: Vec<[f64; 2]> = (0..9)
+        .map(|k| [0.4 * k as f64 - 1.3, 2.1 - 0.7 * k as f64])
+        .collect();
+    for (name, water) in [("Gerstner", &gerstner), ("spectral", &spectral)] {
+        let t = 2.7;
+        let mut out = vec![f64::NAN; points.len()];
+        water.surface.heights_at(&points, t, &mut [0.0; 2], &mut out);
+        for (&[x, z], h) in points.iter().zip(&out) {
+            let want = water.surface.height(x, z, t);
+            assert!(
+                (h - want).abs() < 1e-9,
+                "{name} at ({x}, {z}): {h} against {want}"
+            );
         }
     }
 }

@@ -452,17 +452,15 @@ pub(crate) fn plane_around(
     let centre = c.y + depth;
     let rho = PLANE_READ_REACH * radius;
     let (level, slope) = if rho > 0.0 {
-        let height = |dx: f64, dz: f64| {
-            let mut h = hint;
-            let p = Point3::new(c.x + dx, c.y, c.z + dz);
-            c.y + surface.probe(&p, t, false, &mut h).0
-        };
-        let (xp, xm, zp, zm) = (
-            height(rho, 0.0),
-            height(-rho, 0.0),
-            height(0.0, rho),
-            height(0.0, -rho),
-        );
+        let points = [
+            [c.x + rho, c.z],
+            [c.x - rho, c.z],
+            [c.x, c.z + rho],
+            [c.x, c.z - rho],
+        ];
+        let (mut h, mut from) = ([0.0; 4], hint);
+        surface.heights_at(&points, t, &mut from, &mut h);
+        let [xp, xm, zp, zm] = h;
         (
             (centre + xp + xm + zp + zm) / 5.0,
             [(xp - xm) / (2.0 * rho), (zp - zm) / (2.0 * rho)],

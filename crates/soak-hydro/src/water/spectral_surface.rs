@@ -208,6 +208,16 @@ impl Surface for SpectralSurface {
         (height - p.y, v)
     }
 
+    /// The tile looked up once for every point.
+    fn heights_at(&self, points: &[[f64; 2]], t: f64, hint: &mut [f64; 2], out: &mut [f64]) {
+        let f = self.fields(t);
+        for (&[x, z], h) in points.iter().zip(out.iter_mut()) {
+            let (rest, particle) = f.invert(x, z, *hint);
+            *hint = [x - rest[0], z - rest[1]];
+            *h = particle.0[1];
+        }
+    }
+
     /// Every node's twist, from the tile's interpolants.
     fn node_twists(&self) -> bool {
         true

@@ -148,6 +148,17 @@ pub trait Surface: Send + Sync {
         (self.depth(p, t), v)
     }
 
+    /// The surface's heights above the points `(x, z)` of `points` (m) at
+    /// time `t` (s), m, written to `out` (as long as `points`). `hint` is
+    /// [`Surface::probe`]'s, carried from each point to the next. The
+    /// default probes point by point; a surface that evaluates something
+    /// per time (a spectral sea's tile) looks it up once.
+    fn heights_at(&self, points: &[[f64; 2]], t: f64, hint: &mut [f64; 2], out: &mut [f64]) {
+        for (&[x, z], h) in points.iter().zip(out.iter_mut()) {
+            *h = self.probe(&Point3::new(x, 0.0, z), t, false, hint).0;
+        }
+    }
+
     /// Slope `(∂f/∂x, ∂f/∂z)` of the surface above `(x, z)` (m) at time `t`
     /// (s), dimensionless. Archimedes buoyancy needs it where the surface is
     /// not flat, so that its torque is the derivative of the water's
