@@ -9,8 +9,7 @@ use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::{
     BodyState, BuoyancyMode, Drag, DragTexels, Gerstner, GerstnerWave, HeightField, HydroForces,
-    HydroOptions, MassModel, MassProperties, Plane, SeaSampling, Surface, TiledAtlas, Water, evaluate,
-    sampled_water,
+    HydroOptions, MassModel, MassProperties, Plane, SeaSampling, TiledAtlas, Water, evaluate, sampled_water,
 };
 
 fn baked(mesh: &Mesh, n: u32) -> (Atlas, MassProperties) {
