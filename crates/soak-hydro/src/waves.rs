@@ -460,11 +460,7 @@ impl InteractiveWaves {
         };
         let velocity = with_velocity.then_some((centre.y - radius, centre.y + radius));
         let patch = crate::SurfacePatch::sample(&surface, t, min, max, d, velocity)?;
-        Ok(Some(crate::Water {
-            surface: Box::new(patch),
-            density: base.density,
-            gravity: base.gravity,
-        }))
+        Ok(Some(base.under(patch)))
     }
 
     /// The elevation (m) and its slope at `(x, z)` (world, m) of the cell

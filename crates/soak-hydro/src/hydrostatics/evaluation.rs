@@ -472,11 +472,7 @@ pub(crate) fn plane_around(
         Point3::new(c.x, level, c.z),
         Vector3::new(-slope[0], 1.0, -slope[1]),
     )?;
-    Ok(Some(Water {
-        surface: Box::new(plane.with_current(velocity)),
-        density: water.density,
-        gravity: water.gravity,
-    }))
+    Ok(Some(water.under(plane.with_current(velocity))))
 }
 
 /// The water with its surface sampled once around a body at `state` (or
@@ -514,13 +510,7 @@ pub(crate) fn read_water_around(
     if let Some(plane) = plane_around(origin, radius, water, state, t, options)? {
         return Ok(Some(plane));
     }
-    Ok(
-        sample_patch_around(origin, radius, water, state, t, options)?.map(|patch| Water {
-            surface: Box::new(patch),
-            density: water.density,
-            gravity: water.gravity,
-        }),
-    )
+    Ok(sample_patch_around(origin, radius, water, state, t, options)?.map(|patch| water.under(patch)))
 }
 
 /// Drag sums over the submerged texels of `range`.

@@ -331,6 +331,17 @@ impl Water {
         Ok(Self::new(SpectralSurface::new(sea)))
     }
 
+    /// The same fluid (its density and gravity) under another surface: a
+    /// sea as one body reads it (sampled over its footprint, or one plane
+    /// over it).
+    pub fn under(&self, surface: impl Surface + 'static) -> Self {
+        Self {
+            surface: Box::new(surface),
+            density: self.density,
+            gravity: self.gravity,
+        }
+    }
+
     /// Air (1.2 kg/m³) everywhere: no free surface.
     pub fn air() -> Self {
         Self {
