@@ -7,7 +7,7 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
 use soak_graph::Flooding;
-use soak_hydro::{AddedMass, BuoyancyMode, Drag, DragTexels, MassModel};
+use soak_hydro::{AddedMass, BuoyancyMode, Drag, DragTexels, MassModel, SeaSampling};
 use soak_seakeeping::RadiationModel;
 use soak_wet::Wetting;
 
@@ -93,6 +93,14 @@ pub struct Effects {
     /// ([`Driver::with_waves`](crate::Driver::with_waves)): the waves it
     /// makes are its memory's; it still floats on the waves the others make.
     pub radiation: Option<Arc<RadiationModel>>,
+    /// How this body reads a sea (a surface that is not a plane), when not
+    /// as the generator's other bodies do
+    /// ([`Driver::with_sea_sampling`](crate::Driver::with_sea_sampling)):
+    /// a ship sampled over its hull and the flotsam around it each read as
+    /// one plane ([`SeaSampling::Plane`]), at close to calm water's cost.
+    /// The body's forces are the ones it would have in a generator that
+    /// read every body so. `None`: the generator's read.
+    pub sea: Option<SeaSampling>,
 }
 
 /// Slamming, von Kármán's momentum theory in three dimensions: as a body
@@ -340,6 +348,26 @@ impl Effects {
     /// ```
     pub fn with_radiation(mut self, model: Arc<RadiationModel>) -> Self {
         self.radiation = Some(model);
+        self
+    }
+
+    /// The same effects reading a sea as `sea` says, whatever the
+    /// generator's other bodies do (see [`Effects::sea`]).
+    ///
+    /// # Example
+    /// A ship reads the sea sampled over its hull (the generator's
+    /// default), a buoy reads it as one plane:
+    /// ```
+    /// use soak_driver::Effects;
+    /// use soak_hydro::{Drag, SeaSampling};
+    ///
+    /// let buoy = Effects::buoyancy()
+    ///     .with_drag(Drag::default())
+    ///     .with_sea_sampling(SeaSampling::Plane);
+    /// assert_eq!(buoy.sea, Some(SeaSampling::Plane));
+    /// ```
+    pub fn with_sea_sampling(mut self, sea: SeaSampling) -> Self {
+        self.sea = Some(sea);
         self
     }
 

@@ -174,7 +174,8 @@ impl<H: Handle> Driver<H> {
     /// (the default, 16 nodes per shortest wavelength), read as one plane
     /// fitted over each body ([`SeaSampling::Plane`]: a calm-water
     /// evaluation's cost, for bodies small against the waves), or exactly
-    /// at every texel ([`SeaSampling::Exact`], the reference).
+    /// at every texel ([`SeaSampling::Exact`], the reference). A body
+    /// may read it otherwise ([`Effects::sea`](crate::Effects::sea)).
     pub fn with_sea_sampling(mut self, sea: SeaSampling) -> Self {
         self.sea = sea;
         self
@@ -186,12 +187,18 @@ impl<H: Handle> Driver<H> {
     }
 
     /// Whether the bodies' water is read on the device alone: the GPU
-    /// backend reading the sea exactly (no patch sampled on the CPU), and
-    /// no interactive waves (whose bodies read the sea under them on the
-    /// CPU).
+    /// backend reading the sea exactly for every body (no patch sampled
+    /// and no plane read on the CPU), and no interactive waves (whose
+    /// bodies read the sea under them on the CPU).
     pub(crate) fn reads_on_device(&self) -> bool {
         #[cfg(feature = "gpu")]
-        return self.gpu.is_some() && self.sea == SeaSampling::Exact && self.waves.is_none();
+        return self.gpu.is_some()
+            && self.sea == SeaSampling::Exact
+            && self.waves.is_none()
+            && self
+                .bodies
+                .iter()
+                .all(|b| b.effects.sea.is_none_or(|s| s == SeaSampling::Exact));
         #[cfg(not(feature = "gpu"))]
         false
     }

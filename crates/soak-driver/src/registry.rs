@@ -64,6 +64,12 @@ impl<H: Handle> Driver<H> {
                 reason,
             });
         }
+        if let Some(sea) = desc.effects.sea {
+            sea.check().map_err(|source| SoakError::Hydro {
+                name: desc.name.clone(),
+                source: source.into(),
+            })?;
+        }
         if let Some(texels) = &desc.effects.drag_texels {
             texels.check(&desc.atlas).map_err(|source| SoakError::Hydro {
                 name: desc.name.clone(),

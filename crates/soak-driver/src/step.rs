@@ -944,7 +944,7 @@ impl SharedOptions {
             buoyancy: b.effects.buoyancy.unwrap_or(BuoyancyMode::Off),
             drag: b.effects.drag,
             dt: self.dt,
-            sea: self.sea,
+            sea: b.effects.sea.unwrap_or(self.sea),
             sea_velocity: self.sea_velocity,
             sea_band: self.sea_band,
             added_mass: dragged

@@ -1,15 +1,15 @@
 //! The driver on its own engine ([`FreeBodies`]): bodies float at their
 //! analytic draft, a body the engine lost is handled, a retired body costs
 //! nothing and stays retired through a save, a body reading a band of a
-//! sea's waves is taken as dry only above that band's crest, a step's
-//! phases are timed.
+//! sea's waves is taken as dry only above that band's crest, a body may
+//! read a sea otherwise than the others, a step's phases are timed.
 
 use std::sync::Arc;
 
 use nalgebra::Isometry3;
 use soak_bake::{Atlas, BakeOptions, builtin};
 use soak_driver::{BodyDesc, Driver, Effects, FreeBodies, FreeHandle, SoakError, StepParams};
-use soak_hydro::{Drag, MassModel, SeaBand, SeaSpectrum, SpectralSea, SpectralSurface, Water};
+use soak_hydro::{Drag, MassModel, SeaBand, SeaSampling, SeaSpectrum, SpectralSea, SpectralSurface, Water};
 
 const STEP: StepParams = StepParams {
     dt: 1.0 / 60.0,
@@ -181,6 +181,101 @@ fn a_body_reading_a_band_is_dry_only_above_the_bands_crest() {
             "lowest point {lowest} m: {skips} dry skips"
         );
     }
+}
+
+/// On a spectral sea, a crate reading it as the generator does (sampled
+/// over its footprint) and one reading it as one plane
+/// ([`Effects::with_sea_sampling`]) move, step by step and to the bit, as
+/// each would alone in a generator reading every body its way; and the two
+/// reads differ (the plane drops the surface's curvature over the hull).
+#[test]
+fn a_body_reads_the_sea_its_own_way() {
+    let atlas = crate_atlas();
+    let g = 9.80665;
+    let sea = || {
+        let spectrum = SeaSpectrum::jonswap(1.0, 4.0);
+        let sea = SpectralSea::realize(&spectrum, 0.0, spectrum.default_tile(g), 64, 3, g).unwrap();
+        Water::new(SpectralSurface::new(sea))
+    };
+    let places = [
+        Isometry3::translation(0.0, 0.05, 0.0),
+        Isometry3::translation(4.0, 0.05, 1.0),
+    ];
+    // Each crate's pose over 90 steps, in a generator made by `make` with
+    // the crates `which` (each with its own read or none).
+    let poses = |make: &dyn Fn() -> Driver<FreeHandle>, which: &[(usize, Option<SeaSampling>)]| {
+        let mut engine = FreeBodies::new(g);
+        let mut soak = make();
+        let handles: Vec<_> = which
+            .iter()
+            .map(|&(k, read)| {
+                let h = engine.insert(places[k]);
+                let mut d = desc("crate", &atlas, 500.0);
+                if let Some(read) = read {
+                    d.effects = d.effects.with_sea_sampling(read);
+                }
+                soak.register(&mut engine, h, d).unwrap();
+                h
+            })
+            .collect();
+        let mut out = vec![Vec::new(); which.len()];
+        for _ in 0..90 {
+            soak.before_step(&mut engine, &STEP).unwrap();
+            engine.step(&STEP);
+            soak.after_step(STEP.dt);
+            for (o, h) in out.iter_mut().zip(&handles) {
+                o.push(engine.get(*h).unwrap().pose);
+            }
+        }
+        out
+    };
+    let mixed = poses(
+        &|| Driver::new(sea()),
+        &[(0, None), (1, Some(SeaSampling::Plane))],
+    );
+    let sampled = poses(&|| Driver::new(sea()), &[(0, None)]);
+    let planes = poses(
+        &|| Driver::new(sea()).with_sea_sampling(SeaSampling::Plane),
+        &[(1, None)],
+    );
+    assert_eq!(mixed[0], sampled[0], "the sampled crate");
+    assert_eq!(mixed[1], planes[0], "the crate read as planes");
+    // The same crate at the second place, sampled: another path.
+    let other = poses(&|| Driver::new(sea()), &[(1, None)]);
+    let apart = mixed[1]
+        .iter()
+        .zip(&other[0])
+        .map(|(a, b)| (a.translation.vector - b.translation.vector).norm())
+        .fold(0.0, f64::max);
+    assert!(apart > 1e-6, "the plane read and the sampled one {apart} m apart");
+    // And the other way round: a crate sampled among bodies read as planes.
+    let flipped = poses(
+        &|| Driver::new(sea()).with_sea_sampling(SeaSampling::Plane),
+        &[(0, Some(SeaSampling::default())), (1, None)],
+    );
+    assert_eq!(flipped[0], sampled[0]);
+    assert_eq!(flipped[1], planes[0]);
+}
+
+/// A body's own read of a sea with no nodes per wavelength is refused at
+/// registration, naming the body and the setting.
+#[test]
+fn a_bodys_sea_read_is_checked_when_it_is_registered() {
+    let atlas = crate_atlas();
+    let mut engine = FreeBodies::new(9.81);
+    let mut soak = Driver::new(Water::calm(0.0));
+    for per in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let h = engine.insert(Isometry3::identity());
+        let mut d = desc("skiff", &atlas, 500.0);
+        d.effects = d.effects.with_sea_sampling(SeaSampling::PerWavelength(per));
+        let e = soak.register(&mut engine, h, d).unwrap_err();
+        assert!(
+            matches!(e, SoakError::Hydro { ref name, .. } if name == "skiff"),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("sea samples per wavelength"), "{e}");
+    }
+    assert!(soak.bodies().is_empty());
 }
 
 /// The phases of a step are zero before the first and sum to the step's

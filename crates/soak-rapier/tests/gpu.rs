@@ -14,9 +14,12 @@ fn device() -> Option<(wgpu::Device, wgpu::Queue)> {
     soak_hydro::gpu::test_device().map(|(d, q, _)| (d, q))
 }
 
+/// The boat, a sphere and a torus on `water`, each reading a sea as `reads`
+/// says (`None`: the generator's exact read).
 fn world(
     water: Water,
     gpu: Option<&(wgpu::Device, wgpu::Queue)>,
+    reads: [Option<SeaSampling>; 3],
 ) -> (PhysicsWorld, ForceGenerator, Vec<RigidBodyHandle>) {
     let mut world = PhysicsWorld::new();
     // Both paths read the sea exactly here (the GPU inverts the Gerstner map
@@ -36,6 +39,11 @@ fn world(
             .bodies
             .insert(RigidBodyBuilder::dynamic().translation(Vector::new(3.0 * i as f32, 0.2, 0.0)));
         let atlas = Atlas::bake(&load_mesh(name).unwrap(), BakeOptions::square(128)).unwrap();
+        let mut effects = Effects::buoyancy().with_drag(Drag {
+            coefficient: 0.8,
+            linear: 10.0,
+        });
+        effects.sea = reads[i];
         soak.register(
             &mut world.bodies,
             &world.colliders,
@@ -46,10 +54,7 @@ fn world(
                 mass_model: MassModel::Solid {
                     density: 400.0 + 100.0 * i as f64,
                 },
-                effects: Effects::buoyancy().with_drag(Drag {
-                    coefficient: 0.8,
-                    linear: 10.0,
-                }),
+                effects,
             },
         )
         .unwrap();
@@ -81,9 +86,19 @@ fn gpu_and_cpu_worlds_follow_the_same_trajectories() {
             Water::new(SpectralSurface::new(sea))
         }
     };
-    for kind in 0..3 {
-        let (mut wc, mut sc, hc) = world(make(kind), None);
-        let (mut wg, mut sg, hg) = world(make(kind), Some(&gpu));
+    // Then, on both seas, the sphere reads its sea as one plane and the
+    // torus samples it, among bodies read exactly (the device then reads
+    // the others' seas itself in the same batch).
+    let mixed = [None, Some(SeaSampling::Plane), Some(SeaSampling::default())];
+    for (kind, reads) in [
+        (0, [None; 3]),
+        (1, [None; 3]),
+        (2, [None; 3]),
+        (1, mixed),
+        (2, mixed),
+    ] {
+        let (mut wc, mut sc, hc) = world(make(kind), None, reads);
+        let (mut wg, mut sg, hg) = world(make(kind), Some(&gpu), reads);
         assert!(sg.uses_gpu() && !sc.uses_gpu());
         // One second: forces agree closely step by step, trajectories stay together.
         for step in 0..60 {
@@ -94,14 +109,14 @@ fn gpu_and_cpu_worlds_follow_the_same_trajectories() {
                 let scale = fa.force.norm().max(100.0);
                 assert!(
                     (fa.force - fb.force).norm() < 2e-3 * scale,
-                    "water {kind} step {step} body {k}: {} vs {}",
+                    "water {kind} ({reads:?}) step {step} body {k}: {} vs {}",
                     fa.force,
                     fb.force
                 );
                 let (pa, pb) = (wc.bodies[*a].translation(), wg.bodies[*b].translation());
                 assert!(
                     (pa - pb).length() < 1e-3,
-                    "water {kind} step {step} body {k}: {pa} vs {pb}"
+                    "water {kind} ({reads:?}) step {step} body {k}: {pa} vs {pb}"
                 );
             }
         }

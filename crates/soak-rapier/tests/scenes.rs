@@ -231,6 +231,41 @@ fn sea_sampling_is_checked_and_read() {
 }
 
 #[test]
+fn a_bodys_own_sea_sampling_is_read_and_checked() {
+    let sea = "[water]\nkind = \"gerstner\"\nwaves = [{ amplitude = 0.3, wavelength = 8.0, direction_deg = 0.0, steepness = 0.5 }]\n";
+    let body = |name: &str, sampling: &str| {
+        format!(
+            "[[bodies]]\nname = \"{name}\"\nmesh = \"builtin:sphere:0.1\"\nresolution = 32\nmass = {{ model = \"solid\", density = 500.0 }}\n{sampling}"
+        )
+    };
+    let text = format!(
+        "{sea}{}{}",
+        body("ship", ""),
+        body("ball", "sampling = \"plane\"\n")
+    );
+    let scene = LoadedScene::from_str(&text, std::path::Path::new(".")).unwrap();
+    assert_eq!(
+        scene.scene.bodies[1].sampling,
+        Some(soak_hydro::SeaSampling::Plane)
+    );
+    let sim = Simulation::from_scene(&scene).unwrap();
+    let reads: Vec<_> = sim.soak.bodies().iter().map(|b| b.effects().sea).collect();
+    assert_eq!(reads, [None, Some(soak_hydro::SeaSampling::Plane)]);
+    // Nodes per wavelength that are not positive, named with their line.
+    let bad = format!("{sea}{}", body("ball", "sampling = { per_wavelength = 0.0 }\n"));
+    let e = LoadedScene::from_str(&bad, std::path::Path::new(".")).unwrap_err();
+    assert!(matches!(e, SceneError::Invalid { line: 9, .. }), "{e}");
+    assert!(e.to_string().contains("bodies[0].sampling.per_wavelength"), "{e}");
+    // On calm water a body has no sea to read.
+    let calm = format!(
+        "[water]\nkind = \"plane\"\n{}",
+        body("ball", "sampling = \"plane\"\n")
+    );
+    let e = LoadedScene::from_str(&calm, std::path::Path::new(".")).unwrap_err();
+    assert!(e.to_string().contains("bodies[0].sampling"), "{e}");
+}
+
+#[test]
 fn sea_velocity_is_read_and_refused_on_a_plane() {
     let sea = "[water]\nkind = \"gerstner\"\nwaves = [{ amplitude = 0.3, wavelength = 8.0, direction_deg = 0.0, steepness = 0.5 }]\n";
     let scene = LoadedScene::from_str(sea, std::path::Path::new(".")).unwrap();

@@ -14,7 +14,7 @@ use super::planar_kernel::{PlanarTexels, add_planar_ranges};
 use super::sea_drag::{SeaDragFrame, SeaDragSums, sea_drag_range};
 use super::sea_kernel::{self, SeaFrame, SeaRead, add_sea_range};
 use super::sums::{BuoyancySums, DragAcc, DragSums, TexelDrag};
-use crate::error::{HydroError, WaterError};
+use crate::error::HydroError;
 use crate::mass::{CHUNK, MassProperties, chunked_sum};
 use crate::water::{MAX_PATCH_NODES, Surface, SurfaceKind, SurfacePatch, Water};
 
@@ -376,13 +376,7 @@ pub(crate) fn sample_patch_around(
     let Some(length) = surface.sampling_length(t) else {
         return Ok(None);
     };
-    if !(per.is_finite() && per > 0.0) {
-        return Err(WaterError::Parameter {
-            name: "sea samples per wavelength",
-            value: per,
-        }
-        .into());
-    }
+    options.sea.check()?;
     let spacing = length / per;
     let centre = state.pose * origin;
     // A surface that gives its nodes' twists is sampled over the

@@ -208,6 +208,24 @@ impl SeaBand {
 impl SeaSampling {
     /// The default: 16 nodes per shortest wavelength.
     pub const DEFAULT_PER_WAVELENGTH: f64 = 16.0;
+
+    /// Whether the setting can be read: nodes per wavelength finite and
+    /// positive.
+    ///
+    /// # Errors
+    /// [`WaterError::Parameter`](crate::WaterError::Parameter) naming the
+    /// nodes per wavelength when they are not.
+    pub fn check(&self) -> Result<(), crate::WaterError> {
+        match *self {
+            Self::PerWavelength(per) if !(per.is_finite() && per > 0.0) => {
+                Err(crate::WaterError::Parameter {
+                    name: "sea samples per wavelength",
+                    value: per,
+                })
+            }
+            _ => Ok(()),
+        }
+    }
 }
 
 impl Default for SeaSampling {

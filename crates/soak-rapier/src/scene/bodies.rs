@@ -163,6 +163,12 @@ pub struct BodySpec {
     /// triangle count. Needs `drag`; not with `drag_resolution`; the
     /// buoyancy stays the body's own atlas'. Absent: the body's own texels.
     pub drag_coarsening: Option<u32>,
+    /// How this body reads a sea (`[water] kind = "gerstner"` or
+    /// `"spectrum"`), when not as `[water] sampling` says: `"plane"` (one
+    /// plane fitted over the body, a calm-water evaluation's cost, for a
+    /// body small against the waves), `"exact"`, or `{ per_wavelength = n }`
+    /// (see [`crate::Effects::sea`]). Absent: the water's.
+    pub sampling: Option<soak_hydro::SeaSampling>,
     /// Contacts.
     #[serde(default)]
     pub collider: ColliderSpec,

@@ -430,6 +430,15 @@ impl LoadedScene {
                 }
                 _ => {}
             }
+            if b.sampling.is_some() && !matches!(kind, WaterKind::Gerstner | WaterKind::Spectrum) {
+                return Err(self.invalid(
+                    &key("sampling"),
+                    format!("does not apply to water of kind {kind:?}"),
+                ));
+            }
+            if let Some(soak_hydro::SeaSampling::PerWavelength(n)) = b.sampling {
+                positive(&key("sampling.per_wavelength"), n)?;
+            }
             match b.mass {
                 MassSpec::Solid { density } => positive(&key("mass.density"), density)?,
                 MassSpec::Shell { areal_density } => positive(&key("mass.areal_density"), areal_density)?,

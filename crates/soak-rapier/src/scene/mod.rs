@@ -36,6 +36,7 @@
 //! drag = { coefficient = 0.5, linear = 5.0 }
 //! drag_resolution = 64       # optional: the drag over a 64² bake of the mesh (the buoyancy stays 256²)
 //! # drag_coarsening = 4      # or: the drag over the atlas' 4 × 4 texel blocks merged (64² here)
+//! # sampling = "plane"       # on a sea: this body reads it as one plane, whatever `[water] sampling` says
 //! # Surface wetting, opt-in per body (see `WettingSpec`):
 //! wetting = { material = "wood", diffusion = 2e-5, mode = "conservative", initial = 0.0 }
 //!

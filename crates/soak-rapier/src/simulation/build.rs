@@ -424,6 +424,7 @@ impl Simulation {
                     flooding,
                     wetting,
                     impact_holes: b.impact_holes,
+                    sea: b.sampling,
                 };
                 let desc = BodyDesc {
                     name: b.name.clone(),
