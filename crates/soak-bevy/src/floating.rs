@@ -54,7 +54,8 @@ pub struct Floating {
     /// How its mass is distributed (kg/m³ for a solid).
     pub mass_model: MassModel,
     /// The effects it starts with (buoyancy, drag, added mass, slamming,
-    /// flooding, wetting). At registration they move into
+    /// flooding, wetting, its own read of a sea:
+    /// [`Effects::with_sea_sampling`]). At registration they move into
     /// [`SoakWater`](crate::SoakWater), which keeps their state from then
     /// on (its liquid texture, the liquid inside).
     pub effects: Effects,
