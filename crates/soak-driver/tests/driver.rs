@@ -32,6 +32,17 @@ fn desc(name: &str, atlas: &Arc<Atlas>, density: f64) -> BodyDesc {
     }
 }
 
+/// Standard gravity, m/s².
+const G: f64 = 9.80665;
+
+/// A JONSWAP sea of significant height `hs` (m) and peak period `tp` (s) on
+/// its default tile of `cells` a side, from `seed`.
+fn jonswap(hs: f64, tp: f64, cells: usize, seed: u64) -> Water {
+    let spectrum = SeaSpectrum::jonswap(hs, tp);
+    let sea = SpectralSea::realize(&spectrum, 0.0, spectrum.default_tile(G), cells, seed, G).unwrap();
+    Water::new(SpectralSurface::new(sea))
+}
+
 fn run(soak: &mut Driver<FreeHandle>, engine: &mut FreeBodies, steps: usize) {
     for _ in 0..steps {
         soak.before_step(engine, &STEP).unwrap();
@@ -143,12 +154,8 @@ fn a_retired_body_costs_nothing_and_stays_retired() {
 #[test]
 fn a_body_reading_a_band_is_dry_only_above_the_bands_crest() {
     let atlas = crate_atlas();
-    let g = 9.80665;
-    let wind_sea = || {
-        let spectrum = SeaSpectrum::jonswap(1.0, 5.0);
-        let sea = SpectralSea::realize(&spectrum, 0.0, spectrum.default_tile(g), 128, 0, g).unwrap();
-        Water::new(SpectralSurface::new(sea))
-    };
+    let g = G;
+    let wind_sea = || jonswap(1.0, 5.0, 128, 0);
     let water = wind_sea();
     let radius = atlas.bounding_radius();
     let band = SeaBand::BodyLengths(20.0 / (2.0 * radius));
@@ -191,12 +198,8 @@ fn a_body_reading_a_band_is_dry_only_above_the_bands_crest() {
 #[test]
 fn a_body_reads_the_sea_its_own_way() {
     let atlas = crate_atlas();
-    let g = 9.80665;
-    let sea = || {
-        let spectrum = SeaSpectrum::jonswap(1.0, 4.0);
-        let sea = SpectralSea::realize(&spectrum, 0.0, spectrum.default_tile(g), 64, 3, g).unwrap();
-        Water::new(SpectralSurface::new(sea))
-    };
+    let g = G;
+    let sea = || jonswap(1.0, 4.0, 64, 3);
     let places = [
         Isometry3::translation(0.0, 0.05, 0.0),
         Isometry3::translation(4.0, 0.05, 1.0),
