@@ -228,3 +228,49 @@ fn heights_at_are_the_surfaces_heights() {
         }
     }
 }
+
+/// `Surface::heights_near`, the plane read's heights about a body's centre:
+/// on a spectral sea each point's particle is read once, from a guess
+/// made at the centre, and its height carried to the point along its
+/// slope (read again a Newton step on where it missed by more than a
+/// centimetre). Against the sea's own heights, over 200 centres across
+/// the tile: within 1e-6 m for the bench's bodies (a reach of 0.55 m) and
+/// for a reach of 2 m on the bench's sea (JONSWAP, Hs 2 m, Tp 8 s), and
+/// within 5e-5 m for a reach of 2 m on a steep short sea (Hs 2 m, Tp 4 s),
+/// where the plane read itself is off by centimetres. The default (the
+/// Gerstner sea) is `heights_at` itself.
+#[test]
+fn heights_near_a_centre_are_the_surfaces_heights() {
+    let bench = Water::spectral(&soak_hydro::SeaSpectrum::jonswap(2.0, 8.0), 3).unwrap();
+    let steep = Water::spectral(&soak_hydro::SeaSpectrum::jonswap(2.0, 4.0), 5).unwrap();
+    let gerstner = Water::new(Gerstner::new(0.0, GerstnerWave::SWELL.to_vec(), 9.80665).unwrap());
+    let t = 4.3;
+    for (name, water, reach, within) in [
+        ("bench sea", &bench, 0.55, 1e-6),
+        ("bench sea, 2 m", &bench, 2.0, 1e-6),
+        ("steep sea, 2 m", &steep, 2.0, 5e-5),
+        ("Gerstner", &gerstner, 2.0, 1e-9),
+    ] {
+        let mut worst = 0.0_f64;
+        for i in 0..200 {
+            let c = [i as f64 * 3.7 - 300.0, (i as f64 * 1.3).sin() * 200.0];
+            let mut hint = [0.0; 2];
+            water
+                .surface
+                .probe(&nalgebra::Point3::new(c[0], 0.0, c[1]), t, false, &mut hint);
+            let points = [
+                [c[0] + reach, c[1]],
+                [c[0] - reach, c[1]],
+                [c[0], c[1] + reach],
+                [c[0], c[1] - reach],
+            ];
+            let mut out = [f64::NAN; 4];
+            water.surface.heights_near(c, &points, t, &mut hint, &mut out);
+            for (&[x, z], h) in points.iter().zip(out) {
+                worst = worst.max((h - water.surface.height(x, z, t)).abs());
+            }
+        }
+        println!("{name}, reach {reach} m: heights within {worst:.2e} m");
+        assert!(worst < within, "{name}: {worst} m");
+    }
+}

@@ -424,7 +424,8 @@ pub(crate) const PLANE_READ_REACH: f64 = 0.790_569_415_042_094_9; // √(5/8)
 /// plane through the mean of the surface's heights at the centre of its
 /// bounding sphere (`origin` in object axes, `radius` in m, at `state`)
 /// and at four points [`PLANE_READ_REACH`] of the radius away along x and
-/// z, tilted by their central differences, carrying the fluid's velocity
+/// z (those four through [`Surface::heights_near`](crate::Surface::heights_near)),
+/// tilted by their central differences, carrying the fluid's velocity
 /// at that centre (with drag; still water without) as a uniform current.
 /// `None` where the options read the sea otherwise or the surface is a
 /// plane already (or no free surface).
@@ -453,7 +454,7 @@ pub(crate) fn plane_around(
             [c.x, c.z - rho],
         ];
         let (mut h, mut from) = ([0.0; 4], hint);
-        surface.heights_at(&points, t, &mut from, &mut h);
+        surface.heights_near([c.x, c.z], &points, t, &mut from, &mut h);
         let [xp, xm, zp, zm] = h;
         (
             (centre + xp + xm + zp + zm) / 5.0,
