@@ -176,6 +176,9 @@ impl<H: Handle> Driver<H> {
     /// evaluation's cost, for bodies small against the waves), or exactly
     /// at every texel ([`SeaSampling::Exact`], the reference). A body
     /// may read it otherwise ([`Effects::sea`](crate::Effects::sea)).
+    /// Nodes per wavelength that are not finite and positive are refused
+    /// when a body that would read them is registered
+    /// ([`Driver::register`]'s [`SoakError::Hydro`](crate::SoakError::Hydro)).
     pub fn with_sea_sampling(mut self, sea: SeaSampling) -> Self {
         self.sea = sea;
         self

@@ -23,7 +23,7 @@ impl<H: Handle> Driver<H> {
     /// # Errors
     /// A body the engine does not have, invalid mass properties, a wetting
     /// state made for an atlas of another size, an effect's settings out
-    /// of range.
+    /// of range (the sea's read too: the body's own, else the driver's).
     pub fn register<B: BodiesMut<Handle = H> + ?Sized>(
         &mut self,
         bodies: &mut B,
@@ -64,12 +64,17 @@ impl<H: Handle> Driver<H> {
                 reason,
             });
         }
-        if let Some(sea) = desc.effects.sea {
-            sea.check().map_err(|source| SoakError::Hydro {
+        // The sea read the body will take: its own, else the driver's
+        // (whose setter takes any value: a bad one is caught here, on the
+        // first body that would read it, rather than at every step).
+        desc.effects
+            .sea
+            .unwrap_or(self.sea)
+            .check()
+            .map_err(|source| SoakError::Hydro {
                 name: desc.name.clone(),
                 source: source.into(),
             })?;
-        }
         if let Some(texels) = &desc.effects.drag_texels {
             texels.check(&desc.atlas).map_err(|source| SoakError::Hydro {
                 name: desc.name.clone(),

@@ -279,6 +279,23 @@ fn a_bodys_sea_read_is_checked_when_it_is_registered() {
         assert!(e.to_string().contains("sea samples per wavelength"), "{e}");
     }
     assert!(soak.bodies().is_empty());
+    // The driver's own read, for a body that takes it: refused on that
+    // body's registration, not left to fail at every step; a body reading
+    // the sea its own way is not held to it.
+    let mut soak = Driver::new(Water::calm(0.0)).with_sea_sampling(SeaSampling::PerWavelength(-4.0));
+    let h = engine.insert(Isometry3::identity());
+    let e = soak
+        .register(&mut engine, h, desc("skiff", &atlas, 500.0))
+        .unwrap_err();
+    assert!(
+        matches!(e, SoakError::Hydro { ref name, .. } if name == "skiff"),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("sea samples per wavelength"), "{e}");
+    let mut d = desc("raft", &atlas, 500.0);
+    d.effects = d.effects.with_sea_sampling(SeaSampling::Plane);
+    soak.register(&mut engine, h, d).unwrap();
+    assert_eq!(soak.bodies().len(), 1);
 }
 
 /// The phases of a step are zero before the first and sum to the step's
