@@ -672,3 +672,57 @@ fn on_a_spectral_sea_the_waves_bodies_make_ride_the_sea() {
     assert_eq!(straight.soak.state(), resumed.soak.state());
     assert!(resumed.soak.state().waves.is_some());
 }
+
+/// `data/scenes/flotsam.toml`: a boat reading the sea sampled over its
+/// hull among crates and balls each reading it as one plane. Against the
+/// same scene with every body sampled: the boat, which reads the sea the
+/// same way in both, follows the same path to the bit (the flotsam's
+/// reads do not reach it), and each piece of flotsam heaves with the sea
+/// and stays within a few centimetres of its path on the sampled read.
+#[test]
+fn a_boat_among_flotsam_reads_the_sea_its_own_way() {
+    let mut scene = LoadedScene::from_file(&data("scenes/flotsam.toml")).unwrap();
+    let reads: Vec<_> = scene.scene.bodies.iter().map(|b| b.sampling).collect();
+    assert_eq!(reads[0], None, "the boat reads the default");
+    assert_eq!(reads.len(), 13);
+    assert!(
+        reads[1..]
+            .iter()
+            .all(|r| *r == Some(soak_hydro::SeaSampling::Plane))
+    );
+    scene.scene.duration = 5.0;
+    let run = |scene: &LoadedScene| {
+        let mut sim = Simulation::from_scene(scene).unwrap();
+        sim.record(true);
+        sim.run(|_| {}).unwrap();
+        assert!(sim.report().iter().all(|r| !r.non_finite));
+        sim
+    };
+    let mixed = run(&scene);
+    for b in &mut scene.scene.bodies {
+        b.sampling = None;
+    }
+    let sampled = run(&scene);
+    let path = |sim: &Simulation, i: usize| -> Vec<[f64; 3]> {
+        sim.samples()
+            .iter()
+            .filter(|s| s.body == i)
+            .map(|s| s.position)
+            .collect()
+    };
+    assert_eq!(path(&mixed, 0), path(&sampled, 0), "the boat's path");
+    for i in 1..13 {
+        let (a, b) = (path(&mixed, i), path(&sampled, i));
+        assert_eq!(a.len(), b.len());
+        let apart = a
+            .iter()
+            .zip(&b)
+            .map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).abs()).fold(0.0, f64::max))
+            .fold(0.0, f64::max);
+        let (lo, hi) = heave_range(&mixed, i, 1.0);
+        println!("body {i}: {apart:.2e} m apart at most, heave {:.3} m", hi - lo);
+        assert!(hi - lo > 0.3, "body {i} heaves {lo}..{hi}");
+        // 0.4–2.7 cm over the 5 s (heaves of 0.7–1.5 m), measured.
+        assert!(apart < 0.05, "body {i}: {apart} m apart");
+    }
+}
