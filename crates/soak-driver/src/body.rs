@@ -211,31 +211,31 @@ impl<H> SoakBody<H> {
     /// Its wetting state, if wetting is on ([`Effects::wetting`]; see also
     /// [`Driver::set_wetting`](crate::Driver::set_wetting)).
     pub fn wetting(&self) -> Option<&Wetting> {
-        self.effects.wetting.as_ref()
+        self.effects.wetting.as_deref()
     }
     /// Its liquid texture, if wetting is on: `h_i` per texel in atlas
     /// order, volume per area, m³/m² = m, in `[0, saturation]`.
     pub fn liquid(&self) -> Option<&[f64]> {
-        self.effects.wetting.as_ref().map(Wetting::liquid)
+        self.effects.wetting.as_deref().map(Wetting::liquid)
     }
     /// What the last wetting step did (absorbed, evaporated, m³;
     /// submerged texels; diffusion substeps), if wetting is on.
     pub fn wet_report(&self) -> Option<&soak_wet::StepReport> {
-        self.effects.wetting.as_ref().map(|_| &self.wet_report)
+        self.effects.wetting.as_deref().map(|_| &self.wet_report)
     }
     /// The liquid graph inside it, if flooding is on ([`Effects::flooding`]).
     pub fn flooding(&self) -> Option<&Flooding> {
-        self.effects.flooding.as_ref()
+        self.effects.flooding.as_deref()
     }
     /// What the last flooding step did (volumes entered and left, m³), if
     /// flooding is on.
     pub fn flood_report(&self) -> Option<&soak_graph::StepReport> {
-        self.effects.flooding.as_ref().map(|_| &self.flood.last)
+        self.effects.flooding.as_deref().map(|_| &self.flood.last)
     }
     /// The fixed mass carried with the liquid inside (ballast, cargo; local
     /// frame), if flooding is on and it has any.
     pub fn ballast(&self) -> Option<&MassProperties> {
-        self.effects.flooding.as_ref().and(self.flood.ballast.as_ref())
+        self.effects.flooding.as_deref().and(self.flood.ballast.as_ref())
     }
     /// Density of the liquid inside in `water`, kg/m³: the one set
     /// ([`Driver::set_liquid_density`](crate::Driver::set_liquid_density)),
@@ -250,7 +250,10 @@ impl<H> SoakBody<H> {
     /// `water` ([`SoakBody::liquid_density`]), if flooding is on.
     pub fn liquid_mass(&self, water: &Water) -> Option<MassProperties> {
         let density = self.liquid_density(water)?;
-        self.effects.flooding.as_ref().map(|f| f.mass_properties(density))
+        self.effects
+            .flooding
+            .as_deref()
+            .map(|f| f.mass_properties(density))
     }
     /// Drops its effects and what they hold, and marks it retired
     /// ([`Driver::retire`](crate::Driver::retire)).

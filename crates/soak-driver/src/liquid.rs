@@ -29,7 +29,7 @@ impl<H: Handle> Driver<H> {
         if let Some(w) = &wetting {
             check_wetting(&b.name, &b.atlas, w)?;
         }
-        b.effects.wetting = wetting;
+        b.effects.wetting = wetting.map(Box::new);
         b.wet_report = soak_wet::StepReport::default();
         Ok(())
     }
@@ -42,7 +42,9 @@ impl<H: Handle> Driver<H> {
     /// A body's wetting state, to splash, paint or change its settings
     /// (with the body's atlas: [`SoakBody::atlas`]).
     pub fn wetting_mut(&mut self, id: SoakId) -> Option<&mut Wetting> {
-        self.bodies.get_mut(id.0).and_then(|b| b.effects.wetting.as_mut())
+        self.bodies
+            .get_mut(id.0)
+            .and_then(|b| b.effects.wetting.as_deref_mut())
     }
 
     /// A body's liquid texture, if it has wetting: `h_i` per texel in atlas
@@ -65,7 +67,7 @@ impl<H: Handle> Driver<H> {
     pub fn flooding_mut(&mut self, id: SoakId) -> Option<&mut Flooding> {
         self.bodies
             .get_mut(id.0)
-            .and_then(|b| b.effects.flooding.as_mut())
+            .and_then(|b| b.effects.flooding.as_deref_mut())
     }
 
     /// Punches a hole in a flooding body's hull: the wall's permeability

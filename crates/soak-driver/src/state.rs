@@ -132,7 +132,7 @@ impl<H: Handle> Driver<H> {
                     forces: b.forces,
                     applied: b.applied,
                     dry_skips: b.dry_skips,
-                    wetting: b.effects.wetting.clone(),
+                    wetting: b.effects.wetting.as_deref().cloned(),
                     wet_report: b.wet_report().copied(),
                     flooding: b.effects.flooding.as_ref().map(|f| f.state()),
                     ballast: b.ballast().copied(),
@@ -258,7 +258,7 @@ impl<H: Handle> Driver<H> {
             b.forces = s.forces;
             b.applied = s.applied;
             b.dry_skips = s.dry_skips;
-            b.effects.wetting = s.wetting.clone();
+            b.effects.wetting = s.wetting.clone().map(Box::new);
             b.wet_report = s.wet_report.unwrap_or_default();
             if let Some(slam) = &mut b.slam {
                 slam.last_added = s.slam_added_mass;

@@ -56,7 +56,7 @@ fn setup(variant: Variant) -> (PhysicsWorld, ForceGenerator) {
             atlas: atlas.into(),
             mass_model: MassModel::Solid { density: 400.0 },
             effects: Effects {
-                wetting,
+                wetting: wetting.map(Box::new),
                 ..Effects::buoyancy().with_drag(Drag::default())
             },
         },

@@ -86,7 +86,7 @@ fn floating_box(
                 atlas: atlas.into(),
                 mass_model: MassModel::Solid { density: 500.0 },
                 effects: Effects {
-                    wetting,
+                    wetting: wetting.map(Box::new),
                     ..Effects::buoyancy().with_drag(Drag::default())
                 },
             },

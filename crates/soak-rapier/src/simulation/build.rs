@@ -421,8 +421,8 @@ impl Simulation {
                     buoyancy: Some(b.buoyancy),
                     drag: b.drag,
                     drag_texels,
-                    flooding,
-                    wetting,
+                    flooding: flooding.map(Box::new),
+                    wetting: wetting.map(Box::new),
                     impact_holes: b.impact_holes,
                     sea: b.sampling,
                 };
