@@ -1,6 +1,7 @@
 //! The texel atlas: a compact structure of arrays over the covered texels.
 
-use nalgebra::{Point3, Vector3};
+use nalgebra::{Matrix3, Point3, Vector3};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::columns::Columns;
@@ -24,6 +25,66 @@ impl Tile {
     #[inline]
     pub fn range(&self) -> std::ops::Range<usize> {
         self.start as usize..self.end as usize
+    }
+}
+
+/// The moments of one [`Tile`]'s texels (object axes, positions relative
+/// to [`Atlas::origin`]), from which closed forms over the tile are made:
+/// under a plane the depth is affine in the position, and what a tile
+/// under water adds to the buoyancy is linear in these; the area vectors'
+/// component along any direction `u` weighted by `1`, `x` and `x xᵀ`
+/// (`Σ_j u_j s0_j`, `s1ᵀ u`, `Σ_j u_j s2_j`) give the tile's share of a
+/// section across the body ([`Atlas::tile_moments`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TexelMoments {
+    /// Σ A, m².
+    pub s0: Vector3<f64>,
+    /// `s1[(j, k)] = Σ A_j x_k`, m³.
+    pub s1: Matrix3<f64>,
+    /// `s2[j][(k, l)] = Σ A_j x_k x_l`, m⁴.
+    pub s2: [Matrix3<f64>; 3],
+    /// Σ a, m².
+    pub area: f64,
+    /// Centre of the box around its texels, m.
+    pub centre: Vector3<f64>,
+    /// Half the sides of that box (object axes), m.
+    pub half_extent: Vector3<f64>,
+    /// Radius of the sphere about `centre` that holds its texels, m.
+    pub radius: f64,
+}
+
+/// The sums of [`TexelMoments`]' `s0`, `s1` and `s2` over a run of tiles
+/// ([`Atlas::tile_moment_sums`]): the moments of any run of consecutive
+/// tiles are the difference of two running sums.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MomentSums {
+    /// Σ A, m².
+    pub s0: Vector3<f64>,
+    /// `s1[(j, k)] = Σ A_j x_k`, m³.
+    pub s1: Matrix3<f64>,
+    /// `s2[j][(k, l)] = Σ A_j x_k x_l`, m⁴.
+    pub s2: [Matrix3<f64>; 3],
+}
+
+impl std::ops::Sub for MomentSums {
+    type Output = Self;
+    /// The moments of the tiles counted in `self` and not in `rhs`.
+    fn sub(self, rhs: Self) -> Self {
+        Self {
+            s0: self.s0 - rhs.s0,
+            s1: self.s1 - rhs.s1,
+            s2: std::array::from_fn(|j| self.s2[j] - rhs.s2[j]),
+        }
+    }
+}
+
+impl std::ops::AddAssign for MomentSums {
+    fn add_assign(&mut self, rhs: Self) {
+        self.s0 += rhs.s0;
+        self.s1 += rhs.s1;
+        for j in 0..3 {
+            self.s2[j] += rhs.s2[j];
+        }
     }
 }
 
@@ -72,6 +133,10 @@ pub struct Atlas {
     /// after a [`Atlas::refresh`]); not stored.
     #[serde(skip)]
     pub(crate) mean_thickness: std::sync::OnceLock<f64>,
+    /// [`Atlas::tile_moments`], computed when first asked for (and again
+    /// after a [`Atlas::refresh`]); not stored.
+    #[serde(skip)]
+    pub(crate) tile_moments: std::sync::OnceLock<(Vec<TexelMoments>, Vec<MomentSums>)>,
     /// The factor of [`Atlas::coarsened`] (the product over nested
     /// coarsenings); `None` for a baked atlas.
     #[serde(default)]
@@ -291,6 +356,95 @@ impl Atlas {
         })
     }
 
+    /// The moments of each tile's texels, in [`Atlas::tiles`]' order,
+    /// computed once (O(texels), in parallel) and kept until a
+    /// [`Atlas::refresh`].
+    ///
+    /// ```
+    /// use soak_bake::{Atlas, BakeOptions, builtin};
+    /// let atlas = Atlas::bake(&builtin::cuboid(1.0, 0.6, 0.8), BakeOptions::square(64))?;
+    /// // The tiles' area vectors close, and their areas are the box's.
+    /// let (closure, area) = atlas.tile_moments().iter().fold((nalgebra::Vector3::zeros(), 0.0), |(c, a), m| (c + m.s0, a + m.area));
+    /// assert!(closure.norm() < 1e-6 && (area - 3.76).abs() < 1e-5);
+    /// // The running sums' last entry is the whole atlas' moments.
+    /// let sums = atlas.tile_moment_sums();
+    /// assert_eq!(sums.len(), atlas.tiles().len() + 1);
+    /// assert!((sums[sums.len() - 1].s0 - closure).norm() < 1e-9);
+    /// # Ok::<(), soak_bake::BakeError>(())
+    /// ```
+    pub fn tile_moments(&self) -> &[TexelMoments] {
+        &self.moment_tables().0
+    }
+
+    /// The running sums of [`Atlas::tile_moments`]: entry `k` holds the sums
+    /// over the first `k` tiles (one more entry than tiles), so a run of
+    /// tiles `a..b` has the moments `sums[b] − sums[a]`. Made with the
+    /// moments, kept as they are.
+    pub fn tile_moment_sums(&self) -> &[MomentSums] {
+        &self.moment_tables().1
+    }
+
+    /// The tiles' moments and their running sums, made on the first call.
+    fn moment_tables(&self) -> &(Vec<TexelMoments>, Vec<MomentSums>) {
+        self.tile_moments.get_or_init(|| {
+            let tiles: Vec<TexelMoments> = self
+                .tiles
+                .par_iter()
+                .map(|t| {
+                    let mut m = TexelMoments {
+                        s0: Vector3::zeros(),
+                        s1: Matrix3::zeros(),
+                        s2: [Matrix3::zeros(); 3],
+                        area: 0.0,
+                        centre: Vector3::zeros(),
+                        half_extent: Vector3::zeros(),
+                        radius: 0.0,
+                    };
+                    let texel = |i: usize| {
+                        let x = self.local_positions.get(i);
+                        let a = self.area_vectors.get(i);
+                        (
+                            Vector3::new(x[0] as f64, x[1] as f64, x[2] as f64),
+                            Vector3::new(a[0] as f64, a[1] as f64, a[2] as f64),
+                        )
+                    };
+                    let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
+                    for i in t.range() {
+                        let (x, a) = texel(i);
+                        lo = lo.inf(&x);
+                        hi = hi.sup(&x);
+                        m.s0 += a;
+                        m.s1 += a * x.transpose();
+                        let xx = x * x.transpose();
+                        for j in 0..3 {
+                            m.s2[j] += xx * a[j];
+                        }
+                        m.area += self.areas[i] as f64;
+                    }
+                    m.centre = (lo + hi) * 0.5;
+                    m.half_extent = (hi - lo) * 0.5;
+                    m.radius = t
+                        .range()
+                        .map(|i| (texel(i).0 - m.centre).norm())
+                        .fold(0.0, f64::max);
+                    m
+                })
+                .collect();
+            let mut sums = Vec::with_capacity(tiles.len() + 1);
+            let mut running = MomentSums::default();
+            sums.push(running);
+            for m in &tiles {
+                running += MomentSums {
+                    s0: m.s0,
+                    s1: m.s1,
+                    s2: m.s2,
+                };
+                sums.push(running);
+            }
+            (tiles, sums)
+        })
+    }
+
     /// Enclosed volume by the divergence theorem, `(1/3) Σ x_i·A_i`, m³.
     pub fn volume(&self) -> f64 {
         self.local_positions
@@ -386,6 +540,7 @@ impl Atlas {
             .reduce(|| 0.0, f64::max);
         self.bounding_radius = radius2.sqrt();
         self.mean_thickness = std::sync::OnceLock::new();
+        self.tile_moments = std::sync::OnceLock::new();
         Ok(())
     }
 

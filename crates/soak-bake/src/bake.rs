@@ -290,6 +290,7 @@ pub(crate) fn bake_unchecked(mesh: &Mesh, options: BakeOptions) -> Atlas {
         bounding_radius: radius2.sqrt(),
         first_opening: mesh.first_opening_triangle(),
         mean_thickness: std::sync::OnceLock::new(),
+        tile_moments: std::sync::OnceLock::new(),
         coarsening: None,
     }
 }

@@ -190,6 +190,7 @@ impl Atlas {
             bounding_radius: 0.0,
             first_opening: self.first_opening,
             mean_thickness: std::sync::OnceLock::new(),
+            tile_moments: std::sync::OnceLock::new(),
             coarsening: Some(self.coarsening().unwrap_or(1).saturating_mul(factor)),
         };
         let mut radius2 = 0.0f64;

@@ -23,7 +23,7 @@ mod validate;
 // ambiguous at the crate root.
 pub mod builtin;
 
-pub use self::atlas::{Atlas, AtlasSummary, Tile};
+pub use self::atlas::{Atlas, AtlasSummary, MomentSums, TexelMoments, Tile};
 pub use self::bake::{BakeOptions, DEFAULT_TILE_SIZE, MAX_RESOLUTION};
 pub use self::columns::Columns;
 pub use self::error::{BakeError, ExportError, LoadError, MeshError, MeshProblem};

@@ -64,20 +64,6 @@ pub struct TileMoments {
 }
 
 impl TileMoments {
-    /// No texels yet: zero sums over `range`.
-    fn empty(range: (u32, u32)) -> Self {
-        Self {
-            s0: Vector3::zeros(),
-            s1: Matrix3::zeros(),
-            s2: [Matrix3::zeros(); 3],
-            area: 0.0,
-            centre: Vector3::zeros(),
-            radius: 0.0,
-            half_extent: Vector3::zeros(),
-            range,
-        }
-    }
-
     /// Where the tile lies: its bounding sphere and box.
     fn bounds(&self) -> Bounds {
         Bounds {
@@ -215,30 +201,24 @@ impl TiledAtlas {
         let tiles = atlas
             .tiles()
             .par_iter()
-            .map(|t| {
-                let r = t.range();
-                let mut m = TileMoments::empty((t.start, t.end));
+            .zip(atlas.tile_moments())
+            .map(|(t, a)| {
+                let m = TileMoments {
+                    s0: a.s0,
+                    s1: a.s1,
+                    s2: a.s2,
+                    area: a.area,
+                    centre: a.centre,
+                    radius: a.radius,
+                    half_extent: a.half_extent,
+                    range: (t.start, t.end),
+                };
                 let (mut dm, mut hbox) = (DragMoments::default(), HBox::default());
-                let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
-                for i in r.clone() {
+                for i in t.range() {
                     let (x, a) = texel(atlas, i);
                     dm.add_texel(&x, &a);
                     hbox.add_texel(&x, &a);
-                    lo = lo.inf(&x);
-                    hi = hi.sup(&x);
-                    m.s0 += a;
-                    m.s1 += a * x.transpose();
-                    let xx = x * x.transpose();
-                    for j in 0..3 {
-                        m.s2[j] += xx * a[j];
-                    }
-                    m.area += atlas.areas()[i] as f64;
                 }
-                m.centre = (lo + hi) * 0.5;
-                m.half_extent = (hi - lo) * 0.5;
-                m.radius = r
-                    .map(|i| (texel(atlas, i).0 - m.centre).norm())
-                    .fold(0.0, f64::max);
                 (m, dm, hbox)
             })
             .collect::<Vec<_>>();
@@ -362,8 +342,15 @@ impl TiledAtlas {
         water.validate()?;
         state.check()?;
         // A sea read as one plane over the body: its tiles under that plane.
-        if let Some(plane) = plane_around(atlas.origin(), atlas.bounding_radius(), water, state, t, options)?
-        {
+        if let Some(plane) = plane_around(
+            atlas.origin(),
+            atlas.bounding_radius(),
+            Some(crate::hydrostatics::evaluation::Tiles::of(atlas)),
+            water,
+            state,
+            t,
+            options,
+        )? {
             return self.evaluate_counted(atlas, &plane, state, mass, t, options);
         }
         let e = self.evaluation(atlas, water, state, mass, t, options, true)?;
