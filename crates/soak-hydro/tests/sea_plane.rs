@@ -274,3 +274,103 @@ fn heights_near_a_centre_are_the_surfaces_heights() {
         assert!(worst < within, "{name}: {worst} m");
     }
 }
+
+/// A quadratic surface `y = h₀ + ½ (a Δx² + 2 b Δx Δz + c Δz²)` about a
+/// point, `Δ` the horizontal offset from it: the surface the plane read's
+/// mean is made for.
+struct Bowl {
+    at: [f64; 2],
+    h0: f64,
+    hessian: [f64; 3],
+}
+
+impl soak_hydro::Surface for Bowl {
+    fn height(&self, x: f64, z: f64, _t: f64) -> f64 {
+        let (dx, dz) = (x - self.at[0], z - self.at[1]);
+        let [a, b, c] = self.hessian;
+        self.h0 + 0.5 * (a * dx * dx + 2.0 * b * dx * dz + c * dz * dz)
+    }
+}
+
+/// On a quadratic surface an upright wall-sided hull turned about the
+/// vertical (a box yawed, and a long barge yawed the other way) displaces
+/// under the plane read what it displaces under the surface itself: the
+/// plane goes through the mean of the surface over the hull's section (its
+/// own rectangle, not the disc of its bounding radius), so its volume is
+/// the exact read's to rounding. Its centre of buoyancy is not quite: the
+/// height holds the surface's variance over the section, which no plane
+/// has, and the horizontal place the texels' third moments about the
+/// centroid (zero over the rectangle, not quite over its texels). The disc
+/// alone misses the box's volume by parts in a thousand here.
+#[test]
+fn a_quadratic_surface_read_as_a_plane_keeps_a_wall_sided_hulls_volume() {
+    for (name, mesh, yaw, hessian) in [
+        ("box", builtin::cuboid(1.0, 0.6, 0.8), 0.5, [0.09, 0.03, -0.05]),
+        ("barge", builtin::cuboid(4.0, 0.5, 1.0), -0.3, [0.02, -0.01, 0.04]),
+    ] {
+        let (atlas, mass) = baked(&mesh, 64);
+        let bowl = Bowl {
+            at: [0.2, -0.1],
+            h0: 0.05,
+            hessian,
+        };
+        let water = Water::new(bowl);
+        let state = BodyState::at_rest(Isometry3::from_parts(
+            Vector3::new(0.3, -0.05, -0.2).into(),
+            UnitQuaternion::from_euler_angles(0.0, yaw, 0.0),
+        ));
+        let read = |sea| HydroOptions {
+            sea,
+            ..HydroOptions::default()
+        };
+        let exact = evaluate(&atlas, &water, &state, &mass, 0.0, &read(SeaSampling::Exact)).unwrap();
+        let tiled = TiledAtlas::new(&atlas);
+        for (path, plane) in [
+            (
+                "per texel",
+                evaluate(&atlas, &water, &state, &mass, 0.0, &read(SeaSampling::Plane)).unwrap(),
+            ),
+            (
+                "tiled",
+                tiled
+                    .evaluate(&atlas, &water, &state, &mass, 0.0, &read(SeaSampling::Plane))
+                    .unwrap(),
+            ),
+        ] {
+            let volume = (plane.submerged_volume - exact.submerged_volume).abs() / exact.submerged_volume;
+            let off = (plane.center_of_buoyancy - exact.center_of_buoyancy) / atlas.bounding_radius();
+            let across = off.x.hypot(off.z);
+            assert!(
+                volume < 1e-9 && across < 1e-4 && off.y.abs() < 1e-3,
+                "{name}, {path}: volume {volume:e}, centre across {across:e}, up {:e}",
+                off.y
+            );
+        }
+        // The disc of the bounding radius, which the read took before it
+        // took the section, would have put the plane at the surface's
+        // mean over the disc: off the section's by ½ tr(H (Σ − r²/4 I)).
+        let r2 = atlas.bounding_radius().powi(2) / 4.0;
+        let [a, _, c] = hessian;
+        let (sx, sz) = (mesh_extent(&mesh, 0), mesh_extent(&mesh, 2));
+        let (cy, sy) = (yaw.cos(), yaw.sin());
+        // The rectangle's second moments in world axes.
+        let (m0, m2) = (sx * sx / 12.0, sz * sz / 12.0);
+        let (xx, zz) = (cy * cy * m0 + sy * sy * m2, sy * sy * m0 + cy * cy * m2);
+        let off = 0.5 * (a * (xx - r2) + c * (zz - r2));
+        let footprint =
+            exact.submerged_volume / (exact.center_of_buoyancy.y - (-0.05 - 0.5 * mesh_extent(&mesh, 1)));
+        assert!(
+            off.abs() * footprint / exact.submerged_volume > 1e-3,
+            "{name}: the disc's miss {off:e} m"
+        );
+    }
+}
+
+/// The mesh's extent along axis `k`, m.
+fn mesh_extent(mesh: &Mesh, k: usize) -> f64 {
+    let (lo, hi) = mesh
+        .positions
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(lo, hi), p| (lo.min(p[k]), hi.max(p[k])));
+    hi - lo
+}

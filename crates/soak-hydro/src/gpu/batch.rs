@@ -9,7 +9,7 @@ use super::sea::DeviceSeas;
 use super::surface::{HeightFields, encode_surface};
 use crate::error::HydroError;
 use crate::hydrostatics::body_state::BodyState;
-use crate::hydrostatics::evaluation::read_water_around;
+use crate::hydrostatics::evaluation::{Tiles, read_water_around};
 use crate::hydrostatics::finish::finish;
 use crate::hydrostatics::forces::HydroForces;
 use crate::hydrostatics::frame::Frame;
@@ -98,9 +98,10 @@ fn sampled(
     b: &GpuBody<'_>,
     origin: nalgebra::Point3<f64>,
     radius: f64,
+    tiles: Option<Tiles<'_>>,
     t: f64,
 ) -> Result<Option<Water>, GpuHydroError> {
-    read_water_around(origin, radius, b.water, &b.state, t, &b.options).map_err(|e| match e {
+    read_water_around(origin, radius, tiles, b.water, &b.state, t, &b.options).map_err(|e| match e {
         HydroError::Water(source) => GpuHydroError::Water { body: index, source },
         other => GpuHydroError::Mass(other),
     })
@@ -152,7 +153,11 @@ impl GpuHydro {
         for (i, b) in bodies.iter().enumerate() {
             let entry = self.entry(b.atlas)?;
             check(i, b)?;
-            footprints.push((entry.origin, entry.radius));
+            let tiles = entry
+                .tiles
+                .as_ref()
+                .map(|(moments, sums)| Tiles { moments, sums });
+            footprints.push((entry.origin, entry.radius, tiles));
         }
         // Kept until the encoding is done: the encoder stores a patch once
         // per address.
@@ -160,7 +165,7 @@ impl GpuHydro {
             .par_iter()
             .zip(&footprints)
             .enumerate()
-            .map(|(i, (b, &(origin, radius)))| sampled(i, b, origin, radius, t))
+            .map(|(i, (b, &(origin, radius, tiles)))| sampled(i, b, origin, radius, tiles, t))
             .collect::<Vec<_>>()
             .into_iter()
             .collect::<Result<_, _>>()?;

@@ -126,6 +126,7 @@ impl GpuHydro {
         drop(scratch);
         if let Some(entry) = self.atlases.get_mut(id.0 as usize) {
             entry.radius = radius;
+            entry.tiles = None;
         }
         Ok(())
     }

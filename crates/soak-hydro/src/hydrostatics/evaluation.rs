@@ -108,7 +108,15 @@ pub fn evaluate(
     water.validate()?;
     state.check()?;
     // A sea read as one plane over the body: the planar path on that plane.
-    if let Some(plane) = plane_around(atlas.origin(), atlas.bounding_radius(), water, state, t, options)? {
+    if let Some(plane) = plane_around(
+        atlas.origin(),
+        atlas.bounding_radius(),
+        Some(Tiles::of(atlas)),
+        water,
+        state,
+        t,
+        options,
+    )? {
         return evaluate(atlas, &plane, state, mass, t, options);
     }
     let frame = Frame::new(atlas, water, state, mass, t, options.dt);
@@ -412,26 +420,136 @@ fn read_surface<'a>(
     .unwrap_or(&*water.surface))
 }
 
-/// Where the plane of [`SeaSampling::Plane`] reads the surface, as a
-/// fraction of the body's bounding radius: at the centre and at this
-/// distance either way along x and z, the five heights' mean is the mean
-/// of any quadratic surface over the disc of the bounding radius
-/// (`κ ρ²/5 = κ r²/8`), and their central differences its slope at the
-/// centre.
+/// Where the plane of [`SeaSampling::Plane`] reads the surface about a
+/// body whose section at the sea's height is not known (wholly above or
+/// under it), as a fraction of the body's bounding radius: at the centre
+/// and at this distance either way along x and z, the five heights' mean
+/// is the mean of any quadratic surface over the disc of the bounding
+/// radius (`κ ρ²/5 = κ r²/8`), and their central differences its slope at
+/// the centre.
 pub(crate) const PLANE_READ_REACH: f64 = 0.790_569_415_042_094_9; // √(5/8)
 
-/// The water a body read as one plane ([`SeaSampling::Plane`]) sees: the
-/// plane through the mean of the surface's heights at the centre of its
-/// bounding sphere (`origin` in object axes, `radius` in m, at `state`)
-/// and at four points [`PLANE_READ_REACH`] of the radius away along x and
-/// z (those four through [`Surface::heights_near`](crate::Surface::heights_near)),
-/// tilted by their central differences, carrying the fluid's velocity
-/// at that centre (with drag; still water without) as a uniform current.
-/// `None` where the options read the sea otherwise or the surface is a
-/// plane already (or no free surface).
+/// The least distance (as a fraction of the bounding radius) at which the
+/// plane read takes the surface's differences along a principal axis of
+/// the body's section: a section narrow along an axis (a plate on edge)
+/// still takes the slope across it over a length that the interpolated
+/// surface resolves.
+const PLANE_READ_LEAST_REACH: f64 = 0.1;
+
+/// A horizontal section across a body's hull (world axes, m): its
+/// centroid `(x, z)` and its second moments about it per unit area
+/// `(xx, xz, zz)`, m².
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Section {
+    pub centroid: [f64; 2],
+    pub moments: [f64; 3],
+}
+
+/// The horizontal section of the hull of a body at `state` at world height
+/// `level` (m), from the moments of its tiles (`tiles`, about `origin` in
+/// object axes): by the divergence theorem the section's integral of any
+/// function of the horizontal position is `−Σ f(x) A·ŷ` over the hull
+/// below it, which the tiles whose centres lie below `level` add from
+/// their moments, each run of consecutive ones from two running sums (a
+/// tile the level cuts is taken whole or not at all, by its centre: an
+/// error of the order of a tile's size at the section's rim). `None` where the level misses the body or the section
+/// is too small a share of the hull below it to trust (a body wholly under
+/// water, whose hull closes).
+pub(crate) fn section(
+    origin: Point3<f64>,
+    tiles: &Tiles<'_>,
+    state: &BodyState,
+    level: f64,
+) -> Option<Section> {
+    let rot = state.pose.rotation.to_rotation_matrix().into_inner();
+    let row = rot.row(1).transpose();
+    // The height of the atlas origin; a tile's centre is `row·c` above it.
+    let below = level - (state.pose * origin).y;
+    let (moments, sums) = (tiles.moments, tiles.sums);
+    if sums.len() != moments.len() + 1 {
+        return None;
+    }
+    // Runs of consecutive tiles below the level, each from two running sums.
+    let mut under = soak_bake::MomentSums::default();
+    let mut gross = 0.0;
+    let mut start = None;
+    for (k, m) in moments.iter().enumerate() {
+        let inside = row.dot(&m.centre) < below;
+        match (inside, start) {
+            (true, None) => start = Some(k),
+            (false, Some(a)) => {
+                under += sums[k] - sums[a];
+                start = None;
+            }
+            _ => {}
+        }
+        if inside {
+            gross += m.area;
+        }
+    }
+    if let Some(a) = start {
+        under += sums[moments.len()] - sums[a];
+    }
+    // The world's up in object axes is `row`: −Σ (A·up) [1, x, x xᵀ].
+    let area = -row.dot(&under.s0);
+    if area.is_nan() || area <= 1e-3 * gross {
+        return None;
+    }
+    let first = -(under.s1.transpose() * row) / area;
+    let s2 = &under.s2;
+    let second = -(s2[0] * row.x + s2[1] * row.y + s2[2] * row.z) / area - first * first.transpose();
+    let centroid = state.pose * (origin + first);
+    let world = rot * second * rot.transpose();
+    Some(Section {
+        centroid: [centroid.x, centroid.z],
+        moments: [world[(0, 0)], world[(0, 2)], world[(2, 2)]],
+    })
+}
+
+/// An atlas' tiles as the plane read's section takes them: their moments
+/// and the running sums of those ([`Atlas::tile_moments`],
+/// [`Atlas::tile_moment_sums`]).
+#[derive(Clone, Copy)]
+pub(crate) struct Tiles<'a> {
+    pub moments: &'a [soak_bake::TexelMoments],
+    pub sums: &'a [soak_bake::MomentSums],
+}
+
+impl<'a> Tiles<'a> {
+    /// The tiles of `atlas`.
+    pub fn of(atlas: &'a Atlas) -> Self {
+        Self {
+            moments: atlas.tile_moments(),
+            sums: atlas.tile_moment_sums(),
+        }
+    }
+}
+
+/// The water a body read as one plane ([`SeaSampling::Plane`]) sees.
+///
+/// The surface is probed at the centre of the body's bounding sphere
+/// (`origin` in object axes, `radius` in m, at `state`), and the body's
+/// horizontal section at that height taken from its tiles' moments
+/// (`tiles`, [`section`]). The plane goes through the section's centroid
+/// `P` at the mean of the surface over the section, to second order: with
+/// the section's principal axes `e₁`, `e₂` and second moments `λ₁`, `λ₂`
+/// (per unit area), the heights at `P` and at `P ± ρᵢ eᵢ`
+/// (`ρᵢ = √(5 λᵢ / 2)`, at least a tenth of the radius) give
+/// `h_P + Σ λᵢ / (2 ρᵢ²) (h₊ + h₋ − 2 h_P)`, the mean over the section of
+/// any quadratic surface, and their central differences its slope at `P`.
+/// So an upright wall-sided hull (a box, a barge) displaces under the
+/// plane what it displaces under a quadratic surface, whatever its
+/// waterplane's shape. Where the section is not known (the body wholly
+/// above or under the surface there, or no tiles given) the section is
+/// taken as the disc of the bounding radius about the centre: the heights
+/// at the centre and [`PLANE_READ_REACH`] of the radius away along x and
+/// z. The fluid's velocity at the centre (with drag; still water without)
+/// is carried as a uniform current. `None` where the options read the sea
+/// otherwise or the surface is a plane already (or no free surface).
 pub(crate) fn plane_around(
     origin: Point3<f64>,
     radius: f64,
+    tiles: Option<Tiles<'_>>,
     water: &Water,
     state: &BodyState,
     t: f64,
@@ -445,28 +563,63 @@ pub(crate) fn plane_around(
     let mut hint = [0.0; 2];
     let (depth, velocity) = surface.probe(&c, t, options.drag.is_some(), &mut hint);
     let centre = c.y + depth;
-    let rho = PLANE_READ_REACH * radius;
-    let (level, slope) = if rho > 0.0 {
+    let section = tiles
+        .filter(|_| radius > 0.0)
+        .and_then(|tiles| section(origin, &tiles, state, centre));
+    let (at, slope) = if let Some(Section {
+        centroid: [px, pz],
+        moments: [xx, xz, zz],
+    }) = section
+    {
+        // The section's principal axes and second moments.
+        let (mean, half) = (0.5 * (xx + zz), (0.5 * (xx - zz)).hypot(xz));
+        let lambda = [(mean + half).max(0.0), (mean - half).max(0.0)];
+        let angle = 0.5 * (2.0 * xz).atan2(xx - zz);
+        let (sin, cos) = angle.sin_cos();
+        let axes = [[cos, sin], [-sin, cos]];
+        let least = PLANE_READ_LEAST_REACH * radius;
+        let reach = lambda.map(|l| (2.5 * l).sqrt().max(least));
         let points = [
-            [c.x + rho, c.z],
-            [c.x - rho, c.z],
-            [c.x, c.z + rho],
-            [c.x, c.z - rho],
+            [px, pz],
+            [px + reach[0] * axes[0][0], pz + reach[0] * axes[0][1]],
+            [px - reach[0] * axes[0][0], pz - reach[0] * axes[0][1]],
+            [px + reach[1] * axes[1][0], pz + reach[1] * axes[1][1]],
+            [px - reach[1] * axes[1][0], pz - reach[1] * axes[1][1]],
         ];
-        let (mut h, mut from) = ([0.0; 4], hint);
+        let (mut h, mut from) = ([0.0; 5], hint);
         surface.heights_near([c.x, c.z], &points, t, &mut from, &mut h);
-        let [xp, xm, zp, zm] = h;
-        (
-            (centre + xp + xm + zp + zm) / 5.0,
-            [(xp - xm) / (2.0 * rho), (zp - zm) / (2.0 * rho)],
-        )
+        let [hp, a1, b1, a2, b2] = h;
+        let level = hp
+            + lambda[0] / (2.0 * reach[0] * reach[0]) * (a1 + b1 - 2.0 * hp)
+            + lambda[1] / (2.0 * reach[1] * reach[1]) * (a2 + b2 - 2.0 * hp);
+        let along = [(a1 - b1) / (2.0 * reach[0]), (a2 - b2) / (2.0 * reach[1])];
+        let slope = [
+            along[0] * axes[0][0] + along[1] * axes[1][0],
+            along[0] * axes[0][1] + along[1] * axes[1][1],
+        ];
+        (Point3::new(px, level, pz), slope)
     } else {
-        (centre, surface.slope(c.x, c.z, t, &hint))
+        let rho = PLANE_READ_REACH * radius;
+        let (level, slope) = if rho > 0.0 {
+            let points = [
+                [c.x + rho, c.z],
+                [c.x - rho, c.z],
+                [c.x, c.z + rho],
+                [c.x, c.z - rho],
+            ];
+            let (mut h, mut from) = ([0.0; 4], hint);
+            surface.heights_near([c.x, c.z], &points, t, &mut from, &mut h);
+            let [xp, xm, zp, zm] = h;
+            (
+                (centre + xp + xm + zp + zm) / 5.0,
+                [(xp - xm) / (2.0 * rho), (zp - zm) / (2.0 * rho)],
+            )
+        } else {
+            (centre, surface.slope(c.x, c.z, t, &hint))
+        };
+        (Point3::new(c.x, level, c.z), slope)
     };
-    let plane = crate::water::Plane::tilted(
-        Point3::new(c.x, level, c.z),
-        Vector3::new(-slope[0], 1.0, -slope[1]),
-    )?;
+    let plane = crate::water::Plane::tilted(at, Vector3::new(-slope[0], 1.0, -slope[1]))?;
     Ok(Some(water.under(plane.with_current(velocity))))
 }
 
@@ -486,7 +639,15 @@ pub fn sampled_water(
 ) -> Result<Option<Water>, HydroError> {
     water.validate()?;
     state.check()?;
-    read_water_around(atlas.origin(), atlas.bounding_radius(), water, state, t, options)
+    read_water_around(
+        atlas.origin(),
+        atlas.bounding_radius(),
+        Some(Tiles::of(atlas)),
+        water,
+        state,
+        t,
+        options,
+    )
 }
 
 /// [`sampled_water`] for a body known by its atlas origin (object frame,
@@ -497,12 +658,13 @@ pub fn sampled_water(
 pub(crate) fn read_water_around(
     origin: Point3<f64>,
     radius: f64,
+    tiles: Option<Tiles<'_>>,
     water: &Water,
     state: &BodyState,
     t: f64,
     options: &HydroOptions,
 ) -> Result<Option<Water>, HydroError> {
-    if let Some(plane) = plane_around(origin, radius, water, state, t, options)? {
+    if let Some(plane) = plane_around(origin, radius, tiles, water, state, t, options)? {
         return Ok(Some(plane));
     }
     Ok(sample_patch_around(origin, radius, water, state, t, options)?.map(|patch| water.under(patch)))

@@ -136,15 +136,21 @@ pub enum SeaSampling {
     PerWavelength(f64),
     /// The body reads the sea as one plane fitted over its footprint, the
     /// fluid's velocity at its centre as a uniform current: the planar
-    /// path's cost (a calm-water evaluation and five reads of the
-    /// surface), for bodies small against the waves, where a game wants
-    /// many of them. The plane goes through the mean of the surface's
-    /// heights at the centre of the body's bounding sphere and at four
-    /// points `√(5/8)` of its radius `r` away along x and z (for a
-    /// quadratic surface, its mean over the disc of radius `r`), tilted by
-    /// their central differences (its slope at the centre). It drops the
-    /// surface's curvature over the hull and the fluid velocity's change
-    /// across it: `soak accuracy`'s plane rows give what that costs
+    /// path's cost (a calm-water evaluation, six reads of the surface and
+    /// a pass over the atlas' tiles), for bodies small against the waves,
+    /// where a game wants many of them. The plane goes through the mean
+    /// over the body's horizontal section (at the surface's height above
+    /// the centre of its bounding sphere, from its tiles' moments) of the
+    /// surface's second-order polynomial: read at the section's centroid
+    /// and either way along its principal axes, its heights weighted by the
+    /// section's second moments, tilted by their central differences (the
+    /// slope at the centroid). An upright wall-sided hull then displaces
+    /// what it displaces under any quadratic surface, whatever the shape of
+    /// its waterplane. A body wholly above or under the surface there
+    /// takes the disc of its bounding radius `r` for its section (heights
+    /// at the centre and `√(5/8) r` away along x and z). The plane drops
+    /// the surface's higher terms over the hull and the fluid velocity's
+    /// change across it: `soak accuracy`'s plane rows give what that costs
     /// against the exact read. Any surface that is not a plane is read so,
     /// height fields and surfaces of your own too.
     Plane,

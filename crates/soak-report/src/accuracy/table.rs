@@ -181,9 +181,10 @@ are the tiled path's per evaluation, sampling included.\n\n";
 const PLANE_INTRO: &str = "## A sea read as one plane over each body\n\n\
 The bench's box and sphere and the boat, on the bench's JONSWAP sea (significant height 2 m, peak \
 period 8 s, its shortest wave 12.5 m) and on the short sea above (its shortest wave 1.75 m), each \
-read as one plane over the body (`SeaSampling::Plane`: the plane through the mean of the sea's \
-heights at the centre of the body's bounding sphere and at four points √(5/8) of its radius away, \
-tilted by their differences, the sea's velocity at the centre as a uniform current) against the \
+read as one plane over the body (`SeaSampling::Plane`: the plane through the mean over the body's \
+horizontal section of the sea's second-order polynomial, from its heights at the section's \
+centroid and either way along its principal axes, tilted by their differences, the sea's velocity \
+at the centre of the body's bounding sphere as a uniform current) against the \
 exact read at every texel (`SeaSampling::Exact`). Six poses along each sea, the body's centre 0.1 m \
 under the sea there, tilted and turned; the drag's poses the same, moving at 0.7 m/s and turning at \
 0.46 rad/s (C_d = 0.8, skin friction 20 N·s/m³). Errors as in the rows above, the drag's as the \
