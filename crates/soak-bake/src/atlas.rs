@@ -64,6 +64,8 @@ pub struct MomentSums {
     pub s1: Matrix3<f64>,
     /// `s2[j][(k, l)] = Σ A_j x_k x_l`, m⁴.
     pub s2: [Matrix3<f64>; 3],
+    /// Σ a, m².
+    pub area: f64,
 }
 
 impl std::ops::Sub for MomentSums {
@@ -74,18 +76,46 @@ impl std::ops::Sub for MomentSums {
             s0: self.s0 - rhs.s0,
             s1: self.s1 - rhs.s1,
             s2: std::array::from_fn(|j| self.s2[j] - rhs.s2[j]),
+            area: self.area - rhs.area,
         }
     }
 }
 
-impl std::ops::AddAssign for MomentSums {
-    fn add_assign(&mut self, rhs: Self) {
+impl std::ops::AddAssign<&MomentSums> for MomentSums {
+    fn add_assign(&mut self, rhs: &MomentSums) {
         self.s0 += rhs.s0;
         self.s1 += rhs.s1;
         for j in 0..3 {
             self.s2[j] += rhs.s2[j];
         }
+        self.area += rhs.area;
     }
+}
+
+impl std::ops::SubAssign<&MomentSums> for MomentSums {
+    fn sub_assign(&mut self, rhs: &MomentSums) {
+        self.s0 -= rhs.s0;
+        self.s1 -= rhs.s1;
+        for j in 0..3 {
+            self.s2[j] -= rhs.s2[j];
+        }
+        self.area -= rhs.area;
+    }
+}
+
+impl std::ops::AddAssign for MomentSums {
+    fn add_assign(&mut self, rhs: Self) {
+        *self += &rhs;
+    }
+}
+
+/// [`Atlas::tile_moments`], [`Atlas::tile_centres`] and
+/// [`Atlas::tile_moment_sums`], made together.
+#[derive(Clone, Debug)]
+pub(crate) struct MomentTables {
+    tiles: Vec<TexelMoments>,
+    centres: Vec<Vector3<f64>>,
+    sums: Vec<MomentSums>,
 }
 
 /// Surface samples of a mesh, one per covered texel of its UV map, stored as a
@@ -136,7 +166,7 @@ pub struct Atlas {
     /// [`Atlas::tile_moments`], computed when first asked for (and again
     /// after a [`Atlas::refresh`]); not stored.
     #[serde(skip)]
-    pub(crate) tile_moments: std::sync::OnceLock<(Vec<TexelMoments>, Vec<MomentSums>)>,
+    pub(crate) tile_moments: std::sync::OnceLock<MomentTables>,
     /// The factor of [`Atlas::coarsened`] (the product over nested
     /// coarsenings); `None` for a baked atlas.
     #[serde(default)]
@@ -373,7 +403,13 @@ impl Atlas {
     /// # Ok::<(), soak_bake::BakeError>(())
     /// ```
     pub fn tile_moments(&self) -> &[TexelMoments] {
-        &self.moment_tables().0
+        &self.moment_tables().tiles
+    }
+
+    /// Each tile's [`TexelMoments::centre`], in one array (for passes that
+    /// look at where the tiles are, and at the moments of only some).
+    pub fn tile_centres(&self) -> &[Vector3<f64>] {
+        &self.moment_tables().centres
     }
 
     /// The running sums of [`Atlas::tile_moments`]: entry `k` holds the sums
@@ -381,11 +417,11 @@ impl Atlas {
     /// tiles `a..b` has the moments `sums[b] − sums[a]`. Made with the
     /// moments, kept as they are.
     pub fn tile_moment_sums(&self) -> &[MomentSums] {
-        &self.moment_tables().1
+        &self.moment_tables().sums
     }
 
     /// The tiles' moments and their running sums, made on the first call.
-    fn moment_tables(&self) -> &(Vec<TexelMoments>, Vec<MomentSums>) {
+    fn moment_tables(&self) -> &MomentTables {
         self.tile_moments.get_or_init(|| {
             let tiles: Vec<TexelMoments> = self
                 .tiles
@@ -438,10 +474,15 @@ impl Atlas {
                     s0: m.s0,
                     s1: m.s1,
                     s2: m.s2,
+                    area: m.area,
                 };
                 sums.push(running);
             }
-            (tiles, sums)
+            MomentTables {
+                centres: tiles.iter().map(|m| m.centre).collect(),
+                tiles,
+                sums,
+            }
         })
     }
 

@@ -16,7 +16,7 @@ use crate::hydrostatics::drag_kernel::{
     Added, DragLanes, DragMoments, Facing, FacingBounds, HBox, LocalDrag, RangeList, add_drag_ranges,
     uniform_velocity,
 };
-use crate::hydrostatics::evaluation::{drag_sums, exact_sums, patch_sums, plane_around, sample_patch};
+use crate::hydrostatics::evaluation::{drag_sums, exact_sums, patch_sums, plane_of, sample_patch};
 use crate::hydrostatics::finish::finish;
 use crate::hydrostatics::forces::HydroForces;
 use crate::hydrostatics::frame::{Frame, texel};
@@ -342,15 +342,7 @@ impl TiledAtlas {
         water.validate()?;
         state.check()?;
         // A sea read as one plane over the body: its tiles under that plane.
-        if let Some(plane) = plane_around(
-            atlas.origin(),
-            atlas.bounding_radius(),
-            Some(crate::hydrostatics::evaluation::Tiles::of(atlas)),
-            water,
-            state,
-            t,
-            options,
-        )? {
+        if let Some(plane) = plane_of(atlas, water, state, t, options)? {
             return self.evaluate_counted(atlas, &plane, state, mass, t, options);
         }
         let e = self.evaluation(atlas, water, state, mass, t, options, true)?;

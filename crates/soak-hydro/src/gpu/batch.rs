@@ -156,7 +156,7 @@ impl GpuHydro {
             let tiles = entry
                 .tiles
                 .as_ref()
-                .map(|(moments, sums)| Tiles { moments, sums });
+                .map(|(centres, sums)| Tiles { centres, sums });
             footprints.push((entry.origin, entry.radius, tiles));
         }
         // Kept until the encoding is done: the encoder stores a patch once

@@ -76,7 +76,7 @@ pub(crate) struct Entry {
     /// read as one plane takes ([`crate::SeaSampling::Plane`]); `None`
     /// once the device has deformed it (the plane then takes the disc of
     /// the bounding radius).
-    pub tiles: Option<(Vec<soak_bake::TexelMoments>, Vec<soak_bake::MomentSums>)>,
+    pub tiles: Option<(Vec<nalgebra::Vector3<f64>>, Vec<soak_bake::MomentSums>)>,
     /// For an open mesh's atlas: 1 on the walls, 0 on the caps (which
     /// carry no mass).
     pub walls: Option<Vec<f32>>,
@@ -412,7 +412,7 @@ impl GpuHydro {
                 len: n,
                 segments,
                 deformable,
-                tiles: Some((atlas.tile_moments().to_vec(), atlas.tile_moment_sums().to_vec())),
+                tiles: Some((atlas.tile_centres().to_vec(), atlas.tile_moment_sums().to_vec())),
                 walls: atlas.has_openings().then(|| {
                     (0..n)
                         .map(|i| if atlas.is_opening(i) { 0.0 } else { 1.0 })

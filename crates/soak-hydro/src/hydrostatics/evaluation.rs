@@ -108,15 +108,7 @@ pub fn evaluate(
     water.validate()?;
     state.check()?;
     // A sea read as one plane over the body: the planar path on that plane.
-    if let Some(plane) = plane_around(
-        atlas.origin(),
-        atlas.bounding_radius(),
-        Some(Tiles::of(atlas)),
-        water,
-        state,
-        t,
-        options,
-    )? {
+    if let Some(plane) = plane_of(atlas, water, state, t, options)? {
         return evaluate(atlas, &plane, state, mass, t, options);
     }
     let frame = Frame::new(atlas, water, state, mass, t, options.dt);
@@ -465,34 +457,40 @@ pub(crate) fn section(
     let row = rot.row(1).transpose();
     // The height of the atlas origin; a tile's centre is `row·c` above it.
     let below = level - (state.pose * origin).y;
-    let (moments, sums) = (tiles.moments, tiles.sums);
-    if sums.len() != moments.len() + 1 {
+    let (centres, sums) = (tiles.centres, tiles.sums);
+    if sums.len() != centres.len() + 1 {
         return None;
     }
-    // Runs of consecutive tiles below the level, each from two running sums.
+    // Runs of consecutive tiles below the level, each from its two running
+    // sums (taken in place: the run's end added, its start taken away).
+    // The tiles are told apart 64 at a time into the bits of a word, and
+    // only the bits where a run starts or ends are visited.
     let mut under = soak_bake::MomentSums::default();
-    let mut gross = 0.0;
-    let mut start = None;
-    for (k, m) in moments.iter().enumerate() {
-        let inside = row.dot(&m.centre) < below;
-        match (inside, start) {
-            (true, None) => start = Some(k),
-            (false, Some(a)) => {
-                under += sums[k] - sums[a];
-                start = None;
+    let mut inside = false;
+    for (block, chunk) in centres.chunks(64).enumerate() {
+        let mut bits = 0u64;
+        for (i, c) in chunk.iter().enumerate() {
+            bits |= u64::from(row.dot(c) < below) << i;
+        }
+        let mut changes = (bits ^ ((bits << 1) | u64::from(inside))) & (u64::MAX >> (64 - chunk.len()));
+        while changes != 0 {
+            let i = changes.trailing_zeros() as usize;
+            let k = 64 * block + i;
+            if bits >> i & 1 == 1 {
+                under -= &sums[k];
+            } else {
+                under += &sums[k];
             }
-            _ => {}
+            changes &= changes - 1;
         }
-        if inside {
-            gross += m.area;
-        }
+        inside = bits >> (chunk.len() - 1) & 1 == 1;
     }
-    if let Some(a) = start {
-        under += sums[moments.len()] - sums[a];
+    if inside {
+        under += &sums[centres.len()];
     }
     // The world's up in object axes is `row`: −Σ (A·up) [1, x, x xᵀ].
     let area = -row.dot(&under.s0);
-    if area.is_nan() || area <= 1e-3 * gross {
+    if area.is_nan() || area <= 1e-3 * under.area {
         return None;
     }
     let first = -(under.s1.transpose() * row) / area;
@@ -506,12 +504,12 @@ pub(crate) fn section(
     })
 }
 
-/// An atlas' tiles as the plane read's section takes them: their moments
-/// and the running sums of those ([`Atlas::tile_moments`],
+/// An atlas' tiles as the plane read's section takes them: their centres
+/// and the running sums of their moments ([`Atlas::tile_centres`],
 /// [`Atlas::tile_moment_sums`]).
 #[derive(Clone, Copy)]
 pub(crate) struct Tiles<'a> {
-    pub moments: &'a [soak_bake::TexelMoments],
+    pub centres: &'a [Vector3<f64>],
     pub sums: &'a [soak_bake::MomentSums],
 }
 
@@ -519,7 +517,7 @@ impl<'a> Tiles<'a> {
     /// The tiles of `atlas`.
     pub fn of(atlas: &'a Atlas) -> Self {
         Self {
-            moments: atlas.tile_moments(),
+            centres: atlas.tile_centres(),
             sums: atlas.tile_moment_sums(),
         }
     }
@@ -571,11 +569,20 @@ pub(crate) fn plane_around(
         moments: [xx, xz, zz],
     }) = section
     {
-        // The section's principal axes and second moments.
+        // The section's principal axes and second moments: the first axis
+        // along `(λ₁ − zz, xz)` (either axis where the moments are the same
+        // about every one).
         let (mean, half) = (0.5 * (xx + zz), (0.5 * (xx - zz)).hypot(xz));
         let lambda = [(mean + half).max(0.0), (mean - half).max(0.0)];
-        let angle = 0.5 * (2.0 * xz).atan2(xx - zz);
-        let (sin, cos) = angle.sin_cos();
+        let (ex, ez) = (mean + half - zz, xz);
+        let norm = ex.hypot(ez);
+        let (cos, sin) = if norm > 1e-12 * mean.abs() && norm > 0.0 {
+            (ex / norm, ez / norm)
+        } else if xx >= zz {
+            (1.0, 0.0)
+        } else {
+            (0.0, 1.0)
+        };
         let axes = [[cos, sin], [-sin, cos]];
         let least = PLANE_READ_LEAST_REACH * radius;
         let reach = lambda.map(|l| (2.5 * l).sqrt().max(least));
@@ -621,6 +628,27 @@ pub(crate) fn plane_around(
     };
     let plane = crate::water::Plane::tilted(at, Vector3::new(-slope[0], 1.0, -slope[1]))?;
     Ok(Some(water.under(plane.with_current(velocity))))
+}
+
+/// [`plane_around`] for a body of atlas `atlas`: about its bounding
+/// sphere, over its own section.
+pub(crate) fn plane_of(
+    atlas: &Atlas,
+    water: &Water,
+    state: &BodyState,
+    t: f64,
+    options: &HydroOptions,
+) -> Result<Option<Water>, HydroError> {
+    let tiles = Some(Tiles::of(atlas));
+    plane_around(
+        atlas.origin(),
+        atlas.bounding_radius(),
+        tiles,
+        water,
+        state,
+        t,
+        options,
+    )
 }
 
 /// The water with its surface sampled once around a body at `state` (or
