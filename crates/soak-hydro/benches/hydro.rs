@@ -325,6 +325,15 @@ fn bench_box(c: &mut Criterion) {
     g.bench_function("jonswap_patch", |b| {
         b.iter(|| sampled_water(&atlas, &sea, &afloat, t, &still).unwrap())
     });
+    // The sea read as one plane over the box instead (six reads of the sea
+    // and its section at the sea's height, from its tiles' moments).
+    let plane = HydroOptions {
+        sea: SeaSampling::Plane,
+        ..still
+    };
+    g.bench_function("jonswap_plane", |b| {
+        b.iter(|| sampled_water(&atlas, &sea, &afloat, t, &plane).unwrap())
+    });
     let patch = sampled_water(&atlas, &sea, &afloat, t, &still).unwrap().unwrap();
     g.bench_function("jonswap_on_patch", |b| {
         b.iter(|| tiled.evaluate(&atlas, &patch, &afloat, &mass, t, &still).unwrap())
