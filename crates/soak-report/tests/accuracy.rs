@@ -193,16 +193,22 @@ fn quick_report_holds_its_promises() {
     assert!(table.contains("## On a spectral sea"));
 
     // The plane rows: on the bench's JONSWAP sea the box and the sphere
-    // read as one plane are within 5e-3 of their volume and 10 % of their
-    // drag of the exact read; on every sea and mesh the plane is a coarser
-    // read than the sampled one.
+    // read as one plane over their own section are within 1e-4 of their
+    // volume and 10 % of their drag of the exact read; on every sea and
+    // mesh the plane holds less of the surface than the sampled read (its
+    // torque and drag errors are larger; its volume, the sea's mean over
+    // the section, may not be: the sphere's on JONSWAP is within the
+    // sampled read's).
     assert_eq!(report.plane.len(), 6, "2 seas × 3 meshes");
     for r in &report.plane {
         let errors = [r.volume_error, r.cob_error, r.torque_error, r.drag_error];
         assert!(errors.iter().all(|e| e.is_finite() && *e >= 0.0), "{r:?}");
-        assert!(r.volume_error > r.sampled_errors[0], "{r:?}");
+        assert!(
+            r.torque_error > r.sampled_errors[2] && r.drag_error > r.sampled_errors[3],
+            "{r:?}"
+        );
         if r.sea.contains("Hs 2 m") && !r.mesh.starts_with("boat") {
-            assert!(r.volume_error < 5e-3 && r.drag_error < 0.1, "{r:?}");
+            assert!(r.volume_error < 1e-4 && r.drag_error < 0.1, "{r:?}");
         }
     }
     assert!(table.contains("## A sea read as one plane over each body"));
