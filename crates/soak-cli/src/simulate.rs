@@ -167,6 +167,7 @@ pub enum SimBackend {
 }
 
 pub fn run(args: &Args) -> anyhow::Result<()> {
+    let begun = Instant::now();
     let options = RunOptions::of(args);
     let checkpoint: Option<RunCheckpoint> = match &args.resume {
         Some(path) => Some(read_checkpoint(path)?),
@@ -286,11 +287,16 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         0
     };
     let mut steps = first;
+    let set_up = begun.elapsed();
+    // The time in the steps alone (not in writing what they give).
+    let mut stepping = Duration::ZERO;
     while steps < total {
         if crate::interrupt::requested() {
             break;
         }
+        let before = Instant::now();
         sim.step()?;
+        stepping += before.elapsed();
         steps += 1;
         let k = steps;
         // Refuse, from its first steps, a run that cannot end in any
@@ -354,6 +360,16 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         }
     }
     progress.finish();
+    if steps > first {
+        eprintln!(
+            "{}: set up in {:.2} s; {} steps in {:.2} s ({:.3} ms a step)",
+            args.scene.display(),
+            set_up.as_secs_f64(),
+            steps - first,
+            stepping.as_secs_f64(),
+            1e3 * stepping.as_secs_f64() / (steps - first) as f64
+        );
+    }
     if let Some(csv) = &mut csv {
         sync(csv)?;
     }

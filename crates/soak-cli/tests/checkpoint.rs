@@ -93,7 +93,10 @@ fn kill_points(count: usize, rows_max: usize) -> (u64, Vec<usize>) {
 #[test]
 fn a_run_killed_at_random_steps_and_resumed_ends_as_the_straight_run() {
     let straight = directory("straight");
-    finished(&command(&straight, &[]).output().unwrap());
+    let said = finished(&command(&straight, &[]).output().unwrap());
+    // The run says what its steps cost: all 720 of them, timed.
+    let timing = said.lines().find(|l| l.contains("ms a step")).unwrap_or("");
+    assert!(timing.contains("; 720 steps in "), "{said}");
     let csv = std::fs::read(straight.join("run.csv")).unwrap();
     let state = std::fs::read(straight.join("run.ckpt")).unwrap();
     let animation = std::fs::read(straight.join("run.glb")).unwrap();
@@ -122,6 +125,9 @@ fn a_run_killed_at_random_steps_and_resumed_ends_as_the_straight_run() {
         let killed_at = rows(&dir.join("run.csv"));
         let resumed = finished(&command(&dir, &["--resume", "run.ckpt"]).output().unwrap());
         assert!(resumed.contains("resuming"), "{resumed}");
+        // A resumed run times the steps it took, not those it resumed.
+        let timing = resumed.lines().find(|l| l.contains("ms a step")).unwrap_or("");
+        assert!(!timing.contains("; 720 steps in "), "{resumed}");
         let line = resumed.lines().find(|l| l.contains("resuming")).unwrap_or("");
         eprintln!("killed with {killed_at} rows written; {line}");
         assert!(
