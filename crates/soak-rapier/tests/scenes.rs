@@ -110,6 +110,39 @@ fn bodies_ride_a_spectral_sea() {
     }
 }
 
+/// `data/scenes/twenty_on_swell.toml`: ten crates and ten balls with
+/// drag on the two-wave swell, the sea read as one plane over each body
+/// (`[water] sampling = "plane"`). Each heaves with the swell and floats:
+/// none sinks, none is thrown out of the water.
+#[test]
+fn twenty_pieces_of_flotsam_ride_the_swell_each_read_as_a_plane() {
+    let mut scene = LoadedScene::from_file(&data("scenes/twenty_on_swell.toml")).unwrap();
+    assert_eq!(scene.scene.water.sampling, Some(soak_hydro::SeaSampling::Plane));
+    assert_eq!(scene.scene.bodies.len(), 20);
+    scene.scene.duration = 4.0;
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    assert_eq!(sim.soak.sea_sampling(), soak_hydro::SeaSampling::Plane);
+    sim.record(true);
+    sim.run(|_| {}).unwrap();
+    for (i, report) in sim.report().iter().enumerate() {
+        let (lo, hi) = heave_range(&sim, i, 1.0);
+        println!("{}: heave {lo:.3}..{hi:.3} m", report.name);
+        assert!(
+            hi - lo > 0.2 && hi - lo < 1.5,
+            "{}: heave {lo}..{hi}",
+            report.name
+        );
+        assert!(lo > -1.0 && hi < 1.0, "{}: heave {lo}..{hi}", report.name);
+        assert!(
+            report.submerged_fraction > 0.02 && report.submerged_fraction < 0.98,
+            "{}: {} submerged",
+            report.name,
+            report.submerged_fraction
+        );
+        assert!(!report.non_finite, "{}", report.name);
+    }
+}
+
 #[test]
 fn on_a_spectral_sea_bodies_radiate_by_default_and_are_not_pumped() {
     // A crate and a ball with buoyancy alone (no drag) on a JONSWAP sea
