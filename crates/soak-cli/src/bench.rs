@@ -53,10 +53,12 @@ pub struct Args {
     /// its own texels
     #[arg(long, value_name = "K")]
     pub drag_coarsening: Option<u32>,
-    /// How the bodies read the seas: `plane` (one plane fitted over each
-    /// body, the sea's velocity at its centre), `exact` (every texel), or
-    /// a number of nodes per shortest wave (the sea sampled over each
-    /// body) [default: 16 nodes per wave; the GPU's JONSWAP exactly]
+    /// How the bodies read the seas: `auto` (each body as it is against
+    /// the waves: one plane over a body at most an eighth of the shortest
+    /// wave across, the sea sampled over any other), `plane` (one plane
+    /// fitted over each body, the sea's velocity at its centre), `exact`
+    /// (every texel), or a number of nodes per shortest wave (the sea
+    /// sampled over each body) [default: auto; the GPU's JONSWAP exactly]
     #[arg(long, value_name = "READ", value_parser = parse_sea)]
     pub sea_sampling: Option<soak_hydro::SeaSampling>,
     /// Also print where the generator's step goes: each phase of its step
@@ -72,16 +74,17 @@ fn parse_water(label: &str) -> Result<scaling::WaterKind, String> {
         .ok_or_else(|| format!("no water `{label}` in the bench (calm, swell or jonswap)"))
 }
 
-/// How the bench's bodies read the seas, from `plane`, `exact` or a
-/// number of nodes per shortest wave.
+/// How the bench's bodies read the seas, from `auto`, `plane`, `exact`
+/// or a number of nodes per shortest wave.
 fn parse_sea(read: &str) -> Result<soak_hydro::SeaSampling, String> {
     match read {
+        "auto" => Ok(soak_hydro::SeaSampling::Auto),
         "plane" => Ok(soak_hydro::SeaSampling::Plane),
         "exact" => Ok(soak_hydro::SeaSampling::Exact),
         n => match n.parse::<f64>() {
             Ok(n) if n.is_finite() && n > 0.0 => Ok(soak_hydro::SeaSampling::PerWavelength(n)),
             _ => Err(format!(
-                "no sea read `{read}` (plane, exact, or a positive number of nodes per shortest wave)"
+                "no sea read `{read}` (auto, plane, exact, or a positive number of nodes per shortest wave)"
             )),
         },
     }

@@ -170,11 +170,14 @@ impl<H: Handle> Driver<H> {
     }
 
     /// The same driver reading a sea (a surface that is not a plane)
-    /// as `sea` says: sampled once per step over each body's footprint
-    /// (the default, 16 nodes per shortest wavelength), read as one plane
-    /// fitted over each body ([`SeaSampling::Plane`]: a calm-water
-    /// evaluation's cost, for bodies small against the waves), or exactly
-    /// at every texel ([`SeaSampling::Exact`], the reference). A body
+    /// as `sea` says: each body as it is against the waves (the default,
+    /// [`SeaSampling::Auto`]: one plane over a body at most an eighth of
+    /// the shortest wave across, the sea sampled over any other), sampled
+    /// once per step over each body's footprint
+    /// ([`SeaSampling::PerWavelength`], nodes per shortest wavelength),
+    /// read as one plane fitted over each body ([`SeaSampling::Plane`]: a
+    /// calm-water evaluation's cost, for bodies small against the waves),
+    /// or exactly at every texel ([`SeaSampling::Exact`], the reference). A body
     /// may read it otherwise ([`Effects::sea`](crate::Effects::sea)).
     /// Nodes per wavelength that are not finite and positive are refused
     /// when a body that would read them is registered

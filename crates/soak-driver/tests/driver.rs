@@ -254,7 +254,13 @@ fn a_body_reads_the_sea_its_own_way() {
     // And the other way round: a crate sampled among bodies read as planes.
     let flipped = poses(
         &|| Driver::new(sea()).with_sea_sampling(SeaSampling::Plane),
-        &[(0, Some(SeaSampling::default())), (1, None)],
+        &[
+            (
+                0,
+                Some(SeaSampling::PerWavelength(SeaSampling::DEFAULT_PER_WAVELENGTH)),
+            ),
+            (1, None),
+        ],
     );
     assert_eq!(flipped[0], sampled[0]);
     assert_eq!(flipped[1], planes[0]);

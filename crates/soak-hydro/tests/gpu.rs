@@ -584,19 +584,20 @@ fn drag_parity_gerstner() {
     run_parity(256, sea, 20, Some(DRAG), 6, "drag, Gerstner orbital velocity");
 }
 
-/// The default read: the sea sampled once per evaluation on both sides,
-/// the GPU reading the patch's polynomials in f32.
+/// The sampled read (16 nodes per shortest wave, as the default read
+/// samples a body large against the waves): the sea sampled once per
+/// evaluation on both sides, the GPU reading the patch's polynomials in
+/// f32.
 #[test]
 fn sampled_swell_parity_256() {
-    let sampled = HydroOptions::default().sea;
-    assert!(matches!(sampled, SeaSampling::PerWavelength(_)));
+    let sampled = SeaSampling::PerWavelength(SeaSampling::DEFAULT_PER_WAVELENGTH);
     run_parity_read(256, swell, 30, None, 11, "swell, sampled", sampled);
     run_parity_read(256, sea, 20, None, 12, "Gerstner sea, sampled", sampled);
 }
 
 #[test]
 fn sampled_swell_drag_parity() {
-    let sampled = HydroOptions::default().sea;
+    let sampled = SeaSampling::PerWavelength(SeaSampling::DEFAULT_PER_WAVELENGTH);
     run_parity_read(256, swell, 20, Some(DRAG), 13, "drag, swell, sampled", sampled);
 }
 
@@ -629,7 +630,7 @@ fn plane_read_parity() {
 /// the Gerstner sea is, agrees alike.
 #[test]
 fn sampled_spectral_parity_256() {
-    let sampled = HydroOptions::default().sea;
+    let sampled = SeaSampling::PerWavelength(SeaSampling::DEFAULT_PER_WAVELENGTH);
     run_parity_read(256, spectral, 20, None, 15, "JONSWAP sea, sampled", sampled);
     run_parity_read(
         256,
@@ -763,7 +764,7 @@ fn a_batch_of_100_equals_100_single_evaluations() {
             dt: 1.0 / 120.0,
             // A sea sampled once for a quarter of the bodies.
             sea: if k % 4 == 1 {
-                HydroOptions::default().sea
+                SeaSampling::PerWavelength(SeaSampling::DEFAULT_PER_WAVELENGTH)
             } else {
                 SeaSampling::Exact
             },

@@ -374,3 +374,82 @@ fn mesh_extent(mesh: &Mesh, k: usize) -> f64 {
         .fold((f64::MAX, f64::MIN), |(lo, hi), p| (lo.min(p[k]), hi.max(p[k])));
     hi - lo
 }
+
+/// The default read ([`SeaSampling::Auto`]) takes each body as it is
+/// against the waves: on the bench's JONSWAP sea (its shortest wave 12.5
+/// m) the 1 m box is read as one plane, the 4 m boat is sampled at 16
+/// nodes per shortest wave, each the same to the bit as that read asked
+/// for, on the per-texel and the tiled paths; a body exactly an eighth
+/// of the shortest wave across is still a plane, one a hair wider is
+/// sampled; a surface with no shortest wave (a height field) is read
+/// exactly.
+#[test]
+fn the_default_read_takes_each_body_as_it_is_against_the_waves() {
+    assert_eq!(SeaSampling::default(), SeaSampling::Auto);
+    let sea = Water::spectral(&soak_hydro::SeaSpectrum::jonswap(2.0, 8.0), 0).unwrap();
+    let t = 30.0;
+    let shortest = sea.surface.sampling_length(t).unwrap();
+    assert!((shortest - 12.5).abs() < 0.05, "{shortest}");
+    let sampled = SeaSampling::PerWavelength(SeaSampling::DEFAULT_PER_WAVELENGTH);
+    let edge = SeaSampling::PLANE_BELOW * shortest / 2.0;
+    let auto = SeaSampling::Auto;
+    assert_eq!(auto.for_body(edge, &*sea.surface, t), SeaSampling::Plane);
+    assert_eq!(auto.for_body(edge * (1.0 + 1e-12), &*sea.surface, t), sampled);
+    assert_eq!(
+        SeaSampling::Exact.for_body(0.1, &*sea.surface, t),
+        SeaSampling::Exact
+    );
+    let drag = Some(Drag {
+        coefficient: 0.8,
+        linear: 20.0,
+    });
+    for (mesh, expected) in [
+        (builtin::cuboid(1.0, 0.6, 0.8), SeaSampling::Plane),
+        (builtin::boat(4.0, 1.2, 0.6), sampled),
+    ] {
+        let (atlas, mass) = baked(&mesh, 64);
+        let tiled = TiledAtlas::new(&atlas);
+        let y = sea.surface.height(3.0, -2.0, t);
+        let state = moving(3.0, y - 0.1, -2.0);
+        let options = |sea| HydroOptions {
+            drag,
+            sea,
+            ..HydroOptions::default()
+        };
+        assert_eq!(auto.for_body(atlas.bounding_radius(), &*sea.surface, t), expected);
+        let a = evaluate(&atlas, &sea, &state, &mass, t, &options(auto)).unwrap();
+        let b = evaluate(&atlas, &sea, &state, &mass, t, &options(expected)).unwrap();
+        assert_eq!(a, b, "per texel, {expected:?}");
+        let a = tiled
+            .evaluate(&atlas, &sea, &state, &mass, t, &options(auto))
+            .unwrap();
+        let b = tiled
+            .evaluate(&atlas, &sea, &state, &mass, t, &options(expected))
+            .unwrap();
+        assert_eq!(a, b, "tiled, {expected:?}");
+        assert!(a.submerged_volume > 0.0);
+    }
+    // A height field has no shortest wave: read exactly, as the sampled
+    // read reads it.
+    let field = Water::new(
+        HeightField::new(
+            [-5.0, -5.0],
+            [0.5, 0.5],
+            21,
+            21,
+            (0..21 * 21)
+                .map(|k| 0.05 * ((k % 21) as f64 * 0.4).sin())
+                .collect(),
+        )
+        .unwrap(),
+    );
+    let (atlas, mass) = baked(&builtin::cuboid(1.0, 0.6, 0.8), 32);
+    let state = moving(0.3, 0.0, 0.2);
+    let options = |sea| HydroOptions {
+        sea,
+        ..HydroOptions::default()
+    };
+    let a = evaluate(&atlas, &field, &state, &mass, 0.0, &options(auto)).unwrap();
+    let b = evaluate(&atlas, &field, &state, &mass, 0.0, &options(SeaSampling::Exact)).unwrap();
+    assert_eq!(a, b, "a height field");
+}

@@ -113,7 +113,15 @@ fn pressure_mode_and_drag_follow_the_exact_read() {
             ..HydroOptions::default()
         };
         let e = evaluate(&atlas, &water, &state, &mass, t, &options(SeaSampling::Exact)).unwrap();
-        let s = evaluate(&atlas, &water, &state, &mass, t, &options(SeaSampling::default())).unwrap();
+        let s = evaluate(
+            &atlas,
+            &water,
+            &state,
+            &mass,
+            t,
+            &options(SeaSampling::PerWavelength(SeaSampling::DEFAULT_PER_WAVELENGTH)),
+        )
+        .unwrap();
         let weight = water.density * water.gravity * volume;
         let df = (e.buoyancy.force - s.buoyancy.force).norm() / weight;
         assert!(df < 1e-4, "pressure force off by {df} of ρgV");

@@ -89,7 +89,11 @@ fn gpu_and_cpu_worlds_follow_the_same_trajectories() {
     // Then, on both seas, the sphere reads its sea as one plane and the
     // torus samples it, among bodies read exactly (the device then reads
     // the others' seas itself in the same batch).
-    let mixed = [None, Some(SeaSampling::Plane), Some(SeaSampling::default())];
+    let mixed = [
+        None,
+        Some(SeaSampling::Plane),
+        Some(SeaSampling::PerWavelength(SeaSampling::DEFAULT_PER_WAVELENGTH)),
+    ];
     for (kind, reads) in [
         (0, [None; 3]),
         (1, [None; 3]),

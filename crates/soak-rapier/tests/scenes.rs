@@ -708,8 +708,8 @@ fn on_a_spectral_sea_the_waves_bodies_make_ride_the_sea() {
 
 /// `data/scenes/flotsam.toml`: a boat reading the sea sampled over its
 /// hull among crates and balls each reading it as one plane. Against the
-/// same scene with every body sampled: the boat, which reads the sea the
-/// same way in both, follows the same path to the bit (the flotsam's
+/// same scene with every body sampled (16 nodes per shortest wave): the
+/// boat, which reads the sea the same way in both, follows the same path to the bit (the flotsam's
 /// reads do not reach it), and each piece of flotsam heaves with the sea
 /// and stays within a few centimetres of its path on the sampled read.
 #[test]
@@ -733,7 +733,9 @@ fn a_boat_among_flotsam_reads_the_sea_its_own_way() {
     };
     let mixed = run(&scene);
     for b in &mut scene.scene.bodies {
-        b.sampling = None;
+        b.sampling = Some(soak_hydro::SeaSampling::PerWavelength(
+            soak_hydro::SeaSampling::DEFAULT_PER_WAVELENGTH,
+        ));
     }
     let sampled = run(&scene);
     let path = |sim: &Simulation, i: usize| -> Vec<[f64; 3]> {

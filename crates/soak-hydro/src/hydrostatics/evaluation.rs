@@ -366,8 +366,10 @@ pub(crate) fn sample_patch_around(
     t: f64,
     options: &HydroOptions,
 ) -> Result<Option<SurfacePatch>, HydroError> {
-    let SeaSampling::PerWavelength(per) = options.sea else {
-        return Ok(None);
+    let per = match options.sea {
+        SeaSampling::PerWavelength(per) => per,
+        SeaSampling::Auto => SeaSampling::DEFAULT_PER_WAVELENGTH,
+        SeaSampling::Exact | SeaSampling::Plane => return Ok(None),
     };
     if !matches!(water.surface.kind(t), SurfaceKind::General) {
         return Ok(None);
@@ -553,10 +555,15 @@ pub(crate) fn plane_around(
     t: f64,
     options: &HydroOptions,
 ) -> Result<Option<Water>, HydroError> {
-    if options.sea != SeaSampling::Plane || !matches!(water.surface.kind(t), SurfaceKind::General) {
+    if !matches!(options.sea, SeaSampling::Plane | SeaSampling::Auto)
+        || !matches!(water.surface.kind(t), SurfaceKind::General)
+    {
         return Ok(None);
     }
     let surface = read_surface(water, radius, options)?;
+    if options.sea.for_body(radius, surface, t) != SeaSampling::Plane {
+        return Ok(None);
+    }
     let c = state.pose * origin;
     let mut hint = [0.0; 2];
     let (depth, velocity) = surface.probe(&c, t, options.drag.is_some(), &mut hint);

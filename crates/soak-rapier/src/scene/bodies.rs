@@ -166,8 +166,8 @@ pub struct BodySpec {
     /// How this body reads a sea (`[water] kind = "gerstner"` or
     /// `"spectrum"`), when not as `[water] sampling` says: `"plane"` (one
     /// plane fitted over the body, a calm-water evaluation's cost, for a
-    /// body small against the waves), `"exact"`, or `{ per_wavelength = n }`
-    /// (see [`crate::Effects::sea`]). Absent: the water's.
+    /// body small against the waves), `"exact"`, `{ per_wavelength = n }`
+    /// or `"auto"` (see [`crate::Effects::sea`]). Absent: the water's.
     pub sampling: Option<soak_hydro::SeaSampling>,
     /// Contacts.
     #[serde(default)]

@@ -55,12 +55,15 @@ pub struct WaterSpec {
     pub origin: Option<[f64; 2]>,
     /// Height-field sample spacing (dx, dz), m.
     pub spacing: Option<[f64; 2]>,
-    /// How the texels read a Gerstner sea: `{ per_wavelength = 16 }` (the
-    /// default: the sea sampled once per step over each body, 16 nodes per
-    /// shortest wavelength), `"exact"` (every texel inverts the Gerstner
-    /// map: the reference, far slower) or `"plane"` (each body reads one
-    /// plane fitted over its footprint and the sea's velocity at its centre:
-    /// a calm-water evaluation's cost, see [`SeaSampling::Plane`]).
+    /// How the texels read a sea: `"auto"` (the default: each body as it is
+    /// against the waves, one plane over a body at most an eighth of the
+    /// shortest wave across and the sea sampled over any other, see
+    /// [`SeaSampling::Auto`]), `{ per_wavelength = 16 }` (the sea sampled
+    /// once per step over each body, 16 nodes per shortest wavelength),
+    /// `"exact"` (every texel inverts the sea's map: the reference, far
+    /// slower) or `"plane"` (each body reads one plane fitted over its
+    /// footprint and the sea's velocity at its centre: a calm-water
+    /// evaluation's cost, see [`SeaSampling::Plane`]).
     pub sampling: Option<SeaSampling>,
     /// The spectral sea's spectrum: `"jonswap"` (the default) or
     /// `"pierson_moskowitz"`.

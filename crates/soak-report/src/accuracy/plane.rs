@@ -149,7 +149,7 @@ pub(super) fn plane_rows(resolution: u32, runs: usize) -> Result<Vec<PlaneRow>, 
                 ..HydroOptions::default()
             };
             let sampled = HydroOptions {
-                sea: SeaSampling::default(),
+                sea: SeaSampling::PerWavelength(SeaSampling::DEFAULT_PER_WAVELENGTH),
                 ..plane
             };
             let e = errors(&baked, water, &poses, &moving, &plane)?;

@@ -115,6 +115,8 @@ fn header(report: &ScalingReport) -> String {
             Some(soak_hydro::SeaSampling::Exact) => "; the seas read exactly at every texel".to_string(),
             Some(soak_hydro::SeaSampling::PerWavelength(n)) =>
                 format!("; the seas sampled {n} nodes per shortest wave"),
+            Some(soak_hydro::SeaSampling::Auto) =>
+                "; each body reading the seas as it is against their waves (`auto`)".to_string(),
             None => String::new(),
         },
     )
