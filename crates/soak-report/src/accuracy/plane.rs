@@ -34,8 +34,8 @@ pub struct PlaneRow {
     /// Worst |F − F_exact| / |F_exact| of the drag of the moving poses,
     /// the plane read.
     pub drag_error: f64,
-    /// The same four of the default sampled read (16 nodes per shortest
-    /// wave), against the same reference.
+    /// The same four of the sampled read (16 nodes per shortest wave),
+    /// against the same reference.
     pub sampled_errors: [f64; 4],
     /// Tiled evaluation reading the plane (its five reads of the sea
     /// included), ms (median).

@@ -188,8 +188,10 @@ at the centre of the body's bounding sphere as a uniform current) against the \
 exact read at every texel (`SeaSampling::Exact`). Six poses along each sea, the body's centre 0.1 m \
 under the sea there, tilted and turned; the drag's poses the same, moving at 0.7 m/s and turning at \
 0.46 rad/s (C_d = 0.8, skin friction 20 N·s/m³). Errors as in the rows above, the drag's as the \
-worst relative difference of its force; beside them the default sampled read's (16 nodes per \
-shortest wave) against the same reference. Times are the tiled path's per evaluation with drag, \
+worst relative difference of its force; beside them the sampled read's (16 nodes per \
+shortest wave, as the default read samples a body large against the waves) against the same \
+reference. The default read (`SeaSampling::Auto`) takes the plane for a body at most an eighth of \
+the shortest wave across: on the bench's sea the box and the sphere, not the boat. Times are the tiled path's per evaluation with drag, \
 the plane's reads or the patch's sampling included.\n\n";
 
 /// What the drag-texel rows are, before their table.
