@@ -14,10 +14,13 @@
 //! ([`GpuHydro::evaluate_batch`]).
 //!
 //! A Gerstner sea is read as [`crate::HydroOptions::sea`] asks, as on the
-//! CPU: by default sampled once per body and evaluation on the CPU
+//! CPU: sampled once per body and evaluation on the CPU
 //! ([`crate::SurfacePatch`], heights and slopes at a few dozen nodes, with
 //! drag the fluid's velocity too) and read by the kernel as per-cell
-//! polynomials; with [`crate::SeaSampling::Exact`] the kernel inverts the
+//! polynomials, or for a body small against the waves (by default, see
+//! [`crate::SeaSampling::Auto`]) fitted as one plane on the CPU and summed
+//! under it as under any tilted plane with a current; with
+//! [`crate::SeaSampling::Exact`] the kernel inverts the
 //! Gerstner map at every texel in f32. A spectral sea
 //! ([`crate::SpectralSurface`]) is read the same two ways: sampled per body
 //! from its tile's fields on the CPU, or, read exactly, its tile evaluated
