@@ -237,8 +237,8 @@ impl SeaSampling {
 
     /// The largest bounding diameter, as a fraction of the shortest wave
     /// it reads, of a body that [`SeaSampling::Auto`] reads as one plane:
-    /// an eighth (a wave of that length bends by `1 − cos(π/8)`, 8 %,
-    /// of its height across the body).
+    /// an eighth (over a body that long centred on a crest, the shortest
+    /// wave falls by `1 − cos(π/8)`, 8 %, of its amplitude).
     pub const PLANE_BELOW: f64 = 0.125;
 
     /// How a body of bounding radius `radius` (m) reads `surface` at time
