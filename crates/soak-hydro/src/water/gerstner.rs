@@ -5,7 +5,7 @@ use nalgebra::{Point3, Vector2, Vector3};
 use serde::{Deserialize, Serialize};
 
 use super::Surface;
-use super::surface::{SurfaceNode, fill_nodes};
+use super::surface::{SurfaceNode, fill_nodes, node_at};
 use crate::error::WaterError;
 
 /// One Gerstner (trochoidal) wave on deep water.
@@ -81,6 +81,20 @@ struct WaveCache {
     qa: f64,
     a: f64,
     phase: f64,
+}
+
+impl WaveCache {
+    /// Linear theory's velocity of this wave (m/s) at height `y` (m) above
+    /// the mean level, where its phase has the sine and cosine `(s, c)`.
+    #[inline(always)]
+    fn velocity(&self, (s, c): (f64, f64), y: f64) -> Vector3<f64> {
+        // Above the mean level, continued linearly: the exponential's
+        // growth to the crests of steep waves is not linear theory's.
+        let z = self.k * y;
+        let decay = if z > 0.0 { 1.0 + z } else { z.exp() };
+        let speed = self.a * self.omega * decay;
+        Vector3::new(speed * c * self.dir.x, speed * s, speed * c * self.dir.y)
+    }
 }
 
 impl Gerstner {
@@ -388,6 +402,34 @@ impl Surface for Gerstner {
         });
     }
 
+    /// Each column's phases taken once for all its nodes: a wave's
+    /// velocity at a node is its phase's sine and cosine (the same down the
+    /// column) times its decay with depth, so a column of `n` nodes costs
+    /// one sine and cosine per wave and `n` decays, not `n` of each. The
+    /// same values as [`Surface::velocity_under`] at every node, to the bit.
+    fn sample_velocities(
+        &self,
+        t: f64,
+        origin: [f64; 2],
+        spacing: f64,
+        nodes: [usize; 2],
+        columns: &[SurfaceNode],
+        ys: &[f64],
+        out: &mut [Vector3<f64>],
+    ) {
+        let n = nodes[0] * nodes[1];
+        let mut phases = vec![(0.0, 0.0); self.cache.len()];
+        for (k, column) in columns.iter().enumerate().take(n) {
+            let [x, z] = node_at(origin, spacing, nodes, k);
+            for (phase, w) in phases.iter_mut().zip(&self.cache) {
+                *phase = (w.k * (w.dir.x * x + w.dir.y * z) - w.omega * t + w.phase).sin_cos();
+            }
+            for (l, &y) in ys.iter().enumerate() {
+                out[l * n + k] = self.velocity_with(&phases, y.min(column.height));
+            }
+        }
+    }
+
     /// The water's velocity at `p`, m/s: linear (Airy) theory's for each
     /// wave, `a ω e^{k (y − level)}` along the wave's direction in phase
     /// with its height and the same upward a quarter period ahead, at the
@@ -420,15 +462,17 @@ impl Gerstner {
         let mut v = Vector3::zeros();
         for w in &self.cache {
             let th = w.k * (w.dir.x * x + w.dir.y * z) - w.omega * t + w.phase;
-            let (s, c) = th.sin_cos();
-            // Above the mean level, continued linearly: the exponential's
-            // growth to the crests of steep waves is not linear theory's.
-            let z = w.k * (y - self.level);
-            let decay = if z > 0.0 { 1.0 + z } else { z.exp() };
-            let speed = w.a * w.omega * decay;
-            v.x += speed * c * w.dir.x;
-            v.z += speed * c * w.dir.y;
-            v.y += speed * s;
+            v += w.velocity(th.sin_cos(), y - self.level);
+        }
+        v
+    }
+
+    /// [`Self::velocity_below`] at height `y` (m) of a column whose waves'
+    /// phases have the sines and cosines `phases` (in the waves' order).
+    fn velocity_with(&self, phases: &[(f64, f64)], y: f64) -> Vector3<f64> {
+        let mut v = Vector3::zeros();
+        for (&phase, w) in phases.iter().zip(&self.cache) {
+            v += w.velocity(phase, y - self.level);
         }
         v
     }
@@ -454,6 +498,45 @@ impl Gerstner {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A grid's velocities, each column's phases taken once, are the
+    /// velocity read node by node under the surface (and the surface's own
+    /// above it), to the bit, and the velocity read afresh: layers from below the troughs, where the
+    /// decay is exponential, to above the crests.
+    #[test]
+    fn a_columns_velocities_are_its_nodes_own() {
+        let sea = Gerstner::new(0.1, GerstnerWave::SWELL.to_vec(), 9.81).unwrap();
+        let (origin, spacing, nodes) = ([-1.3, 0.7], 0.25, [9, 7]);
+        let ys: Vec<f64> = (0..12).map(|l| -1.2 + 0.15 * l as f64).collect();
+        let n = nodes[0] * nodes[1];
+        for t in [0.0, 1.7, 4.2] {
+            let mut columns = vec![SurfaceNode::default(); n];
+            sea.sample_nodes(t, origin, spacing, nodes, &mut columns);
+            let mut out = vec![Vector3::zeros(); n * ys.len()];
+            sea.sample_velocities(t, origin, spacing, nodes, &columns, &ys, &mut out);
+            let mut above = 0;
+            for (l, &y) in ys.iter().enumerate() {
+                for (k, column) in columns.iter().enumerate() {
+                    let [x, z] = node_at(origin, spacing, nodes, k);
+                    above += usize::from(y > column.height);
+                    let p = Point3::new(x, y.min(column.height), z);
+                    let want = sea.velocity_under(&p, t, column.height, &column.hint);
+                    assert_eq!(out[l * n + k], want, "node {k}, layer {l}, t = {t}");
+                    // The velocity read afresh (the surface's height found
+                    // by another inversion, within its tolerance).
+                    let fresh = sea.velocity(&Point3::new(x, y, z), t);
+                    assert!(
+                        (want - fresh).norm() < 1e-12,
+                        "node {k}, layer {l}: {want} against {fresh}"
+                    );
+                }
+            }
+            assert!(
+                above > 0 && above < n * ys.len(),
+                "{above} nodes above the surface"
+            );
+        }
+    }
 
     /// The nodes sampled in one inversion each against the exact read of
     /// the surface: the height of the particle whose rest position the
