@@ -6,8 +6,8 @@
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use soak_bake::{Atlas, BakeOptions, Mesh, builtin};
 use soak_hydro::{
-    BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HydroForces, HydroOptions, MassModel, SeaVelocity,
-    TiledAtlas, Water, evaluate, sampled_water,
+    BodyState, BuoyancyMode, Drag, Gerstner, GerstnerWave, HydroForces, HydroOptions, MassModel, SeaSampling,
+    SeaVelocity, TiledAtlas, Water, evaluate, sampled_water,
 };
 
 fn swell() -> Water {
@@ -71,8 +71,9 @@ fn check(name: &str, mesh: &Mesh, n: u32, poses: &[Place]) {
             // below the patch's own error against the exact surface.
             assert!(counts.submerged >= 50, "{name} {at:?}: {counts:?}");
             // Archimedes' torque takes the depth at the tile's centre in its
-            // second-order slope term: its error is the loosest.
-            let bounds = [1e-7, 1e-6, 1e-6, 1e-5];
+            // second-order slope term, and the pressure's force the depth
+            // at the centre in `Σ d² A`: theirs are the loosest.
+            let bounds = [1e-6, 1e-6, 1e-5, 1e-5];
             for (what, (d, bound)) in ["volume", "centre", "force", "torque"]
                 .iter()
                 .zip(d.iter().zip(bounds))
@@ -137,7 +138,7 @@ fn check(name: &str, mesh: &Mesh, n: u32, poses: &[Place]) {
             );
             let d = differences(&got, &want, volume, radius);
             assert!(
-                d[0] < 1e-7 && d[1] < 1e-6,
+                d[0] < 1e-6 && d[1] < 1e-6,
                 "{name} {at:?} {mode:?}: with drag {d:?}"
             );
         }
@@ -191,7 +192,7 @@ fn a_body_wholly_under_the_swell_takes_the_texels_near_the_surface_and_the_tiles
             assert!(counts.submerged > 0, "{counts:?}");
             assert_eq!(got.deep, 1.0);
             let d = differences(&got, &want, atlas.volume(), atlas.bounding_radius());
-            let bounds = [1e-7, 1e-6, 1e-6, 1e-5];
+            let bounds = [1e-6, 1e-6, 1e-5, 1e-5];
             assert!(
                 d.iter().zip(bounds).all(|(d, b)| *d < b),
                 "{below} m under: {d:?}"
@@ -202,5 +203,83 @@ fn a_body_wholly_under_the_swell_takes_the_texels_near_the_surface_and_the_tiles
             assert_eq!(got.submerged_volume, want.submerged_volume);
             assert!(got.deep < 1.0, "{}", got.deep);
         }
+    }
+}
+
+/// What the tiles' tolerance costs, against what it is set against: at
+/// 128², where a body's tiles are a fifth of its size, the tiled read of a
+/// patch departs from the per-texel read of the same patch by a small part
+/// of that patch's own error against the exact surface (the largest of
+/// each over a run of poses afloat on the swell, in both buoyancy modes).
+#[test]
+fn at_128_the_tiles_add_a_small_part_of_the_patchs_own_error() {
+    for (name, mesh) in [
+        ("box", builtin::cuboid(1.0, 0.6, 0.8)),
+        ("ball", builtin::sphere(0.3, 32, 16)),
+    ] {
+        let atlas = Atlas::bake(&mesh, BakeOptions::square(128)).unwrap();
+        let tiled = TiledAtlas::new(&atlas);
+        let mass = MassModel::Solid { density: 500.0 }
+            .mass_properties(&atlas)
+            .unwrap();
+        let (volume, radius) = (atlas.volume(), atlas.bounding_radius());
+        let sea = swell();
+        let (mut tiles, mut patch) = ([0.0f64; 4], [0.0f64; 4]);
+        let mut closed = 0;
+        for i in 0..6 {
+            let f = i as f64;
+            let t = 0.37 * f;
+            let (x, z) = (8.0 * (0.7 * f).cos(), 8.0 * (0.7 * f).sin());
+            let y = sea.surface.height(x, z, t) + 0.15 * radius * (1.3 * f).sin();
+            let state = BodyState::at_rest(Isometry3::from_parts(
+                Vector3::new(x, y, z).into(),
+                UnitQuaternion::from_euler_angles(0.3 * f.sin(), 0.2 * (0.5 * f).cos(), 0.3 * f),
+            ));
+            for mode in [BuoyancyMode::Archimedes, BuoyancyMode::Pressure] {
+                let options = HydroOptions {
+                    buoyancy: mode,
+                    sea: SeaSampling::PerWavelength(16.0),
+                    ..HydroOptions::default()
+                };
+                let water = sampled_water(&atlas, &sea, &state, t, &options).unwrap().unwrap();
+                let (got, counts) = tiled
+                    .evaluate_counted(&atlas, &water, &state, &mass, t, &options)
+                    .unwrap();
+                closed += counts.submerged;
+                let texels = evaluate(&atlas, &water, &state, &mass, t, &options).unwrap();
+                let exact_read = HydroOptions {
+                    sea: SeaSampling::Exact,
+                    ..options
+                };
+                let exact = evaluate(&atlas, &sea, &state, &mass, t, &exact_read).unwrap();
+                for (worst, d) in [
+                    (&mut tiles, differences(&got, &texels, volume, radius)),
+                    (&mut patch, differences(&texels, &exact, volume, radius)),
+                ] {
+                    for (w, d) in worst.iter_mut().zip(d) {
+                        *w = w.max(d);
+                    }
+                }
+            }
+        }
+        println!(
+            "{name} 128²: tiles against texels {tiles:?}, patch against exact {patch:?}, {closed} tiles closed"
+        );
+        assert!(closed > 0, "{name}: no tile in closed form");
+        // Volume and force: a tenth of the patch's own error; the centre of
+        // buoyancy, half (on the box a fifth, on the ball a third: at a
+        // tenth of this tolerance, a twentieth of it, with a fifth as many
+        // tiles in closed form).
+        for (k, part) in [(0, 0.1), (1, 0.5), (2, 0.1)] {
+            assert!(
+                tiles[k] < part * patch[k],
+                "{name}: {k}: tiles {:.2e} against the patch's {:.2e}",
+                tiles[k],
+                patch[k]
+            );
+        }
+        // The torque: within 2e-5 of the displaced weight times the radius
+        // (the ball's own is all but zero by its symmetry).
+        assert!(tiles[3] < 2e-5, "{name}: torque {:.2e}", tiles[3]);
     }
 }
