@@ -42,25 +42,22 @@ pub use self::sea::SEA_TILE_TOLERANCE;
 /// microseconds, about what handing one to another thread costs.
 const SIDE_BY_SIDE: usize = 32_768;
 
-/// Moments of one tile's texels, relative to the atlas origin.
+/// Moments of one tile's texels, relative to the atlas origin: the
+/// atlas' own ([`soak_bake::TexelMoments`], which it dereferences to:
+/// `m.s0`, `m.radius`, ...) and where its texels lie in the atlas.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TileMoments {
-    /// Σ A, m².
-    pub s0: Vector3<f64>,
-    /// `s1[(j, k)] = Σ A_j x_k`, m³.
-    pub s1: Matrix3<f64>,
-    /// `s2[j][(k, l)] = Σ A_j x_k x_l`, m⁴.
-    pub s2: [Matrix3<f64>; 3],
-    /// Σ a, m².
-    pub area: f64,
-    /// Bounding-sphere centre (relative to the atlas origin), m.
-    pub centre: Vector3<f64>,
-    /// Bounding-sphere radius, m.
-    pub radius: f64,
-    /// Half the sides of the bounding box about `centre` (object axes), m.
-    pub half_extent: Vector3<f64>,
+    /// The tile's moments, bounding sphere and box, as the atlas gives them.
+    pub moments: soak_bake::TexelMoments,
     /// Texel range in the atlas.
     pub range: (u32, u32),
+}
+
+impl std::ops::Deref for TileMoments {
+    type Target = soak_bake::TexelMoments;
+    fn deref(&self) -> &Self::Target {
+        &self.moments
+    }
 }
 
 impl TileMoments {
@@ -204,13 +201,7 @@ impl TiledAtlas {
             .zip(atlas.tile_moments())
             .map(|(t, a)| {
                 let m = TileMoments {
-                    s0: a.s0,
-                    s1: a.s1,
-                    s2: a.s2,
-                    area: a.area,
-                    centre: a.centre,
-                    radius: a.radius,
-                    half_extent: a.half_extent,
+                    moments: *a,
                     range: (t.start, t.end),
                 };
                 let (mut dm, mut hbox) = (DragMoments::default(), HBox::default());
