@@ -64,19 +64,21 @@ use crate::water::{Surface, SurfacePatch};
 /// texels. The cubic term is odd about the tile's centre, so what the sums
 /// feel of it is far smaller than the estimate. The tolerance is set
 /// against the patch's own error, which is what the tiles add to: at 128²
-/// on the two-wave swell (a 1 × 0.6 × 0.8 m box, a 0.3 m ball and a 4 m
-/// boat, 60 poses each in both buoyancy modes, at 16 nodes per shortest
-/// wave) the tiled read departs from the per-texel read of the same patch
-/// by at most 3e-6 of the volume, 7e-6 of the force (of the displaced
-/// water's weight) and 2e-5 of the torque (of that times the bounding
-/// radius), where the patch itself is 1e-5 to 1e-4 of the volume and 4e-5
-/// to 1e-4 of the force from the exact surface. A tenth of this tolerance
-/// (1e-4, as it was) took those departures to 2e-7, 7e-7 and 6e-6 and sent
-/// most of each body's tiles at 128² through the patch's cells, for 1.4 to
-/// 1.8 times the evaluation's time. `tests/tiled_sea.rs` holds a sphere at
-/// 384² and the boat at 256² to the per-texel read (within 1e-6 of the
-/// volume and the centre, 1e-5 of the force and the torque); `soak
-/// accuracy` puts each read against the exact inversion.
+/// on the two-wave swell (a 1 × 0.6 × 0.8 m box and a 0.3 m ball, six
+/// poses afloat each in both buoyancy modes, 16 nodes per shortest wave;
+/// `cargo test -p soak-hydro --test tiled_sea -- --nocapture` prints them)
+/// the tiled read departs from the per-texel read of the same patch by at
+/// most 9e-7 of the volume, 1.3e-6 of the force (of the displaced water's
+/// weight), 6e-6 of the centre of buoyancy (of the bounding radius) and
+/// 6e-6 of the torque (of the weight times the radius), where the patch
+/// itself is 1.3e-5 to 1.9e-5 of the volume and 2e-5 of the force from
+/// the exact surface. A tenth of this tolerance (1e-4, as it was) took
+/// those departures to 9e-8, 1e-7, 7e-7 and 1.2e-6, with a fifth as many
+/// tiles in closed form: most of each body's tiles at 128² went through
+/// the patch's cells. The same test holds a sphere at 384² and the boat at
+/// 256² to the per-texel read (within 1e-6 of the volume and the centre,
+/// 1e-5 of the force and the torque); `soak accuracy` puts each read
+/// against the exact inversion.
 pub const SEA_TILE_TOLERANCE: f64 = 1e-3;
 
 /// How far a tile's texels may read the surface from its polynomial in a

@@ -501,8 +501,9 @@ mod tests {
 
     /// A grid's velocities, each column's phases taken once, are the
     /// velocity read node by node under the surface (and the surface's own
-    /// above it), to the bit, and the velocity read afresh: layers from below the troughs, where the
-    /// decay is exponential, to above the crests.
+    /// above it), to the bit, and the velocity read afresh: layers from
+    /// below the troughs, where the decay is exponential, to above the
+    /// crests.
     #[test]
     fn a_columns_velocities_are_its_nodes_own() {
         let sea = Gerstner::new(0.1, GerstnerWave::SWELL.to_vec(), 9.81).unwrap();
