@@ -199,14 +199,7 @@ impl Gerstner {
     /// [`Self::invert`] stopping once the residual `|r_x| + |r_z|` is
     /// below `within` (m) or below `1e-12 (1 + |x| + |z|)`, whichever is
     /// larger.
-    fn invert_within(
-        &self,
-        x: f64,
-        z: f64,
-        t: f64,
-        shift: [f64; 2],
-        within: f64,
-    ) -> (f64, f64, Option<Jet>) {
+    fn invert_within(&self, x: f64, z: f64, t: f64, shift: [f64; 2], within: f64) -> (f64, f64, Option<Jet>) {
         let tolerance = within.max(1e-12 * (1.0 + x.abs() + z.abs()));
         // Newton's method on P(x0) = (x, z), with the Jacobian
         // J = I − Σ Q A k cos θ d dᵀ; a fixed-point step where J is near
@@ -674,7 +667,9 @@ mod tests {
                     ds = ds.max((node.slope[0] - s[0]).abs() + (node.slope[1] - s[1]).abs());
                     dt = dt.max((node.twist.unwrap() - h[0][1]).abs());
                 }
-                eprintln!("scale {scale} t {t}: height {dh:.1e} slope {ds:.1e} twist {dt:.1e} (A k^2 {curvature:.2})");
+                eprintln!(
+                    "scale {scale} t {t}: height {dh:.1e} slope {ds:.1e} twist {dt:.1e} (A k^2 {curvature:.2})"
+                );
                 assert!(dh < 1e-13 * shortest, "height off by {dh} at t = {t}");
                 assert!(ds < 1e-10, "slope off by {ds} at t = {t}");
                 assert!(dt < 1e-5 * curvature, "twist off by {dt} at t = {t}");
