@@ -87,12 +87,24 @@ impl WaveCache {
     /// Linear theory's velocity of this wave (m/s) at height `y` (m) above
     /// the mean level, where its phase has the sine and cosine `(s, c)`.
     #[inline(always)]
-    fn velocity(&self, (s, c): (f64, f64), y: f64) -> Vector3<f64> {
-        // Above the mean level, continued linearly: the exponential's
-        // growth to the crests of steep waves is not linear theory's.
+    fn velocity(&self, phase: (f64, f64), y: f64) -> Vector3<f64> {
+        self.velocity_at_speed(phase, self.speed(y))
+    }
+
+    /// The orbital speed of this wave (m/s) at height `y` (m) above the
+    /// mean level: `a ω e^{k y}` below it, continued linearly above it (the
+    /// exponential's growth to the crests of steep waves is not linear
+    /// theory's).
+    #[inline(always)]
+    fn speed(&self, y: f64) -> f64 {
         let z = self.k * y;
         let decay = if z > 0.0 { 1.0 + z } else { z.exp() };
-        let speed = self.a * self.omega * decay;
+        self.a * self.omega * decay
+    }
+
+    /// [`WaveCache::velocity`] at a known [`WaveCache::speed`].
+    #[inline(always)]
+    fn velocity_at_speed(&self, (s, c): (f64, f64), speed: f64) -> Vector3<f64> {
         Vector3::new(speed * c * self.dir.x, speed * s, speed * c * self.dir.y)
     }
 }
@@ -488,11 +500,14 @@ impl Surface for Gerstner {
         }
     }
 
-    /// Each column's phases taken once for all its nodes: a wave's
-    /// velocity at a node is its phase's sine and cosine (the same down the
-    /// column) times its decay with depth, so a column of `n` nodes costs
-    /// one sine and cosine per wave and `n` decays, not `n` of each. The
-    /// same values as [`Surface::velocity_under`] at every node, to the bit.
+    /// Each column's phases taken once for all its nodes, each layer's
+    /// decays once for all its columns: a wave's velocity at a node is its
+    /// phase's sine and cosine (the same down the column) times its speed
+    /// at the node's height (the same across the layer, where the node is
+    /// under the surface), so a grid of `c` columns and `l` layers costs
+    /// `c` sines and cosines and `l` exponentials per wave, not `c l` of
+    /// each. The same values as [`Surface::velocity_under`] at every node,
+    /// to the bit.
     fn sample_velocities(
         &self,
         t: f64,
@@ -504,14 +519,30 @@ impl Surface for Gerstner {
         out: &mut [Vector3<f64>],
     ) {
         let n = nodes[0] * nodes[1];
-        let mut phases = vec![(0.0, 0.0); self.cache.len()];
+        let waves = self.cache.len();
+        let mut phases = vec![(0.0, 0.0); waves];
+        // speeds[l * waves + i]: wave i's speed at layer l.
+        let speeds: Vec<f64> = ys
+            .iter()
+            .flat_map(|&y| self.cache.iter().map(move |w| w.speed(y - self.level)))
+            .collect();
         for (k, column) in columns.iter().enumerate().take(n) {
             let [x, z] = node_at(origin, spacing, nodes, k);
             for (phase, w) in phases.iter_mut().zip(&self.cache) {
                 *phase = (w.k * (w.dir.x * x + w.dir.y * z) - w.omega * t + w.phase).sin_cos();
             }
             for (l, &y) in ys.iter().enumerate() {
-                out[l * n + k] = self.velocity_with(&phases, y.min(column.height));
+                out[l * n + k] = if y <= column.height {
+                    let layer = &speeds[l * waves..(l + 1) * waves];
+                    let mut v = Vector3::zeros();
+                    for ((&phase, w), &speed) in phases.iter().zip(&self.cache).zip(layer) {
+                        v += w.velocity_at_speed(phase, speed);
+                    }
+                    v
+                } else {
+                    // Above the surface: the surface's.
+                    self.velocity_with(&phases, column.height)
+                };
             }
         }
     }
