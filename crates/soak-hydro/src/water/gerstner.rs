@@ -485,7 +485,13 @@ impl Surface for Gerstner {
             }
             // The jet is of the particle at `(x, z) + r`, `r` its residual:
             // its height and slope taken back to the node to first order.
-            let r = [jet.position[0] - x, jet.position[1] - z];
+            // Where the iterations ran out (the sharpest crests), the last
+            // iterate's own, as it is.
+            let r = if solved {
+                [jet.position[0] - x, jet.position[1] - z]
+            } else {
+                [0.0, 0.0]
+            };
             let s = jet.slope();
             let h = Self::hessian(&jet, s);
             *slot = SurfaceNode {
@@ -704,6 +710,44 @@ mod tests {
                 assert!(dh < 1e-13 * shortest, "height off by {dh} at t = {t}");
                 assert!(ds < 1e-10, "slope off by {ds} at t = {t}");
                 assert!(dt < 1e-5 * curvature, "twist off by {dt} at t = {t}");
+            }
+        }
+    }
+
+    /// Crests as sharp as a Gerstner sea makes them (steepness 1, a cusp
+    /// where the map's Jacobian is singular): every node finite, its
+    /// height within the waves' reach of the level, wherever Newton's
+    /// iterations end.
+    #[test]
+    fn nodes_at_cusped_crests_stay_finite() {
+        let waves = vec![
+            GerstnerWave {
+                amplitude: 0.4,
+                wavelength: 6.0,
+                direction_deg: 0.0,
+                steepness: 1.0,
+                phase: 0.0,
+            },
+            GerstnerWave {
+                amplitude: 0.1,
+                wavelength: 2.5,
+                direction_deg: 50.0,
+                steepness: 1.0,
+                phase: 0.3,
+            },
+        ];
+        let sea = Gerstner::new(0.0, waves, 9.81).unwrap();
+        let nodes = [40, 30];
+        for t in [0.0, 0.9, 2.3] {
+            let mut out = vec![SurfaceNode::default(); nodes[0] * nodes[1]];
+            sea.sample_nodes(t, [-5.0, -3.0], 2.5 / 16.0, nodes, &mut out);
+            for (k, node) in out.iter().enumerate() {
+                let values = [node.height, node.slope[0], node.slope[1], node.twist.unwrap()];
+                assert!(
+                    values.iter().all(|v| v.is_finite()),
+                    "node {k} at t = {t}: {node:?}"
+                );
+                assert!(node.height.abs() <= 0.5 + 1e-9, "node {k} at t = {t}: {node:?}");
             }
         }
     }
