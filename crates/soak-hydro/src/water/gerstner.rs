@@ -452,7 +452,7 @@ impl Surface for Gerstner {
         let (mut left, mut below): (Option<Solved>, Option<Solved>) = (None, None);
         let mut hint = [0.0; 2];
         // Newton stops within a ten-millionth of the shortest wave: the
-        // first-order step back to the node below leaves errors of the
+        // first-order step back to the node leaves errors of the
         // order of the residual squared (2e-13 m in height on a 4 m wave
         // of 0.1 m), and in the twist of the residual (2e-7 1/m there).
         let k_max = self.cache.iter().map(|w| w.k).fold(0.0, f64::max);
