@@ -512,7 +512,8 @@ impl Surface for Gerstner {
     /// at the node's height (the same across the layer, where the node is
     /// under the surface), so a grid of `c` columns and `l` layers costs
     /// `c` sines and cosines and `l` exponentials per wave, not `c l` of
-    /// each. The same values as [`Surface::velocity_under`] at every node,
+    /// each; the layers above a column's surface, which all take the
+    /// surface's velocity, take it once. The same values as [`Surface::velocity_under`] at every node,
     /// to the bit.
     fn sample_velocities(
         &self,
@@ -537,6 +538,9 @@ impl Surface for Gerstner {
             for (phase, w) in phases.iter_mut().zip(&self.cache) {
                 *phase = (w.k * (w.dir.x * x + w.dir.y * z) - w.omega * t + w.phase).sin_cos();
             }
+            // Above the surface every layer takes the surface's velocity:
+            // taken once for the column, at its first layer above it.
+            let mut surface = None;
             for (l, &y) in ys.iter().enumerate() {
                 out[l * n + k] = if y <= column.height {
                     let layer = &speeds[l * waves..(l + 1) * waves];
@@ -546,8 +550,7 @@ impl Surface for Gerstner {
                     }
                     v
                 } else {
-                    // Above the surface: the surface's.
-                    self.velocity_with(&phases, column.height)
+                    *surface.get_or_insert_with(|| self.velocity_with(&phases, column.height))
                 };
             }
         }
