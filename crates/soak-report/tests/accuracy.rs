@@ -198,8 +198,10 @@ fn quick_report_holds_its_promises() {
     // mesh the plane holds less of the surface than the sampled read (its
     // torque and drag errors are larger; its volume, the sea's mean over
     // the section, may not be: the sphere's on JONSWAP is within the
-    // sampled read's).
-    assert_eq!(report.plane.len(), 6, "2 seas × 3 meshes");
+    // sampled read's). On the two-wave swell, whose shortest wave is
+    // four metres, every mesh is more than an eighth of it across: the
+    // plane's drag misses how the orbital velocity changes over the body.
+    assert_eq!(report.plane.len(), 9, "3 seas × 3 meshes");
     for r in &report.plane {
         let errors = [r.volume_error, r.cob_error, r.torque_error, r.drag_error];
         assert!(errors.iter().all(|e| e.is_finite() && *e >= 0.0), "{r:?}");

@@ -11,7 +11,7 @@ use soak_bake::{Mesh, builtin};
 use soak_hydro::{BodyState, Drag, HydroForces, HydroOptions, SeaSampling, Water, evaluate};
 
 use super::AccuracyError;
-use super::sea::{Baked, short_sea};
+use super::sea::{Baked, short_sea, swell};
 use super::timing::per_call_ms;
 
 /// One mesh on one sea.
@@ -117,9 +117,11 @@ fn errors(
 }
 
 /// The plane rows: the bench's box and sphere and the boat, on the
-/// bench's JONSWAP sea (Hs 2 m, Tp 8 s: [`crate::scaling::jonswap`]) and
-/// on the short sea of [`short_sea`] (its shortest wave 1.75 m, shorter
-/// than the boat); `runs` timed samples per path.
+/// bench's JONSWAP sea (Hs 2 m, Tp 8 s: [`crate::scaling::jonswap`]), on
+/// the short sea of [`short_sea`] (its shortest wave 1.75 m, shorter
+/// than the boat) and on the two-wave swell of [`swell`] (its shortest
+/// wave 4 m; the box is the crate of `twenty_on_swell.toml`, which reads
+/// it as one plane); `runs` timed samples per path.
 pub(super) fn plane_rows(resolution: u32, runs: usize) -> Result<Vec<PlaneRow>, AccuracyError> {
     // The bench's sea, as `crate::scaling::jonswap` makes it.
     let bench = Water::spectral(&soak_hydro::SeaSpectrum::jonswap(2.0, 8.0), 0)
@@ -127,6 +129,7 @@ pub(super) fn plane_rows(resolution: u32, runs: usize) -> Result<Vec<PlaneRow>, 
     let seas = [
         ("JONSWAP Hs 2 m, Tp 8 s", bench),
         ("JONSWAP Hs 0.5 m, Tp 3 s", short_sea()?),
+        ("two-wave swell", swell()?),
     ];
     let meshes: [(&str, Mesh); 3] = [
         ("box 1×0.6×0.8", builtin::cuboid(1.0, 0.6, 0.8)),

@@ -180,8 +180,9 @@ are the tiled path's per evaluation, sampling included.\n\n";
 /// What the plane rows are, before their table.
 const PLANE_INTRO: &str = "## A sea read as one plane over each body\n\n\
 The bench's box and sphere and the boat, on the bench's JONSWAP sea (significant height 2 m, peak \
-period 8 s, its shortest wave 12.5 m) and on the short sea above (its shortest wave 1.75 m), each \
-read as one plane over the body (`SeaSampling::Plane`: the plane through the mean over the body's \
+period 8 s, its shortest wave 12.5 m), on the short sea above (its shortest wave 1.75 m) and on the \
+two-wave swell above (its shortest wave 4 m; the box is the crate of `data/scenes/twenty_on_swell.toml`, \
+which reads it as planes), each read as one plane over the body (`SeaSampling::Plane`: the plane through the mean over the body's \
 horizontal section of the sea's second-order polynomial, from its heights at the section's \
 centroid and either way along its principal axes, tilted by their differences, the sea's velocity \
 at the centre of the body's bounding sphere as a uniform current) against the \
@@ -191,7 +192,10 @@ under the sea there, tilted and turned; the drag's poses the same, moving at 0.7
 worst relative difference of its force; beside them the sampled read's (16 nodes per \
 shortest wave, as the default read samples a body large against the waves) against the same \
 reference. The default read (`SeaSampling::Auto`) takes the plane for a body at most an eighth of \
-the shortest wave across: on the bench's sea the box and the sphere, not the boat. Times are the tiled path's per evaluation with drag, \
+the shortest wave across: on the bench's sea the box and the sphere, not the boat; on the swell \
+none of them. Where the relative flow is slow (a body carried along with the water), the \
+drag's worst relative error is large: the uniform current misses how the orbital velocity \
+changes over a body a quarter of a wave or more across. Times are the tiled path's per evaluation with drag, \
 the plane's reads or the patch's sampling included.\n\n";
 
 /// What the drag-texel rows are, before their table.
