@@ -34,7 +34,8 @@ struct Body {
     // Height field and patch: x = reference height - o_w.y (m); patch: y =
     // the velocity grid's coordinate along y of o_w.
     surface2: vec4<f32>,
-    // Uniform fluid velocity (plane, height field, unbounded), m/s.
+    // Fluid velocity (plane, height field, unbounded), m/s, at o_w where
+    // it changes linearly (flow0..flow2).
     current: vec4<f32>,
     // Centre of mass - o_w, world axes, m.
     com: vec4<f32>,
@@ -53,6 +54,11 @@ struct Body {
     // x: atlas slot (bounding radius for the unbounded medium). Patch: y =
     // first velocity coefficient, z = velocity nodes along y (0: none).
     slot: vec4<u32>,
+    // Rows of the current's gradient du_i/dp_j (1/s, world axes): the fluid
+    // moves at current + G r at r from o_w (zero but under a FlowPlane).
+    flow0: vec4<f32>,
+    flow1: vec4<f32>,
+    flow2: vec4<f32>,
 }
 
 // One Gerstner wave, with its phase at the body's origin and time folded in.

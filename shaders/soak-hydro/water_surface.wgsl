@@ -392,7 +392,7 @@ fn surface_slope(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec2<f32> {
 // waves linear theory's, a w e^(k (y - level)) along each wave (upward a
 // quarter period ahead) at the point's own phase, continued linearly above
 // the mean level up to the surface and the surface's above it; the
-// patch's sampled velocity; or the uniform current.
+// patch's sampled velocity; or the current, uniform or changing linearly.
 fn fluid_velocity(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec3<f32> {
     if (b.info.x == SURFACE_PATCH) {
         return patch_velocity(b, r);
@@ -401,7 +401,7 @@ fn fluid_velocity(b: Body, r: vec3<f32>, sp: SurfacePoint) -> vec3<f32> {
         return spectral_velocity(b, r, sp.depth);
     }
     if (b.info.x != SURFACE_GERSTNER) {
-        return b.current.xyz;
+        return b.current.xyz + vec3<f32>(dot(b.flow0.xyz, r), dot(b.flow1.xyz, r), dot(b.flow2.xyz, r));
     }
     let y = min(r.y, r.y + sp.depth) - b.surface.x;
     var v = vec3<f32>(0.0);

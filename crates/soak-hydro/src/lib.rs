@@ -44,9 +44,10 @@ pub use self::tiled::{
     DragTexels, SEA_TILE_TOLERANCE, TileCounts, TileMoments, TiledAtlas, evaluate_with_drag,
 };
 pub use self::water::{
-    AIR_DENSITY, DEFAULT_SEA_CELLS, Gerstner, GerstnerWave, HeightField, MAX_PATCH_NODES, ParticleJet, Plane,
-    SEA_CELLS, STANDARD_GRAVITY, SeaFields, SeaMode, SeaSpectrum, SpectralSea, SpectralSurface,
-    SpectrumShape, Surface, SurfaceKind, SurfaceNode, SurfacePatch, Unbounded, WATER_DENSITY, Water,
+    AIR_DENSITY, DEFAULT_SEA_CELLS, FlowPlane, Gerstner, GerstnerWave, HeightField, MAX_PATCH_NODES,
+    ParticleJet, Plane, SEA_CELLS, STANDARD_GRAVITY, SeaFields, SeaMode, SeaSpectrum, SpectralSea,
+    SpectralSurface, SpectrumShape, Surface, SurfaceKind, SurfaceNode, SurfacePatch, Unbounded,
+    WATER_DENSITY, Water,
 };
 pub use self::water_plane::{WaterPlane, water_plane};
 pub use self::waves::{InteractiveWaves, MAX_WAVE_CELLS, WaveHeights, WaveRegion, WavesState};

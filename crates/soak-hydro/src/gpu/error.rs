@@ -23,8 +23,8 @@ pub enum GpuHydroError {
     EmptyAtlas,
     /// A water surface the GPU cannot evaluate (a custom [`crate::Surface`]).
     #[error(
-        "body {body}: the GPU evaluates Plane, Gerstner, HeightField, SurfacePatch and Unbounded \
-         surfaces only; evaluate custom surfaces with soak_hydro::evaluate"
+        "body {body}: the GPU evaluates Plane, FlowPlane, Gerstner, HeightField, SpectralSurface, SurfacePatch \
+         and Unbounded surfaces only; evaluate custom surfaces with soak_hydro::evaluate"
     )]
     UnsupportedSurface {
         /// Index of the body in the batch.

@@ -82,7 +82,8 @@ pub struct Body {
     /// reference height − o_w.y (m); patch: y = the velocity grid's
     /// coordinate along y of o_w.
     pub surface2: [f32; 4],
-    /// Uniform fluid velocity (plane, height field, unbounded), m/s.
+    /// Fluid velocity (plane, height field, unbounded), m/s: uniform, or
+    /// at o_w where the current changes linearly (`flow0`..`flow2`).
     pub current: [f32; 4],
     /// Centre of mass − o_w, world axes, m.
     pub com: [f32; 4],
@@ -102,6 +103,14 @@ pub struct Body {
     /// y = first velocity coefficient, z = velocity nodes along y (0 when
     /// the patch has no velocities).
     pub slot: [u32; 4],
+    /// Rows of the current's gradient `∂u_i/∂p_j` (1/s, world axes; w
+    /// unused): the fluid moves at `current + G r` at `r` from o_w. Zero
+    /// but under a [`FlowPlane`](crate::FlowPlane).
+    pub flow0: [f32; 4],
+    /// Second row of the current's gradient.
+    pub flow1: [f32; 4],
+    /// Third row of the current's gradient.
+    pub flow2: [f32; 4],
 }
 
 /// An atlas's texels as the kernels read them: two vec4s per texel, the
@@ -187,7 +196,7 @@ mod tests {
 
     #[test]
     fn sizes_match_the_wgsl() {
-        assert_eq!(size_of::<Body>(), 12 * 16);
+        assert_eq!(size_of::<Body>(), 15 * 16);
         assert_eq!(size_of::<Wave>(), 32);
         assert_eq!(size_of::<Item>(), 16);
         assert_eq!(size_of::<Dispatch>(), 32);

@@ -9,7 +9,7 @@ use super::layout::{
     SURFACE_PATCH, SURFACE_PLANE, SURFACE_UNBOUNDED, Wave, u32_indexed,
 };
 use crate::error::WaterError;
-use crate::water::{Gerstner, HeightField, Plane, SurfacePatch, Unbounded, Water};
+use crate::water::{FlowPlane, Gerstner, HeightField, Plane, SurfacePatch, Unbounded, Water};
 
 /// The height samples of the height fields of one batch and the cell
 /// coefficients of its sampled surfaces ([`SurfacePatch`]), each field or
@@ -181,7 +181,8 @@ pub fn encode_surface(
         .surface
         .as_any()
         .ok_or(GpuHydroError::UnsupportedSurface { body: index })?;
-    if let Some(p) = any.downcast_ref::<Plane>() {
+    let flow = any.downcast_ref::<FlowPlane>();
+    if let Some(p) = any.downcast_ref::<Plane>().or(flow.map(|f| &f.plane)) {
         let n = p.normal;
         if !(n.iter().all(|c| c.is_finite()) && n.y > 0.0 && p.offset.is_finite()) {
             return Err(GpuHydroError::Water {
@@ -192,6 +193,14 @@ pub fn encode_surface(
         body.info[0] = SURFACE_PLANE;
         body.surface = v4(&n, p.offset - n.dot(ow));
         body.current = v4(&p.current, 0.0);
+        // A current changing linearly: its velocity at o_w and its rows.
+        if let Some(f) = flow {
+            let g = &f.gradient;
+            body.current = v4(&(p.current + g * (ow - f.about.coords)), 0.0);
+            body.flow0 = v4(&g.row(0).transpose(), 0.0);
+            body.flow1 = v4(&g.row(1).transpose(), 0.0);
+            body.flow2 = v4(&g.row(2).transpose(), 0.0);
+        }
     } else if let Some(g) = any.downcast_ref::<Gerstner>() {
         body.info[0] = SURFACE_GERSTNER;
         body.info[1] = waves.len() as u32;

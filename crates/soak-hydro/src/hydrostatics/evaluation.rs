@@ -544,8 +544,14 @@ impl<'a> Tiles<'a> {
 /// taken as the disc of the bounding radius about the centre: the heights
 /// at the centre and [`PLANE_READ_REACH`] of the radius away along x and
 /// z. The fluid's velocity at the centre (with drag; still water without)
-/// is carried as a uniform current. `None` where the options read the sea
-/// otherwise or the surface is a plane already (or no free surface).
+/// is carried as a uniform current; for a body more than
+/// [`SeaSampling::PLANE_BELOW`] of the shortest wave across (or on a
+/// surface without a shortest wave), with its gradient there too
+/// ([`FLOW_GRADIENT_STEP`]), as a current changing linearly over the body
+/// ([`crate::FlowPlane`]): over such a body the orbital velocity changes
+/// as much as the body moves through the water. `None` where the options
+/// read the sea otherwise or the surface is a plane already (or no free
+/// surface).
 pub(crate) fn plane_around(
     origin: Point3<f64>,
     radius: f64,
@@ -633,9 +639,35 @@ pub(crate) fn plane_around(
         };
         (Point3::new(c.x, level, c.z), slope)
     };
-    let plane = crate::water::Plane::tilted(at, Vector3::new(-slope[0], 1.0, -slope[1]))?;
-    Ok(Some(water.under(plane.with_current(velocity))))
+    let plane =
+        crate::water::Plane::tilted(at, Vector3::new(-slope[0], 1.0, -slope[1]))?.with_current(velocity);
+    let small = surface
+        .sampling_length(t)
+        .is_some_and(|shortest| 2.0 * radius <= SeaSampling::PLANE_BELOW * shortest);
+    if options.drag.is_none() || small {
+        return Ok(Some(water.under(plane)));
+    }
+    // The velocity's derivatives at the centre by central differences,
+    // each point read under the centre's surface height.
+    let h = FLOW_GRADIENT_STEP * radius.max(f64::MIN_POSITIVE);
+    let mut gradient = nalgebra::Matrix3::zeros();
+    for j in 0..3 {
+        let mut d = Vector3::zeros();
+        d[j] = h;
+        let up = surface.velocity_under(&(c + d), t, centre, &hint);
+        let down = surface.velocity_under(&(c - d), t, centre, &hint);
+        gradient.set_column(j, &((up - down) / (2.0 * h)));
+    }
+    if !gradient.iter().all(|g| g.is_finite()) {
+        return Ok(Some(water.under(plane)));
+    }
+    Ok(Some(water.under(plane.with_gradient(gradient, c))))
 }
+
+/// The step of the central differences that give a plane read's current
+/// its gradient ([`plane_around`]), as a fraction of the body's bounding
+/// radius: small, for the derivatives at the centre.
+pub(crate) const FLOW_GRADIENT_STEP: f64 = 1e-3;
 
 /// [`plane_around`] for a body of atlas `atlas`: about its bounding
 /// sphere, over its own section.

@@ -33,7 +33,7 @@ pub(crate) use self::patch::PatchGrid;
 #[cfg(feature = "gpu")]
 pub(crate) use self::patch::PatchVelocityGrid;
 pub use self::patch::{MAX_PATCH_NODES, SurfacePatch};
-pub use self::plane::Plane;
+pub use self::plane::{FlowPlane, Plane};
 pub use self::spectral_surface::SpectralSurface;
 pub use self::spectrum::{
     DEFAULT_SEA_CELLS, ParticleJet, SEA_CELLS, SeaFields, SeaMode, SeaSpectrum, SpectralSea, SpectrumShape,

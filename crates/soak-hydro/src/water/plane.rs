@@ -1,6 +1,7 @@
-//! A plane surface, horizontal or tilted, with a uniform current.
+//! A plane surface, horizontal or tilted, with a uniform current or one
+//! that changes linearly from place to place.
 
-use nalgebra::{Point3, Vector3};
+use nalgebra::{Matrix3, Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
 use super::{Surface, SurfaceKind};
@@ -48,6 +49,54 @@ impl Plane {
     pub fn with_current(mut self, current: Vector3<f64>) -> Self {
         self.current = current;
         self
+    }
+
+    /// The same plane with its current changing linearly over space: the
+    /// fluid moves at `current + gradient (p − about)` at `p`, `gradient`
+    /// the derivatives `∂u_i/∂p_j` (1/s, world axes) and `about` where the
+    /// current is [`Plane::current`] (m).
+    pub fn with_gradient(self, gradient: Matrix3<f64>, about: Point3<f64>) -> FlowPlane {
+        FlowPlane {
+            plane: self,
+            gradient,
+            about,
+        }
+    }
+}
+
+/// A [`Plane`] whose fluid's velocity changes linearly over space (see
+/// [`Plane::with_gradient`]): what a sea read as one plane over a body
+/// hands the body's drag when the body is large enough against the waves
+/// that the orbital velocity changes over it. Its surface and buoyancy are
+/// the plane's.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FlowPlane {
+    /// The plane, its current at [`FlowPlane::about`].
+    pub plane: Plane,
+    /// `∂u_i/∂p_j`, 1/s, world axes.
+    pub gradient: Matrix3<f64>,
+    /// Where the current is the plane's own, m.
+    pub about: Point3<f64>,
+}
+
+impl Surface for FlowPlane {
+    fn height_bounds(&self, t: f64) -> Option<(f64, f64)> {
+        self.plane.height_bounds(t)
+    }
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+    fn height(&self, x: f64, z: f64, t: f64) -> f64 {
+        self.plane.height(x, z, t)
+    }
+    fn slope(&self, x: f64, z: f64, t: f64, hint: &[f64; 2]) -> [f64; 2] {
+        self.plane.slope(x, z, t, hint)
+    }
+    fn velocity(&self, p: &Point3<f64>, _t: f64) -> Vector3<f64> {
+        self.plane.current + self.gradient * (p - self.about)
+    }
+    fn kind(&self, t: f64) -> SurfaceKind {
+        self.plane.kind(t)
     }
 }
 
