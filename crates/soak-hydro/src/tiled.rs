@@ -688,8 +688,17 @@ impl TiledAtlas {
             Some((_, u)) if wet => acc.system(&rot, &c, &u),
             // No drag texel under water: no drag.
             Some(_) => DragSums::default(),
-            // The fluid's velocity varies: per texel, with it where it is.
-            None => drag_sums(atlas, water, state, frame, &d, t, 0..atlas.len()),
+            // A current changing linearly under a plane: tile by tile.
+            None => match water
+                .surface
+                .as_any()
+                .and_then(|s| s.downcast_ref::<crate::FlowPlane>())
+            {
+                Some(flow) => self.flow_drag(atlas, frame, state, &d, water.density, flow),
+                // The fluid's velocity varies otherwise: per texel, with it
+                // where it is.
+                None => drag_sums(atlas, water, state, frame, &d, t, 0..atlas.len()),
+            },
         });
         (sums, drag, counts)
     }

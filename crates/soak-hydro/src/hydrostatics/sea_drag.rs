@@ -290,8 +290,10 @@ pub(crate) struct SeaDragFrame<'a> {
     pub rot: Matrix3<f64>,
     /// The atlas origin, world, m.
     pub ow: Vector3<f64>,
-    /// The sampled sea, with its velocities.
-    pub patch: &'a SurfacePatch,
+    /// The sampled sea, with its velocities; `None` under a plane whose
+    /// current changes linearly ([`crate::FlowPlane`]), whose every range
+    /// comes with its fluid (a range without one would read still water).
+    pub patch: Option<&'a SurfacePatch>,
 }
 
 impl<'a> SeaDragFrame<'a> {
@@ -319,7 +321,7 @@ impl<'a> SeaDragFrame<'a> {
                 params,
                 rot: frame.rot,
                 ow: frame.ow,
-                patch,
+                patch: Some(patch),
             },
             c,
         )
@@ -400,8 +402,15 @@ fn sea_drag_avx2(
                 })
             });
         }
+        // No patch and no fluid: still water.
+        None if frame.patch.is_none() => {
+            sea_drag_lanes_avx2(sums, atlas, range, depths, &frame.params, |_, _| {
+                [_mm256_setzero_pd(); 3]
+            });
+        }
         None => {
-            let (rot, ow, patch) = (&frame.rot, &frame.ow, frame.patch);
+            let (rot, ow) = (&frame.rot, &frame.ow);
+            let Some(patch) = frame.patch else { return };
             let r: [[__m256d; 3]; 3] =
                 std::array::from_fn(|i| std::array::from_fn(|j| _mm256_set1_pd(rot[(i, j)])));
             sea_drag_lanes_avx2(sums, atlas, range, depths, &frame.params, |x, wet| {
@@ -616,7 +625,9 @@ fn sea_drag_lanes<const FMA: bool>(
                     let v = madd::<FMA>(rot[(c, 1)], x[1][k], v);
                     madd::<FMA>(rot[(c, 2)], x[2][k], v)
                 });
-                let v = frame.patch.velocity_lanes::<FMA>(&p);
+                let v = frame
+                    .patch
+                    .map_or([0.0; 4], |patch| patch.velocity_lanes::<FMA>(&p));
                 for c in 0..3 {
                     uw[c][k] = v[c];
                 }
@@ -792,7 +803,7 @@ mod tests {
                 params,
                 rot,
                 ow: state.pose.translation.vector,
-                patch,
+                patch: Some(patch),
             };
             for start in [0, 1, 5, 6, 7] {
                 for len in [1, 2, 3, 4, 5, 15, 16, 17, 63, 64] {

@@ -311,6 +311,114 @@ impl<'a> DragWalk<'a> {
     }
 }
 
+impl TiledAtlas {
+    /// The drag under a plane whose current changes linearly over space
+    /// ([`crate::FlowPlane`]), as the system about the centre of mass in
+    /// world axes: each tile wholly under water in closed form, in the
+    /// fluid to first order about its centre (the linear current itself),
+    /// where its texels all face the flow alike
+    /// ([`SeaDragSums::add_tile`](crate::hydrostatics::sea_drag::SeaDragSums::add_tile));
+    /// every other submerged texel through the sea's drag kernel in the
+    /// same fluid. `frame` is the evaluation's, under the flow's plane.
+    pub(super) fn flow_drag(
+        &self,
+        atlas: &Atlas,
+        frame: &Frame,
+        state: &BodyState,
+        drag: &crate::Drag,
+        density: f64,
+        flow: &crate::FlowPlane,
+    ) -> DragSums {
+        use crate::hydrostatics::sea_drag::{LinearFluid, SeaDragLanes, SeaDragParams, SeaDragSums};
+        let Some((alpha, beta, _)) = frame.local_plane else {
+            return DragSums::default();
+        };
+        let rot = frame.rot;
+        let c = rot.transpose() * (frame.com - frame.ow);
+        let params = SeaDragParams::new(
+            drag,
+            density,
+            &rot,
+            &c,
+            &state.linear_velocity,
+            &state.angular_velocity,
+        );
+        let d = SeaDragFrame {
+            params,
+            rot,
+            ow: frame.ow,
+            patch: None,
+        };
+        // The fluid in object axes about the atlas origin: `u_o + U x`.
+        let grad = rot.transpose() * flow.gradient * rot;
+        let u_o = rot.transpose() * (flow.plane.current + flow.gradient * (frame.ow - flow.about.coords));
+        let fluid = |centre: &Vector3<f64>| LinearFluid {
+            u: u_o + grad * centre,
+            grad,
+            c: *centre,
+        };
+        let (bn, beta_abs) = (beta.norm(), beta.abs());
+        let classify = |m: &Bounds| {
+            let dc = alpha + beta.dot(&m.centre);
+            let reach = (bn * m.radius).min(beta_abs.dot(&m.half_extent));
+            if dc + reach <= 0.0 {
+                Side::Dry
+            } else if dc - reach > 0.0 {
+                Side::Submerged
+            } else {
+                Side::Cut { centre_wet: dc > 0.0 }
+            }
+        };
+        let xs = atlas.local_positions().columns(0..atlas.len());
+        use super::sea::GROUP_CHUNK;
+        let chunk = |k: usize| {
+            let groups = &self.groups[k * GROUP_CHUNK..((k + 1) * GROUP_CHUNK).min(self.groups.len())];
+            let mut sums = SeaDragSums::default();
+            let mut lanes = SeaDragLanes::default();
+            let mut depths = Vec::new();
+            for group in groups {
+                if classify(&group.bounds) == Side::Dry {
+                    continue;
+                }
+                for ti in group.tiles.clone() {
+                    let m = &self.tiles[ti];
+                    let range = m.range.0 as usize..m.range.1 as usize;
+                    let f = fluid(&m.centre);
+                    match classify(&m.bounds()) {
+                        Side::Dry => continue,
+                        Side::Submerged => {
+                            if self.add_tile_drag(&mut sums, ti, &d, &f) {
+                                continue;
+                            }
+                            depths.clear();
+                            depths.resize(range.len(), 1.0);
+                        }
+                        Side::Cut { .. } => {
+                            depths.clear();
+                            depths.extend(range.clone().map(|i| {
+                                alpha
+                                    + beta.x * f64::from(xs[0][i])
+                                    + beta.y * f64::from(xs[1][i])
+                                    + beta.z * f64::from(xs[2][i])
+                            }));
+                        }
+                    }
+                    lanes.add(atlas, range, &depths, &d, Some(&f));
+                }
+            }
+            sums + lanes.finish()
+        };
+        let mut total = SeaDragSums::default();
+        par_fold(
+            self.groups.len().div_ceil(GROUP_CHUNK),
+            chunk,
+            &mut total,
+            |total, part| *total += part,
+        );
+        total.system(&rot, &c)
+    }
+}
+
 /// Drag moments of runs of consecutive tiles, from the running sums: the
 /// skin friction's (`LINEAR`, which [`DragMoments::add_linear`] reads) or
 /// the quadratic part's (which [`DragMoments::add_quadratic`] reads), the

@@ -95,7 +95,7 @@ pub const SEA_TILE_TOLERANCE: f64 = 1e-3;
 const SEA_DRAG_DEPTH_TOLERANCE: f64 = 1e-2;
 
 /// Groups of tiles per parallel task.
-const GROUP_CHUNK: usize = 32;
+pub(super) const GROUP_CHUNK: usize = 32;
 
 /// One evaluation's constants.
 struct SeaTiles<'a> {
@@ -216,11 +216,12 @@ impl TiledAtlas {
         // the interpolant's own error.
         let tile_fluid = |ti: usize| -> Option<TileFluid> {
             let d = drag.filter(|_| detail == SeaVelocity::PerTile)?;
-            if self.tiles[ti].radius > 0.5 * d.patch.spacing() {
+            let patch = d.patch?;
+            if self.tiles[ti].radius > 0.5 * patch.spacing() {
                 return None;
             }
             let centre = self.tiles[ti].centre;
-            let (u, grad) = d.patch.velocity_gradient_at(&(d.ow + d.rot * centre));
+            let (u, grad) = patch.velocity_gradient_at(&(d.ow + d.rot * centre));
             let fluid = LinearFluid {
                 u: d.rot.transpose() * u,
                 grad: d.rot.transpose() * grad * d.rot,
@@ -334,7 +335,7 @@ impl TiledAtlas {
     /// Adds the drag of tile `ti`, wholly under water in `fluid`, in closed
     /// form; `false` (nothing added) where its texels may not all face the
     /// flow alike.
-    fn add_tile_drag(
+    pub(super) fn add_tile_drag(
         &self,
         sums: &mut SeaDragSums,
         ti: usize,
