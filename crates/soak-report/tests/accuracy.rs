@@ -199,8 +199,11 @@ fn quick_report_holds_its_promises() {
     // torque and drag errors are larger; its volume, the sea's mean over
     // the section, may not be: the sphere's on JONSWAP is within the
     // sampled read's). On the two-wave swell, whose shortest wave is
-    // four metres, every mesh is more than an eighth of it across: the
-    // plane's drag misses how the orbital velocity changes over the body.
+    // four metres, every mesh is more than an eighth of it across, and
+    // its plane carries a current changing linearly over it: the box (the
+    // twenty-body scene's crate) and the sphere within a quarter of their
+    // drag where they move with the water (a uniform current there is off
+    // by more than their drag itself).
     assert_eq!(report.plane.len(), 9, "3 seas × 3 meshes");
     for r in &report.plane {
         let errors = [r.volume_error, r.cob_error, r.torque_error, r.drag_error];
@@ -211,6 +214,9 @@ fn quick_report_holds_its_promises() {
         );
         if r.sea.contains("Hs 2 m") && !r.mesh.starts_with("boat") {
             assert!(r.volume_error < 1e-4 && r.drag_error < 0.1, "{r:?}");
+        }
+        if r.sea.contains("swell") && !r.mesh.starts_with("boat") {
+            assert!(r.volume_error < 1e-3 && r.drag_error < 0.25, "{r:?}");
         }
     }
     assert!(table.contains("## A sea read as one plane over each body"));

@@ -153,11 +153,18 @@ pub enum SeaSampling {
     /// what it displaces under any quadratic surface, whatever the shape of
     /// its waterplane. A body wholly above or under the surface there
     /// takes the disc of its bounding radius `r` for its section (heights
-    /// at the centre and `√(5/8) r` away along x and z). The plane drops
-    /// the surface's higher terms over the hull and the fluid velocity's
-    /// change across it: `soak accuracy`'s plane rows give what that costs
-    /// against the exact read. Any surface that is not a plane is read so,
-    /// height fields and surfaces of your own too.
+    /// at the centre and `√(5/8) r` away along x and z). With drag, a body
+    /// more than [`SeaSampling::PLANE_BELOW`] of the shortest wave across
+    /// (or on a surface without one) also takes the velocity's gradient at
+    /// its centre ([`crate::FlowPlane`]): the current changes linearly over
+    /// it, as the orbital velocity does over a body that long (on the
+    /// two-wave swell, the 1 m box's drag within 19 % of the exact read
+    /// where it moves with the water, against 130 % with one current), its
+    /// drag summed tile by tile in that current. The plane drops the
+    /// surface's higher terms over the hull and the velocity's beyond the
+    /// first: `soak accuracy`'s plane rows give what that costs against
+    /// the exact read. Any surface that is not a plane is read so, height
+    /// fields and surfaces of your own too.
     Plane,
     /// Each body as it is against the waves it reads (the default): one
     /// plane over a body whose bounding diameter is at most

@@ -185,7 +185,9 @@ two-wave swell above (its shortest wave 4 m; the box is the crate of `data/scene
 which reads it as planes), each read as one plane over the body (`SeaSampling::Plane`: the plane through the mean over the body's \
 horizontal section of the sea's second-order polynomial, from its heights at the section's \
 centroid and either way along its principal axes, tilted by their differences, the sea's velocity \
-at the centre of the body's bounding sphere as a uniform current) against the \
+at the centre of the body's bounding sphere as a uniform current; for a body more than an eighth \
+of the shortest wave across, with its gradient there too, a current changing linearly over the \
+body) against the \
 exact read at every texel (`SeaSampling::Exact`). Six poses along each sea, the body's centre 0.1 m \
 under the sea there, tilted and turned; the drag's poses the same, moving at 0.7 m/s and turning at \
 0.46 rad/s (C_d = 0.8, skin friction 20 N·s/m³). Errors as in the rows above, the drag's as the \
@@ -194,8 +196,8 @@ shortest wave, as the default read samples a body large against the waves) again
 reference. The default read (`SeaSampling::Auto`) takes the plane for a body at most an eighth of \
 the shortest wave across: on the bench's sea the box and the sphere, not the boat; on the swell \
 none of them. Where the relative flow is slow (a body carried along with the water), the \
-drag's worst relative error is large: the uniform current misses how the orbital velocity \
-changes over a body a quarter of a wave or more across. Times are the tiled path's per evaluation with drag, \
+drag's worst relative error is the largest: a linear current is the velocity's change over \
+the body to first order, and the waves shorter than the body bend it further. Times are the tiled path's per evaluation with drag, \
 the plane's reads or the patch's sampling included.\n\n";
 
 /// What the drag-texel rows are, before their table.
