@@ -453,3 +453,99 @@ fn the_default_read_takes_each_body_as_it_is_against_the_waves() {
     let b = evaluate(&atlas, &field, &state, &mass, 0.0, &options(SeaSampling::Exact)).unwrap();
     assert_eq!(a, b, "a height field");
 }
+
+/// With drag, a body more than an eighth of the shortest wave across reads
+/// the sea as a plane whose current changes linearly over it (the
+/// velocity's gradient at its centre): its drag summed tile by tile agrees
+/// with the per-texel sum under the same plane, and against the exact read
+/// it is several times closer than the plane's current held uniform over
+/// the body. A body within an eighth, or one without drag, reads a plane
+/// with one current.
+#[test]
+fn a_large_body_reads_the_currents_gradient_with_its_plane() {
+    let sea = Water::new(Gerstner::new(0.0, GerstnerWave::SWELL.to_vec(), 9.80665).unwrap());
+    let drag = HydroOptions {
+        drag: Some(Drag {
+            coefficient: 0.8,
+            linear: 20.0,
+        }),
+        sea: SeaSampling::Plane,
+        ..HydroOptions::default()
+    };
+    let kind = |atlas: &Atlas, options: &HydroOptions, state: &BodyState, t: f64| {
+        let read = sampled_water(atlas, &sea, state, t, options).unwrap().unwrap();
+        let any = read.surface.as_any().unwrap();
+        (any.is::<soak_hydro::FlowPlane>(), any.is::<Plane>())
+    };
+    // The swell's shortest wave is 4 m: a 0.4 m ball is within an eighth.
+    let (ball, _) = baked(&builtin::sphere(0.2, 24, 12), 32);
+    let state = moving(1.0, -0.05, 0.5);
+    assert_eq!(kind(&ball, &drag, &state, 0.7), (false, true));
+
+    let (atlas, mass) = baked(&builtin::cuboid(1.0, 0.6, 0.8), 64);
+    let tiled = TiledAtlas::new(&atlas);
+    let still = HydroOptions { drag: None, ..drag };
+    let (mut worst_flow, mut worst_uniform, mut worst_tiled) = (0.0f64, 0.0f64, 0.0f64);
+    for k in 0..6 {
+        let k = k as f64;
+        let (x, z, t) = (7.3 * k - 2.0, 0.6 - 5.1 * k, 1.3 * k);
+        let y = sea.surface.height(x, z, t) - 0.1;
+        let state = BodyState {
+            linear_velocity: Vector3::new(0.6, -0.3, 0.2),
+            angular_velocity: Vector3::new(0.2, 0.4, -0.1),
+            ..BodyState::at_rest(Isometry3::from_parts(
+                Vector3::new(x, y, z).into(),
+                UnitQuaternion::from_euler_angles(0.3, 0.5 * k, 0.1),
+            ))
+        };
+        assert_eq!(kind(&atlas, &still, &state, t), (false, true));
+        assert_eq!(kind(&atlas, &drag, &state, t), (true, false));
+        let read = sampled_water(&atlas, &sea, &state, t, &drag).unwrap().unwrap();
+        let flow = *read
+            .surface
+            .as_any()
+            .and_then(|s| s.downcast_ref::<soak_hydro::FlowPlane>())
+            .unwrap();
+        let uniform = read.under(flow.plane);
+        let force = |water: &Water| {
+            tiled
+                .evaluate(&atlas, water, &state, &mass, t, &drag)
+                .unwrap()
+                .drag_explicit
+        };
+        let exact = evaluate(
+            &atlas,
+            &sea,
+            &state,
+            &mass,
+            t,
+            &HydroOptions {
+                sea: SeaSampling::Exact,
+                ..drag
+            },
+        )
+        .unwrap()
+        .drag_explicit;
+        let per_texel = evaluate(&atlas, &read, &state, &mass, t, &drag)
+            .unwrap()
+            .drag_explicit;
+        let (got, held) = (force(&read), force(&uniform));
+        let r = atlas.bounding_radius();
+        worst_tiled = worst_tiled.max(
+            ((got.force - per_texel.force).norm() + (got.torque - per_texel.torque).norm() / r)
+                / (per_texel.force.norm() + per_texel.torque.norm() / r),
+        );
+        let f = exact.force.norm();
+        worst_flow = worst_flow.max((got.force - exact.force).norm() / f);
+        worst_uniform = worst_uniform.max((held.force - exact.force).norm() / f);
+    }
+    eprintln!(
+        "drag of a 1 m box on the swell read as a plane, worst of six poses: tiled against per-texel \
+         {worst_tiled:.1e}; against the exact read {worst_flow:.3} (one current: {worst_uniform:.3})"
+    );
+    assert!(worst_tiled < 1e-2, "tiled against per-texel: {worst_tiled:e}");
+    assert!(
+        worst_flow < 0.3 && worst_flow < worst_uniform / 3.0,
+        "linear current {worst_flow}, uniform {worst_uniform}"
+    );
+}

@@ -658,7 +658,8 @@ pub(crate) fn plane_around(
         let down = surface.velocity_under(&(c - d), t, centre, &hint);
         gradient.set_column(j, &((up - down) / (2.0 * h)));
     }
-    if !gradient.iter().all(|g| g.is_finite()) {
+    // A uniform current (a height field's) stays one.
+    if !gradient.iter().all(|g| g.is_finite()) || gradient.iter().all(|g| *g == 0.0) {
         return Ok(Some(water.under(plane)));
     }
     Ok(Some(water.under(plane.with_gradient(gradient, c))))
