@@ -544,7 +544,6 @@ impl TiledAtlas {
         // d(x) = α + β·x in object coordinates relative to the atlas origin.
         let alpha = (offset - n.dot(&frame.ow)) / n.y;
         let beta = -(rot.transpose() * n) / n.y;
-        let bn = beta.norm();
         let g = rot.transpose() * Vector3::y();
         // Drag in object axes about the atlas origin, where the fluid moves
         // at the same velocity everywhere; elsewhere per texel below.
@@ -568,21 +567,8 @@ impl TiledAtlas {
             });
         let local_drag = uniform.map(|(p, _)| p).filter(|p| p.quadratic() || p.lin > 0.0);
 
-        // A tile (or group) lies wholly under water when its bounding
-        // sphere or box does, wholly above when either does: the depth
-        // varies over it by at most the smaller of |β| r and |β|·h.
-        let beta_abs = beta.abs();
-        let classify = |m: &Bounds| {
-            let dc = alpha + beta.dot(&m.centre);
-            let reach = (bn * m.radius).min(beta_abs.dot(&m.half_extent));
-            if dc + reach <= 0.0 {
-                Side::Dry
-            } else if dc - reach > 0.0 {
-                Side::Submerged
-            } else {
-                Side::Cut { centre_wet: dc > 0.0 }
-            }
-        };
+        let sides = PlaneSides::new(alpha, &beta);
+        let classify = |m: &Bounds| sides.side(m);
         const GROUP_CHUNK: usize = 32;
         let pressure = options.buoyancy == BuoyancyMode::Pressure;
         let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
@@ -710,6 +696,42 @@ struct Evaluation {
     sums: BuoyancySums,
     drag: Option<DragSums>,
     counts: TileCounts,
+}
+
+/// Where tiles and groups lie against the water plane whose depth is
+/// `d(x) = α + β·x` (object coordinates from the atlas origin).
+struct PlaneSides {
+    alpha: f64,
+    beta: Vector3<f64>,
+    beta_norm: f64,
+    beta_abs: Vector3<f64>,
+}
+
+impl PlaneSides {
+    fn new(alpha: f64, beta: &Vector3<f64>) -> Self {
+        Self {
+            alpha,
+            beta: *beta,
+            beta_norm: beta.norm(),
+            beta_abs: beta.abs(),
+        }
+    }
+
+    /// A tile (or group) lies wholly under water when its bounding sphere
+    /// or box does, wholly above when either does: the depth varies over
+    /// it by at most the smaller of |β| r and |β|·h.
+    #[inline]
+    fn side(&self, m: &Bounds) -> Side {
+        let dc = self.alpha + self.beta.dot(&m.centre);
+        let reach = (self.beta_norm * m.radius).min(self.beta_abs.dot(&m.half_extent));
+        if dc + reach <= 0.0 {
+            Side::Dry
+        } else if dc - reach > 0.0 {
+            Side::Submerged
+        } else {
+            Side::Cut { centre_wet: dc > 0.0 }
+        }
+    }
 }
 
 /// Where a tile or group lies against the water plane.

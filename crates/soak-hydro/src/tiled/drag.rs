@@ -357,18 +357,8 @@ impl TiledAtlas {
             grad,
             c: *centre,
         };
-        let (bn, beta_abs) = (beta.norm(), beta.abs());
-        let classify = |m: &Bounds| {
-            let dc = alpha + beta.dot(&m.centre);
-            let reach = (bn * m.radius).min(beta_abs.dot(&m.half_extent));
-            if dc + reach <= 0.0 {
-                Side::Dry
-            } else if dc - reach > 0.0 {
-                Side::Submerged
-            } else {
-                Side::Cut { centre_wet: dc > 0.0 }
-            }
-        };
+        let sides = PlaneSides::new(alpha, &beta);
+        let classify = |m: &Bounds| sides.side(m);
         let xs = atlas.local_positions().columns(0..atlas.len());
         use super::sea::GROUP_CHUNK;
         let chunk = |k: usize| {
