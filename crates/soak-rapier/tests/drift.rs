@@ -96,10 +96,26 @@ fn balls_drift_on_the_regular_sea(sampling: &str) {
 /// and drift slower than it.
 #[test]
 fn flotsam_drifts_along_the_swell_not_against_it() {
+    flotsam_drifts_on_the_swell("");
+}
+
+/// The flotsam above with the swell read as one plane over each body
+/// (`sampling = "plane"`): the crate, more than an eighth of the swell's
+/// 4 m waves across, reads a current changing linearly over it, the balls
+/// (within an eighth) one current each; all drift along the waves as the
+/// sampled read has them drift.
+#[test]
+fn flotsam_reading_the_swell_as_planes_drifts_along_it() {
+    flotsam_drifts_on_the_swell("sampling = \"plane\"\n");
+}
+
+/// The flotsam of the swell's tests, the sea read as `sampling` says (a
+/// line of the scene's `[water]`, empty for the default).
+fn flotsam_drifts_on_the_swell(sampling: &str) {
     let sea = Gerstner::new(0.0, GerstnerWave::SWELL.to_vec(), G).unwrap();
     let drift = sea.stokes_drift(0.0);
     let text = format!(
-        "dt = 0.0166667\nduration = 70.0\n[water]\nkind = \"gerstner\"\nlevel = 0.0\nwaves = [\n\
+        "dt = 0.0166667\nduration = 70.0\n[water]\nkind = \"gerstner\"\nlevel = 0.0\n{sampling}waves = [\n\
          {{ amplitude = 0.25, wavelength = 9.0, direction_deg = 0.0, steepness = 0.6 }},\n\
          {{ amplitude = 0.10, wavelength = 4.0, direction_deg = 35.0, steepness = 0.4, phase = 1.0 }},\n]\n\
          [[bodies]]\nname = \"crate\"\nmesh = \"builtin:box:1x0.5x0.5\"\nresolution = 64\n\
