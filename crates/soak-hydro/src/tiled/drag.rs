@@ -373,8 +373,12 @@ impl TiledAtlas {
                 for ti in group.tiles.clone() {
                     let m = &self.tiles[ti];
                     let range = m.range.0 as usize..m.range.1 as usize;
+                    let side = classify(&m.bounds());
+                    if side == Side::Dry {
+                        continue;
+                    }
                     let f = fluid(&m.centre);
-                    match classify(&m.bounds()) {
+                    match side {
                         Side::Dry => continue,
                         Side::Submerged => {
                             if self.add_tile_drag(&mut sums, ti, &d, &f) {
