@@ -313,15 +313,19 @@ pub(crate) fn with_extra(model: &MassProperties, extra: Option<&MassProperties>)
     }
 }
 
+/// The latest body in `bodies` that shares `atlas` (the same `Arc`): what
+/// was worked out from the atlas for it (its shape, its tiles, its mass
+/// properties under a mass model) holds for the atlas' next body too.
+pub(crate) fn atlas_twin<'a, H>(bodies: &'a [SoakBody<H>], atlas: &Arc<soak_bake::Atlas>) -> Option<&'a SoakBody<H>> {
+    // Bodies of one mesh are usually registered together: look back from
+    // the last.
+    bodies.iter().rev().find(|b| Arc::ptr_eq(&b.atlas, atlas))
+}
+
 /// The tiles of `atlas`: those of a body in `bodies` that shares it (the
 /// same `Arc`), or new ones.
 pub(crate) fn shared_tiles<H>(bodies: &[SoakBody<H>], atlas: &Arc<soak_bake::Atlas>) -> Arc<TiledAtlas> {
-    // Bodies of one mesh are usually registered together: look back from
-    // the last.
-    bodies
-        .iter()
-        .rev()
-        .find(|b| Arc::ptr_eq(&b.atlas, atlas))
+    atlas_twin(bodies, atlas)
         .and_then(|b| b.tiled.clone())
         .unwrap_or_else(|| Arc::new(TiledAtlas::new(atlas)))
 }

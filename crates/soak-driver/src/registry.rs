@@ -7,7 +7,7 @@ use nalgebra::Point3;
 use soak_hydro::{HydroForces, MassModel, MassProperties, TiledAtlas, Wrench};
 use soak_wet::Wetting;
 
-use crate::body::{FloodSettings, RadiationRun, Shape, SoakBody, shared_tiles, with_extra};
+use crate::body::{FloodSettings, RadiationRun, Shape, SoakBody, atlas_twin, shared_tiles, with_extra};
 use crate::config::{Backend, BodyDesc, SoakId};
 use crate::driver::Driver;
 use crate::engine::{BodiesMut, Handle, check_not_too_light, push_mass};
@@ -33,13 +33,22 @@ impl<H: Handle> Driver<H> {
         if bodies.body(handle).is_none() {
             return Err(SoakError::MissingBody { name: desc.name });
         }
-        let mass = desc
-            .mass_model
-            .mass_properties(&desc.atlas)
-            .map_err(|source| SoakError::Hydro {
-                name: desc.name.clone(),
-                source,
-            })?;
+        // A body sharing its atlas (the same `Arc`) with one registered
+        // before takes that body's shape and, under the same mass model,
+        // its mass properties: the passes over the texels are taken once
+        // per atlas, not once per body.
+        let twin = atlas_twin(&self.bodies, &desc.atlas);
+        let mass = match twin.filter(|b| b.mass_model == desc.mass_model) {
+            Some(b) => b.model_mass,
+            None => desc
+                .mass_model
+                .mass_properties(&desc.atlas)
+                .map_err(|source| SoakError::Hydro {
+                    name: desc.name.clone(),
+                    source,
+                })?,
+        };
+        let shape = twin.map_or_else(|| Shape::of(&desc.atlas), |b| b.shape);
         if let Some(w) = &desc.effects.wetting {
             check_wetting(&desc.name, &desc.atlas, w)?;
         }
@@ -81,8 +90,6 @@ impl<H: Handle> Driver<H> {
                 source,
             })?;
         }
-        // The atlas' volume and bounds: a pass over its texels, taken once.
-        let shape = Shape::of(&desc.atlas);
         check_not_too_light(&desc.name, mass.mass, &desc.effects, &self.water, shape.volume)?;
         if let Some(added) = &desc.effects.added_mass
             && !added.is_valid()

@@ -235,13 +235,18 @@ impl<H: Handle> Driver<H> {
         }
         self.environment = state.environment;
         for (b, s) in self.bodies.iter_mut().zip(&state.bodies) {
-            let model_mass = s
-                .mass_model
-                .mass_properties(&b.atlas)
-                .map_err(|source| SoakError::Hydro {
-                    name: b.name.clone(),
-                    source,
-                })?;
+            // The body's own mass model again: its mass properties are the
+            // ones it holds (worked out from the same atlas).
+            let model_mass = if s.mass_model == b.mass_model {
+                b.model_mass
+            } else {
+                s.mass_model
+                    .mass_properties(&b.atlas)
+                    .map_err(|source| SoakError::Hydro {
+                        name: b.name.clone(),
+                        source,
+                    })?
+            };
             if let (Some(f), Some(saved)) = (&mut b.effects.flooding, &s.flooding) {
                 f.restore(saved).map_err(|source| SoakError::Flow {
                     name: b.name.clone(),

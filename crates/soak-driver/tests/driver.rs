@@ -2,7 +2,8 @@
 //! analytic draft, a body the engine lost is handled, a retired body costs
 //! nothing and stays retired through a save, a body reading a band of a
 //! sea's waves is taken as dry only above that band's crest, a body may
-//! read a sea otherwise than the others, a step's phases are timed.
+//! read a sea otherwise than the others, a step's phases are timed, bodies
+//! sharing an atlas have their own mass model's mass.
 
 use std::sync::Arc;
 
@@ -75,6 +76,49 @@ fn crates_float_at_their_analytic_drafts() {
             "{rho} kg/m³: draft {draft} m, want {want}"
         );
     }
+}
+
+/// Bodies sharing an atlas (one `Arc`) have their own mass model's mass
+/// properties: each is what a body given its own copy of the atlas gets
+/// (a 1 × 0.6 × 0.8 m crate: 120 kg at 250 kg/m³, 240 kg at 500), a shell
+/// on the shared atlas its shell's, and a bad model is refused on a shared
+/// atlas as on a new one.
+#[test]
+fn bodies_sharing_an_atlas_have_their_own_models_mass() {
+    let atlas = crate_atlas();
+    let copy = Arc::new(Atlas::clone(&atlas));
+    let mut engine = FreeBodies::new(9.81);
+    let mut soak = Driver::new(Water::calm(0.0));
+    let mut add = |name: &str, atlas: &Arc<Atlas>, model: MassModel| {
+        let h = engine.insert(Isometry3::translation(0.0, 0.3, 0.0));
+        let mut d = desc(name, atlas, 500.0);
+        d.mass_model = model;
+        soak.register(&mut engine, h, d)
+    };
+    let solid = |density| MassModel::Solid { density };
+    let shell = MassModel::Shell { areal_density: 20.0 };
+    let ids = [
+        add("a", &atlas, solid(500.0)).unwrap(),
+        add("b", &atlas, solid(250.0)).unwrap(),
+        add("c", &atlas, solid(500.0)).unwrap(),
+        add("d", &atlas, shell.clone()).unwrap(),
+        add("a copy", &copy, solid(500.0)).unwrap(),
+        add("b copy", &copy, solid(250.0)).unwrap(),
+        add("d copy", &copy, shell).unwrap(),
+    ];
+    let e = add("bad", &atlas, solid(-1.0)).unwrap_err();
+    assert!(matches!(&e, SoakError::Hydro { name, .. } if name == "bad"), "{e}");
+    let mass = |k: usize| *soak.body(ids[k]).unwrap().mass_properties();
+    for (k, copy) in [(0, 4), (1, 5), (2, 4), (3, 6)] {
+        assert_eq!(mass(k), mass(copy), "body {k}");
+    }
+    for (k, want) in [(0, 240.0), (1, 120.0)] {
+        let m = mass(k).mass;
+        assert!((m - want).abs() < 1e-3 * want, "body {k}: {m} kg, want {want}");
+    }
+    // The shell: 20 kg/m² over the crate's 3.76 m².
+    let m = mass(3).mass;
+    assert!((m - 75.2).abs() < 1e-2 * 75.2, "shell {m} kg");
 }
 
 /// A body the engine no longer has: the step passes over it (no force is
