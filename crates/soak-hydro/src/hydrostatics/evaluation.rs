@@ -662,7 +662,7 @@ pub(crate) fn plane_around(
     if !gradient.iter().all(|g| g.is_finite()) || gradient.iter().all(|g| *g == 0.0) {
         return Ok(Some(water.under(plane)));
     }
-    Ok(Some(water.under(plane.with_gradient(gradient, c))))
+    Ok(Some(water.under(plane.with_gradient(gradient, c)?)))
 }
 
 /// The step of the central differences that give a plane read's current

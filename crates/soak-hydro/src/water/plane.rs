@@ -55,12 +55,44 @@ impl Plane {
     /// fluid moves at `current + gradient (p − about)` at `p`, `gradient`
     /// the derivatives `∂u_i/∂p_j` (1/s, world axes) and `about` where the
     /// current is [`Plane::current`] (m).
-    pub fn with_gradient(self, gradient: Matrix3<f64>, about: Point3<f64>) -> FlowPlane {
-        FlowPlane {
+    ///
+    /// # Errors
+    /// [`WaterError::Parameter`] naming the first entry of `gradient`
+    /// (`flow gradient`), of `about` (`flow origin`) or of the plane's
+    /// current (`current`) that is not finite.
+    ///
+    /// ```
+    /// use nalgebra::{Matrix3, Point3, Vector3};
+    /// use soak_hydro::{Plane, WaterError};
+    ///
+    /// // A shear: the current grows by 0.1 m/s per metre of depth.
+    /// let shear = Matrix3::new(0.0, 0.1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    /// let flow = Plane::horizontal(0.0).with_gradient(shear, Point3::origin())?;
+    /// # use soak_hydro::Surface;
+    /// let u = flow.velocity(&Point3::new(0.0, -2.0, 0.0), 0.0);
+    /// assert_eq!(u, Vector3::new(-0.2, 0.0, 0.0));
+    ///
+    /// let bad = Matrix3::from_element(f64::NAN);
+    /// let e = Plane::horizontal(0.0).with_gradient(bad, Point3::origin()).unwrap_err();
+    /// assert!(matches!(e, WaterError::Parameter { name: "flow gradient", .. }));
+    /// # Ok::<(), WaterError>(())
+    /// ```
+    pub fn with_gradient(self, gradient: Matrix3<f64>, about: Point3<f64>) -> Result<FlowPlane, WaterError> {
+        let named = [
+            ("current", self.current.as_slice()),
+            ("flow gradient", gradient.as_slice()),
+            ("flow origin", about.coords.as_slice()),
+        ];
+        for (name, values) in named {
+            if let Some(&value) = values.iter().find(|v| !v.is_finite()) {
+                return Err(WaterError::Parameter { name, value });
+            }
+        }
+        Ok(FlowPlane {
             plane: self,
             gradient,
             about,
-        }
+        })
     }
 }
 
