@@ -316,7 +316,10 @@ pub(crate) fn with_extra(model: &MassProperties, extra: Option<&MassProperties>)
 /// The latest body in `bodies` that shares `atlas` (the same `Arc`): what
 /// was worked out from the atlas for it (its shape, its tiles, its mass
 /// properties under a mass model) holds for the atlas' next body too.
-pub(crate) fn atlas_twin<'a, H>(bodies: &'a [SoakBody<H>], atlas: &Arc<soak_bake::Atlas>) -> Option<&'a SoakBody<H>> {
+pub(crate) fn atlas_twin<'a, H>(
+    bodies: &'a [SoakBody<H>],
+    atlas: &Arc<soak_bake::Atlas>,
+) -> Option<&'a SoakBody<H>> {
     // Bodies of one mesh are usually registered together: look back from
     // the last.
     bodies.iter().rev().find(|b| Arc::ptr_eq(&b.atlas, atlas))

@@ -107,7 +107,10 @@ fn bodies_sharing_an_atlas_have_their_own_models_mass() {
         add("d copy", &copy, shell).unwrap(),
     ];
     let e = add("bad", &atlas, solid(-1.0)).unwrap_err();
-    assert!(matches!(&e, SoakError::Hydro { name, .. } if name == "bad"), "{e}");
+    assert!(
+        matches!(&e, SoakError::Hydro { name, .. } if name == "bad"),
+        "{e}"
+    );
     let mass = |k: usize| *soak.body(ids[k]).unwrap().mass_properties();
     for (k, copy) in [(0, 4), (1, 5), (2, 4), (3, 6)] {
         assert_eq!(mass(k), mass(copy), "body {k}");
