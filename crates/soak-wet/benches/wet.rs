@@ -1,6 +1,8 @@
 //! Cost of one wetting step for a 1024² atlas (a 1 m cube half under calm
 //! water) with a 64³ field, CPU and GPU, effect by effect: absorption only, then
-//! with evaporation, then with diffusion (conservative, and the thesis' scheme).
+//! with evaporation, then with diffusion (conservative, and the thesis' scheme),
+//! and absorption with evaporation under a plane whose current changes over
+//! space.
 //! Without diffusion no field exists: its cost is gone, not skipped.
 //!
 //! The material's saturation is set high (10 m) so absorption never
@@ -121,6 +123,25 @@ fn bench(c: &mut Criterion) {
             })
         });
     }
+    // Absorption and evaporation again under a plane whose current
+    // changes over space (what a sea read as one plane hands a large
+    // body): its heights are the plane's, and so is its path.
+    let flow = soak_hydro::Plane::horizontal(0.0)
+        .with_gradient(nalgebra::Matrix3::identity() * 0.1, nalgebra::Point3::origin())
+        .unwrap();
+    let under_flow = Water::new(flow);
+    let s = &setups()[1];
+    let mut w = wetting(&atlas, s.diffusion);
+    let mut t = 0.0;
+    g.bench_function(
+        BenchmarkId::new("cpu", "absorption+evaporation_flow_plane"),
+        |b| {
+            b.iter(|| {
+                t += dt;
+                w.step(&atlas, &pose, &under_flow, &s.env, t, dt).unwrap()
+            })
+        },
+    );
     gpu(&mut g, &atlas, &water, &pose, dt);
     g.finish();
 }

@@ -7,7 +7,7 @@ use nalgebra::{Isometry3, Point3, Vector3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use soak_bake::Atlas;
-use soak_hydro::{Plane, Surface, SurfaceKind, Water};
+use soak_hydro::{FlowPlane, Plane, Surface, SurfaceKind, Water};
 
 use crate::body_field::BodyField;
 use crate::diffusion::{self, Diffusion, DiffusionReport};
@@ -474,8 +474,13 @@ impl Wetting {
         self.cache.partials.clear();
         self.cache.partials.resize(chunks(self.h.len()), [0.0; 4]);
         // A plane's depth is called directly (inlined), any other surface
-        // through the trait object: the same arithmetic either way.
-        match surface.as_any().and_then(|s| s.downcast_ref::<Plane>()) {
+        // through the trait object: the same arithmetic either way. A plane
+        // whose current changes over space has the plane's heights.
+        let plane = surface.as_any().and_then(|s| {
+            s.downcast_ref::<Plane>()
+                .or_else(|| s.downcast_ref::<FlowPlane>().map(|f| &f.plane))
+        });
+        match plane {
             Some(plane) if !raining => texels.run_plane(plane, &rates, &mut self.h, &mut self.cache.partials),
             Some(plane) => texels.run(plane, &rates, &mut self.h, &mut self.cache.partials),
             None => texels.run(surface, &rates, &mut self.h, &mut self.cache.partials),
