@@ -80,6 +80,15 @@ struct Bounds {
     half_extent: Vector3<f64>,
 }
 
+/// What the walk over the tiles reads of each: where it lies and its
+/// texels, one cache line a tile (the moments, six times as large, are
+/// read only for the tiles a walk sums).
+#[derive(Clone, Copy, Debug)]
+struct Place {
+    bounds: Bounds,
+    range: (u32, u32),
+}
+
 /// The moments the closed form takes, summed over a set of texels (a run
 /// of tiles): the closed form of a union of tiles is the closed form of
 /// the sums of their moments.
@@ -155,6 +164,8 @@ struct Group {
 pub struct TiledAtlas {
     /// Tile moments, ordered group by group.
     tiles: Vec<TileMoments>,
+    /// Each tile's bounds and texels, in the same order.
+    places: Vec<Place>,
     /// Groups of consecutive tiles.
     groups: Vec<Group>,
     /// `prefix[i]` holds the sums of the moments of `tiles[..i]`: a run of
@@ -277,6 +288,13 @@ impl TiledAtlas {
             prefix.push(running);
         }
         Self {
+            places: tiles
+                .iter()
+                .map(|m| Place {
+                    bounds: m.bounds(),
+                    range: m.range,
+                })
+                .collect(),
             tiles,
             groups,
             prefix,
@@ -609,7 +627,8 @@ impl TiledAtlas {
                     }
                     Side::Cut { .. } => {
                         for ti in members.clone() {
-                            match classify(&self.tiles[ti].bounds()) {
+                            let place = &self.places[ti];
+                            match classify(&place.bounds) {
                                 Side::Dry => counts.dry += 1,
                                 Side::Submerged => {
                                     counts.submerged += 1;
@@ -620,7 +639,7 @@ impl TiledAtlas {
                                 }
                                 Side::Cut { centre_wet } => {
                                     counts.cut += 1;
-                                    let (start, end) = self.tiles[ti].range;
+                                    let (start, end) = place.range;
                                     if !buoyancy {
                                     } else if centre_wet {
                                         submerge(ti..ti + 1, &mut under);

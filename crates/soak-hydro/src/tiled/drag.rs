@@ -219,7 +219,7 @@ impl<'a> DragWalk<'a> {
                 if quadratic {
                     self.quadratic.push(prefix, tiles);
                 }
-                let (start, end) = self.tiled.tiles[ti].range;
+                let (start, end) = self.tiled.places[ti].range;
                 let added = Added {
                     linear: true,
                     quadratic,
@@ -263,7 +263,7 @@ impl<'a> DragWalk<'a> {
 
     /// The per-texel kernel over tile `ti`.
     pub(super) fn texels(&mut self, ti: usize, added: Added) {
-        let (start, end) = self.tiled.tiles[ti].range;
+        let (start, end) = self.tiled.places[ti].range;
         self.texels[Self::list(self.p.lin > 0.0, added)].push(start as usize..end as usize);
     }
 
