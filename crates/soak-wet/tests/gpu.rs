@@ -116,6 +116,33 @@ fn cases() -> Vec<Case> {
             dt: 0.05,
         },
         Case {
+            name: "cube rocking under a tilted plane whose current changes over space",
+            atlas: cube.clone(),
+            wetting: Wetting::new(&cube, Material::sand(), liquid).unwrap(),
+            water: Water::new(
+                soak_hydro::Plane::tilted(
+                    nalgebra::Point3::new(0.0, 0.05, 0.0),
+                    nalgebra::Vector3::new(0.1, 1.0, -0.05),
+                )
+                .unwrap()
+                .with_current(nalgebra::Vector3::new(0.3, 0.0, 0.1))
+                .with_gradient(
+                    nalgebra::Matrix3::new(0.0, 0.2, 0.0, -0.1, 0.0, 0.0, 0.0, 0.0, 0.3),
+                    nalgebra::Point3::new(1.0, 0.0, 0.0),
+                )
+                .unwrap(),
+            ),
+            env: Environment::default(),
+            pose: |t| {
+                Isometry3::from_parts(
+                    Translation3::new(0.0, 0.25 * (0.8 * t).sin(), 0.0),
+                    UnitQuaternion::from_euler_angles(0.3 * t, 0.0, 0.1),
+                )
+            },
+            steps: 60,
+            dt: 0.05,
+        },
+        Case {
             name: "cube without diffusion in calm water",
             atlas: cube.clone(),
             wetting: Wetting::new(&cube, Material::wood(), liquid).unwrap(),

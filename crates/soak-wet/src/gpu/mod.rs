@@ -7,7 +7,7 @@
 //!
 //! - `exchange.wgsl`: absorption, rain and evaporation per texel, with the
 //!   water depth from soak-hydro's water surfaces ([`soak_hydro::gpu::wgsl`]; plane,
-//!   Gerstner sea, height field);
+//!   a plane whose current changes over space, Gerstner sea, height field);
 //! - `gather.wgsl`: texels → voxels (liquid volume or Shepard average), one
 //!   invocation per defined voxel summing its texels in a fixed order (no
 //!   atomics, so results are deterministic);

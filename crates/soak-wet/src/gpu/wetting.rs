@@ -33,8 +33,8 @@ mod upload;
 /// Mesa's llvmpipe (GL) and lavapipe (Vulkan) run them headless.
 ///
 /// Only a body's own field runs on the device; a [`crate::SharedField`] is
-/// CPU only. The water surface must be one the GPU knows (Plane, Gerstner,
-/// HeightField, Unbounded).
+/// CPU only. The water surface must be one the GPU knows (Plane, FlowPlane,
+/// Gerstner, HeightField, Unbounded).
 ///
 /// # Example
 /// ```no_run
