@@ -65,7 +65,7 @@ impl Plane {
     /// use nalgebra::{Matrix3, Point3, Vector3};
     /// use soak_hydro::{Plane, WaterError};
     ///
-    /// // A shear: the current grows by 0.1 m/s per metre of depth.
+    /// // A shear, u_x = 0.1 y: two metres down, the water moves at 0.2 m/s toward −x.
     /// let shear = Matrix3::new(0.0, 0.1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     /// let flow = Plane::horizontal(0.0).with_gradient(shear, Point3::origin())?;
     /// # use soak_hydro::Surface;
