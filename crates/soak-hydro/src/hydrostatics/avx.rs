@@ -10,6 +10,15 @@ use std::arch::x86_64::{
 /// Texels side by side in an AVX2 kernel.
 const LANES: usize = 4;
 
+/// The last texels of a range, fewer than [`LANES`] (`v`, the tail of a
+/// column), as a group padded with zeros: the tail group of every AVX2
+/// kernel here (its empty lanes then masked off by the kernel).
+#[inline(always)]
+pub(super) fn padded<T: Copy + Default>(v: &[T]) -> [T; LANES] {
+    debug_assert!(v.len() < LANES, "a tail of fewer than {LANES} texels");
+    std::array::from_fn(|i| v.get(i).copied().unwrap_or_default())
+}
+
 /// Four floats, widened.
 #[target_feature(enable = "avx2,fma")]
 pub(super) fn widen(v: &[f32; LANES]) -> __m256d {

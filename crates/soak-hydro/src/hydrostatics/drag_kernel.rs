@@ -236,7 +236,7 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
 ) {
     use std::arch::x86_64::*;
 
-    use super::avx::{add_iso, add_rank1, h_of, load as get, quads3, store, widen as load};
+    use super::avx::{add_iso, add_rank1, h_of, load as get, padded, quads3, store, widen as load};
 
     /// All lanes set where `on`, else none.
     #[target_feature(enable = "avx2,fma")]
@@ -330,11 +330,7 @@ fn drag_lanes_avx2<const LINEAR: bool, const QUADRATIC: bool>(
         }
         if whole < end {
             let k = end - whole;
-            let pad = |v: &[f32]| {
-                let mut padded = [0.0f32; LANES];
-                padded[..k].copy_from_slice(&v[whole..end]);
-                padded
-            };
+            let pad = |v: &[f32]| padded(&v[whole..end]);
             let (xs, avs) = (t.xs.map(pad), t.avs.map(pad));
             let valid = _mm256_castsi256_pd(_mm256_setr_epi64x(
                 -1,
@@ -704,13 +700,13 @@ impl FacingBounds {
     /// (m/s): for a fluid whose velocity varies over the texels.
     #[inline]
     pub(crate) fn facing_within(&self, w: &[f64; 6], spread: f64) -> Facing {
-        let (mut centre, mut reach, mut size) = (0.0, 0.0, 0.0);
-        for ((m, h), w) in self.mid.iter().zip(&self.half).zip(w) {
-            let (c, r) = (m * w, h * w.abs());
-            centre += c;
-            reach += r;
-            size += c.abs() + r;
-        }
+        // Each sum of six in pairs (three additions deep, not six: the
+        // walk over a body's tiles waits on this test for each of them).
+        let c: [f64; 6] = std::array::from_fn(|j| self.mid[j] * w[j]);
+        let r: [f64; 6] = std::array::from_fn(|j| self.half[j] * w[j].abs());
+        let sum = |v: [f64; 6]| ((v[0] + v[1]) + (v[2] + v[3])) + (v[4] + v[5]);
+        let (centre, reach) = (sum(c), sum(r));
+        let size = sum(c.map(f64::abs)) + reach;
         let margin = 1e-12 * size;
         let reach = reach + spread;
         if centre - reach > margin {

@@ -229,7 +229,7 @@ fn planar_lanes_avx2<const PRESSURE: bool, const DRY: bool>(
 ) -> PlanarLanes {
     use std::arch::x86_64::*;
 
-    use super::avx::{quads, quads3, store as lanes, widen as load};
+    use super::avx::{padded, quads, quads3, store as lanes, widen as load};
 
     let zero = _mm256_setzero_pd();
     let one = _mm256_set1_pd(1.0);
@@ -304,11 +304,7 @@ fn planar_lanes_avx2<const PRESSURE: bool, const DRY: bool>(
         }
         if whole < end {
             let k = end - whole;
-            let pad = |v: &[f32]| {
-                let mut padded = [0.0f32; LANES];
-                padded[..k].copy_from_slice(&v[whole..end]);
-                padded
-            };
+            let pad = |v: &[f32]| padded(&v[whole..end]);
             let (xs, avs, areas) = (t.xs.map(pad), t.avs.map(pad), pad(t.areas));
             let valid = _mm256_castsi256_pd(_mm256_setr_epi64x(
                 -1,

@@ -459,7 +459,7 @@ fn sea_drag_lanes_avx2<V>(
 ) where
     V: FnMut(&[std::arch::x86_64::__m256d; 3], std::arch::x86_64::__m256d) -> [std::arch::x86_64::__m256d; 3],
 {
-    use super::avx::{add_iso, add_rank1, h_of, load, store, widen_at as widen};
+    use super::avx::{add_iso, add_rank1, h_of, load, padded, store, widen_at as widen};
     use std::arch::x86_64::*;
 
     let n = atlas.len();
@@ -541,15 +541,9 @@ fn sea_drag_lanes_avx2<V>(
         let (gx, ga, gd, at, d0) = if k == LANES {
             (xs, avs, depths, i, i - start)
         } else {
-            let pad = |v: &[f32]| {
-                let mut padded = [0.0f32; LANES];
-                padded[..k].copy_from_slice(&v[i..end]);
-                padded
-            };
+            let pad = |v: &[f32]| padded(&v[i..end]);
             (pxs, pavs) = (xs.map(pad), avs.map(pad));
-            let mut d = [0.0f64; LANES];
-            d[..k].copy_from_slice(&depths[i - start..]);
-            pd = d;
+            pd = padded(&depths[i - start..]);
             (
                 pxs.each_ref().map(|v| &v[..]),
                 pavs.each_ref().map(|v| &v[..]),

@@ -180,7 +180,7 @@ mod avx2 {
     use soak_bake::Atlas;
 
     use super::{RENORMALISE, SeaFrame, Taylor};
-    use crate::hydrostatics::avx::{load as vector_of, quads, quads3, store as lanes, widen as load};
+    use crate::hydrostatics::avx::{load as vector_of, padded, quads, quads3, store as lanes, widen as load};
     use crate::hydrostatics::sums::BuoyancySums;
 
     const LANES: usize = 4;
@@ -469,11 +469,7 @@ mod avx2 {
                     all,
                 )
             } else {
-                let pad = |v: &[f32]| {
-                    let mut padded = [0.0f32; LANES];
-                    padded[..k].copy_from_slice(&v[i..end]);
-                    padded
-                };
+                let pad = |v: &[f32]| padded(&v[i..end]);
                 (pxs, pavs, pareas) = (xs.map(pad), avs.map(pad), pad(areas));
                 let valid = _mm256_castsi256_pd(_mm256_setr_epi64x(
                     -1,
