@@ -676,19 +676,22 @@ impl TiledAtlas {
         let (mut sums, mut acc, mut counts) =
             (BuoyancySums::default(), DragAcc::default(), TileCounts::default());
         let mut wet = false;
-        par_fold(
-            n_chunks,
-            work,
-            &mut (&mut sums, &mut acc, &mut counts, &mut wet),
-            |(sums, acc, counts, wet), (s, d, c)| {
-                if let Some(d) = d {
-                    **acc += &d;
-                    **wet = true;
-                }
-                **counts += c;
-                **sums += s;
-            },
-        );
+        let mut add = |(s, d, c): (BuoyancySums, Option<DragAcc>, TileCounts)| {
+            if let Some(d) = d {
+                acc += &d;
+                wet = true;
+            }
+            counts += c;
+            sums += s;
+        };
+        // One chunk (a body of up to 512 tiles) is added here as it comes
+        // rather than through `par_fold`, whose fold took a 128² box's
+        // evaluation from 1.79–1.81 to 1.86–1.95 µs in four A/B pairs.
+        if n_chunks == 1 {
+            add(work(0));
+        } else {
+            par_map(n_chunks, work).into_iter().for_each(add);
+        }
         let drag = options.drag.map(|d| match uniform {
             Some((_, u)) if wet => acc.system(&rot, &c, &u),
             // No drag texel under water: no drag.
