@@ -9,7 +9,7 @@
 # -march=native, no CMake needed). The harness arguments are those of
 # jolt_floating.cpp: [N] [--threads T] [--steps S] [--spheres] [--analytic].
 # The objects and the library are kept in target/jolt, so a second run
-# builds nothing. Compare with, on the same machine and at the same time:
+# builds nothing (remove that folder after changing the checkout). Compare with, on the same machine and at the same time:
 #
 #   RAYON_NUM_THREADS=1 soak bench --sizes 1000 --water calm --interleave --drag-coarsening 4
 set -euo pipefail
@@ -23,15 +23,16 @@ shift
 root=$(cd "$(dirname "$0")/.." && pwd)
 out="$root/target/jolt"
 mkdir -p "$out/obj"
-flags=(-O3 -march=native -DNDEBUG -std=c++17 -I"$jolt")
+# One set of flags for the library and the harness.
+export JOLT_DIR="$jolt" JOLT_OUT="$out" JOLT_CXXFLAGS="-O3 -march=native -DNDEBUG -std=c++17"
 
 # The library, one object per source, two at a time.
-export JOLT_DIR="$jolt" JOLT_OUT="$out"
 (cd "$jolt" && find Jolt -name '*.cpp') | xargs -r -P 2 -I{} sh -c \
     'o="$JOLT_OUT/obj/$(echo {} | tr / _).o"; [ -f "$o" ] ||
-     g++ -O3 -march=native -DNDEBUG -std=c++17 -I"$JOLT_DIR" -w -c "$JOLT_DIR/{}" -o "$o"'
+     g++ $JOLT_CXXFLAGS -I"$JOLT_DIR" -w -c "$JOLT_DIR/{}" -o "$o"'
 rm -f "$out/libJolt.a"
 ar rcs "$out/libJolt.a" "$out"/obj/*.o
 
-g++ "${flags[@]}" "$root/scripts/references/jolt_floating.cpp" "$out/libJolt.a" -lpthread -o "$out/jolt_floating"
+# shellcheck disable=SC2086 # the flags are words
+g++ $JOLT_CXXFLAGS -I"$jolt" "$root/scripts/references/jolt_floating.cpp" "$out/libJolt.a" -lpthread -o "$out/jolt_floating"
 exec "$out/jolt_floating" "$@"
