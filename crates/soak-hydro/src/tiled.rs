@@ -155,8 +155,10 @@ struct Group {
 /// back to the per-texel path.
 ///
 /// Two levels: the atlas' tiles (`tile_size`² texels), and groups of
-/// [`TiledAtlas::GROUP`]² neighbouring tiles, consecutive in the tile
-/// list, with bounds around them all. A group wholly under or above water
+/// neighbouring tiles, consecutive in the tile list, with bounds around
+/// them all: up to four tiles close together on the body where the atlas
+/// has at most 512 tiles (a 128² body's), else the [`TiledAtlas::GROUP`]²
+/// tiles of a block of the texture (see `spatial_groups`). A group wholly under or above water
 /// is settled by one test; only the tiles of groups the waterline cuts are
 /// looked at one by one. Running sums of the tiles' moments give any run
 /// of consecutive tiles its moments from two entries.
@@ -168,6 +170,8 @@ pub struct TiledAtlas {
     places: Vec<Place>,
     /// Groups of consecutive tiles.
     groups: Vec<Group>,
+    /// Groups per parallel task: a chunk of up to 512 tiles.
+    group_chunk: usize,
     /// `prefix[i]` holds the sums of the moments of `tiles[..i]`: a run of
     /// tiles under water takes its sums from two entries, however long.
     prefix: Vec<Sums>,
@@ -206,7 +210,7 @@ impl std::ops::AddAssign for TileCounts {
 impl TiledAtlas {
     /// Precomputes the tile moments of `atlas` (once per bake or refresh).
     pub fn new(atlas: &Atlas) -> Self {
-        let tiles = atlas
+        let mut tiles = atlas
             .tiles()
             .par_iter()
             .zip(atlas.tile_moments())
@@ -224,16 +228,43 @@ impl TiledAtlas {
                 (m, dm, hbox)
             })
             .collect::<Vec<_>>();
-        // Group the tiles by the block of GROUP × GROUP tiles their first
-        // texel lies in (tiles are in row-major block order already).
-        let ts = atlas.tile_size().max(1);
-        let group_of = |m: &TileMoments| {
-            let [x, y] = atlas.texels().get(m.range.0 as usize).copied().unwrap_or([0, 0]);
-            let span = ts * Self::GROUP;
-            (u32::from(y) / span, u32::from(x) / span)
+        // Group the tiles: by their place on the body where the atlas has
+        // few of them, else by the block of GROUP × GROUP tiles their first
+        // texel lies in (tiles are in row-major block order already); see
+        // `spatial_groups`.
+        let spans = if tiles.len() <= SPATIAL_TILES {
+            let centres: Vec<Vector3<f64>> = tiles.iter().map(|(m, _, _)| m.centre).collect();
+            let mut order: Vec<usize> = (0..tiles.len()).collect();
+            let mut spans = Vec::new();
+            spatial_groups(&centres, &mut order, 0, &mut spans);
+            let mut slots: Vec<Option<_>> = tiles.into_iter().map(Some).collect();
+            tiles = order
+                .iter()
+                .map(|&i| slots[i].take().expect("each tile once"))
+                .collect();
+            spans
+        } else {
+            let ts = atlas.tile_size().max(1);
+            let group_of = |m: &TileMoments| {
+                let [x, y] = atlas.texels().get(m.range.0 as usize).copied().unwrap_or([0, 0]);
+                let span = ts * Self::GROUP;
+                (u32::from(y) / span, u32::from(x) / span)
+            };
+            tiles.sort_by_key(|(m, _, _)| (group_of(m), m.range.0));
+            let mut spans = Vec::new();
+            let mut start = 0;
+            while start < tiles.len() {
+                let key = group_of(&tiles[start].0);
+                let end = start
+                    + tiles[start..]
+                        .iter()
+                        .take_while(|t| group_of(&t.0) == key)
+                        .count();
+                spans.push(start..end);
+                start = end;
+            }
+            spans
         };
-        let mut tiles = tiles;
-        tiles.sort_by_key(|(m, _, _)| (group_of(m), m.range.0));
         let mut drag_prefix = Vec::with_capacity(tiles.len() + 1);
         let mut running = DragMoments::default();
         drag_prefix.push(running);
@@ -243,11 +274,15 @@ impl TiledAtlas {
         }
         let facing: Vec<HBox> = tiles.iter().map(|t| t.2).collect();
         let tiles: Vec<TileMoments> = tiles.into_iter().map(|t| t.0).collect();
-        let mut groups = Vec::new();
-        let mut start = 0;
-        while start < tiles.len() {
-            let key = group_of(&tiles[start]);
-            let end = start + tiles[start..].iter().take_while(|m| group_of(m) == key).count();
+        // The texture's blocks, 32 a task; an atlas grouped by place is
+        // one task.
+        let group_chunk = if tiles.len() <= SPATIAL_TILES {
+            spans.len().max(1)
+        } else {
+            32
+        };
+        let mut groups = Vec::with_capacity(spans.len());
+        for std::ops::Range { start, end } in spans {
             let members = &tiles[start..end];
             let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
             for m in members {
@@ -272,7 +307,6 @@ impl TiledAtlas {
                 facing: group_facing.bounds(),
                 tiles: start..end,
             });
-            start = end;
         }
         let mut prefix = Vec::with_capacity(tiles.len() + 1);
         let mut running = Sums::default();
@@ -297,6 +331,7 @@ impl TiledAtlas {
                 .collect(),
             tiles,
             groups,
+            group_chunk,
             prefix,
             facing: facing.iter().map(HBox::bounds).collect(),
             drag_prefix,
@@ -304,7 +339,8 @@ impl TiledAtlas {
         }
     }
 
-    /// Tiles per side of a group: a group is `GROUP`² tiles.
+    /// Tiles per side of a group of a large atlas: a group is a block of
+    /// `GROUP`² tiles of the texture.
     pub const GROUP: u32 = 4;
 
     /// The tiles' moments, ordered group by group.
@@ -587,9 +623,8 @@ impl TiledAtlas {
 
         let sides = PlaneSides::new(alpha, &beta);
         let classify = |m: &Bounds| sides.side(m);
-        const GROUP_CHUNK: usize = 32;
         let pressure = options.buoyancy == BuoyancyMode::Pressure;
-        let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
+        let n_chunks = self.groups.len().div_ceil(self.group_chunk);
         let work = |c: usize| {
             let mut drag = local_drag.map(|p| DragWalk::new(self, atlas, p));
             let mut counts = TileCounts::default();
@@ -611,7 +646,9 @@ impl TiledAtlas {
                 }
             };
             let (mut cut, mut cut_wet) = (Ranges::new(), Ranges::new());
-            for group in &self.groups[c * GROUP_CHUNK..((c + 1) * GROUP_CHUNK).min(self.groups.len())] {
+            for group in
+                &self.groups[c * self.group_chunk..((c + 1) * self.group_chunk).min(self.groups.len())]
+            {
                 let members = group.tiles.clone();
                 match classify(&group.bounds) {
                     Side::Dry => {
@@ -710,6 +747,62 @@ impl TiledAtlas {
         });
         (sums, drag, counts)
     }
+}
+
+/// The most tiles of an atlas whose tiles are grouped by their place on
+/// the body ([`spatial_groups`]); a larger atlas' are grouped by the
+/// texture's blocks of [`TiledAtlas::GROUP`]² tiles.
+const SPATIAL_TILES: usize = 512;
+
+/// The most tiles in a group made by [`spatial_groups`].
+const SPATIAL_GROUP: usize = 4;
+
+/// Orders `ids` (indices into `centres`, the tiles' centres) so that
+/// tiles close together on the body are close together in the list, and
+/// cuts it into groups of at most [`SPATIAL_GROUP`] tiles, pushed to
+/// `groups` as ranges of the list (offset by `start`): the leaves of a
+/// k-d split of the centres, each part halved at its median along its
+/// widest extent. Ties keep the atlas' order, so that a bake always
+/// gives the same list.
+///
+/// On a small atlas the texture's blocks of 16 tiles are as wide as the
+/// body: they span a box's faces and a sphere's seams, and a plane across
+/// a floating body cut most of them, leaving most tiles to be looked at
+/// one by one. Over 100 poses of the bench's meshes at 128² afloat on calm
+/// water (the box level or tilted, the sphere turned any way), the bounds
+/// the walk tests, blocks against these groups: the box 167 → 116, the
+/// sphere 113 → 91; runs of consecutive submerged tiles (a difference of
+/// running sums each) for the box 25 → 9. On a large atlas the blocks are
+/// small against the body and these groups do no better: at 1024² the
+/// box's walk would test 4,432 bounds against the blocks' 1,830, and a
+/// k-d tree over the groups, which tests fewer (989 from its root), took
+/// the sphere's evaluation (`sphere_1024/tiled`) from 8.7 to 11 µs.
+fn spatial_groups(
+    centres: &[Vector3<f64>],
+    ids: &mut [usize],
+    start: usize,
+    groups: &mut Vec<std::ops::Range<usize>>,
+) {
+    if ids.len() <= SPATIAL_GROUP {
+        if !ids.is_empty() {
+            // A group's tiles in the atlas' order: neighbouring texels
+            // where they can be.
+            ids.sort_unstable();
+            groups.push(start..start + ids.len());
+        }
+        return;
+    }
+    let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
+    for &i in ids.iter() {
+        lo = lo.inf(&centres[i]);
+        hi = hi.sup(&centres[i]);
+    }
+    let axis = (hi - lo).imax();
+    ids.sort_by(|&a, &b| centres[a][axis].total_cmp(&centres[b][axis]).then(a.cmp(&b)));
+    let half = ids.len() / 2;
+    let (left, right) = ids.split_at_mut(half);
+    spatial_groups(centres, left, start, groups);
+    spatial_groups(centres, right, start + half, groups);
 }
 
 /// The sums of one evaluation, before [`finish`].

@@ -360,9 +360,9 @@ impl TiledAtlas {
         let sides = PlaneSides::new(alpha, &beta);
         let classify = |m: &Bounds| sides.side(m);
         let xs = atlas.local_positions().columns(0..atlas.len());
-        use super::sea::GROUP_CHUNK;
         let chunk = |k: usize| {
-            let groups = &self.groups[k * GROUP_CHUNK..((k + 1) * GROUP_CHUNK).min(self.groups.len())];
+            let groups =
+                &self.groups[k * self.group_chunk..((k + 1) * self.group_chunk).min(self.groups.len())];
             let mut sums = SeaDragSums::default();
             let mut lanes = SeaDragLanes::default();
             let mut depths = Vec::new();
@@ -404,7 +404,7 @@ impl TiledAtlas {
         };
         let mut total = SeaDragSums::default();
         par_fold(
-            self.groups.len().div_ceil(GROUP_CHUNK),
+            self.groups.len().div_ceil(self.group_chunk),
             chunk,
             &mut total,
             |total, part| *total += part,

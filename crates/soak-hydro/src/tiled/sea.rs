@@ -94,9 +94,6 @@ pub const SEA_TILE_TOLERANCE: f64 = 1e-3;
 /// patch's cells far more.
 const SEA_DRAG_DEPTH_TOLERANCE: f64 = 1e-2;
 
-/// Groups of tiles per parallel task.
-pub(super) const GROUP_CHUNK: usize = 32;
-
 /// One evaluation's constants.
 struct SeaTiles<'a> {
     rot: Matrix3<f64>,
@@ -207,7 +204,7 @@ impl TiledAtlas {
             patch,
             archimedes,
         };
-        let n_chunks = self.groups.len().div_ceil(GROUP_CHUNK);
+        let n_chunks = self.groups.len().div_ceil(self.group_chunk);
         // Over tiles, a tile's texels take the fluid's velocity to first
         // order about its centre (object axes); texel by texel, each its
         // own.
@@ -230,7 +227,8 @@ impl TiledAtlas {
             Some((ti, fluid))
         };
         let chunk = |k: usize| {
-            let groups = &self.groups[k * GROUP_CHUNK..((k + 1) * GROUP_CHUNK).min(self.groups.len())];
+            let groups =
+                &self.groups[k * self.group_chunk..((k + 1) * self.group_chunk).min(self.groups.len())];
             let mut part = Part::default();
             // Texel ranges for the sea kernel and, where drag is on, those
             // of tiles in closed form whose drag is summed texel by texel;
