@@ -949,3 +949,65 @@ fn add_closed_form<M: Moments>(
     s.count += m.texels() as usize;
     (t1, t2)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use soak_bake::{BakeOptions, builtin};
+
+    /// The groups list every tile once, consecutive and in order, each
+    /// group's bounds around its tiles' and each chunk a group range; a
+    /// small atlas' groups are of at most four tiles close together on
+    /// the body (the bench box's reach at most 0.3 m from their centres,
+    /// its texture's blocks up to 0.73 m), a large one's the texture's
+    /// blocks.
+    #[test]
+    fn groups_list_every_tile_once_within_their_bounds() {
+        let cases = [
+            ("box", builtin::cuboid(1.0, 0.6, 0.8), 128, true),
+            ("sphere", builtin::sphere(0.5, 64, 32), 128, true),
+            ("box", builtin::cuboid(1.0, 0.6, 0.8), 256, false),
+        ];
+        for (name, mesh, n, spatial) in cases {
+            let atlas = Atlas::bake(&mesh, BakeOptions::square(n)).unwrap();
+            let tiled = TiledAtlas::new(&atlas);
+            assert_eq!(tiled.tiles.len() <= SPATIAL_TILES, spatial, "{name} at {n}²");
+            // Every tile of the atlas once.
+            let mut ranges: Vec<(u32, u32)> = tiled.tiles.iter().map(|m| m.range).collect();
+            ranges.sort_unstable();
+            let mut want: Vec<(u32, u32)> = atlas.tiles().iter().map(|t| (t.start, t.end)).collect();
+            want.sort_unstable();
+            assert_eq!(ranges, want, "{name} at {n}²");
+            // The groups, consecutive, cover the list.
+            let mut next = 0;
+            let mut widest: f64 = 0.0;
+            for g in &tiled.groups {
+                assert_eq!(g.tiles.start, next, "{name} at {n}²");
+                assert!(!g.tiles.is_empty());
+                if spatial {
+                    assert!(g.tiles.len() <= SPATIAL_GROUP, "{name}: {} tiles", g.tiles.len());
+                }
+                next = g.tiles.end;
+                for m in &tiled.tiles[g.tiles.clone()] {
+                    let d = m.centre - g.bounds.centre;
+                    assert!(d.norm() + m.radius <= g.bounds.radius * (1.0 + 1e-12), "{name}");
+                    for k in 0..3 {
+                        assert!(
+                            d[k].abs() + m.half_extent[k] <= g.bounds.half_extent[k] * (1.0 + 1e-12) + 1e-15
+                        );
+                    }
+                }
+                widest = widest.max(g.bounds.radius);
+            }
+            assert_eq!(next, tiled.tiles.len(), "{name} at {n}²");
+            if spatial {
+                assert_eq!(tiled.group_chunk, tiled.groups.len(), "{name}: one chunk");
+                if name == "box" {
+                    assert!(widest < 0.3, "the box's widest group reaches {widest} m");
+                }
+            } else {
+                assert_eq!(tiled.group_chunk, 32);
+            }
+        }
+    }
+}
