@@ -772,11 +772,14 @@ const SPATIAL_GROUP: usize = 4;
 /// water (the box level or tilted, the sphere turned any way), the bounds
 /// the walk tests, blocks against these groups: the box 167 → 116, the
 /// sphere 113 → 91; runs of consecutive submerged tiles (a difference of
-/// running sums each) for the box 25 → 9. On a large atlas the blocks are
+/// running sums each) for the box 25 → 10 (the test
+/// `a_walk_over_groups_by_place_tests_fewer_bounds_than_over_texture_blocks`
+/// prints them). On a large atlas the blocks are
 /// small against the body and these groups do no better: at 1024² the
-/// box's walk would test 4,432 bounds against the blocks' 1,830, and a
-/// k-d tree over the groups, which tests fewer (989 from its root), took
-/// the sphere's evaluation (`sphere_1024/tiled`) from 8.7 to 11 µs.
+/// box's walk would test 4,432 bounds against the blocks' 1,830 (a
+/// throwaway probe), and a k-d tree over the groups, which tests fewer
+/// (989 from its root), took the sphere's evaluation
+/// (`sphere_1024/tiled`) from 8.7 to 11 µs.
 fn spatial_groups(
     centres: &[Vector3<f64>],
     ids: &mut [usize],
@@ -953,7 +956,160 @@ fn add_closed_form<M: Moments>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::MassModel;
+    use nalgebra::{Isometry3, UnitQuaternion};
     use soak_bake::{BakeOptions, builtin};
+
+    /// The bounds a walk under `sides` tests over `groups` (each group's,
+    /// then each tile's in a cut group) and the runs of consecutive tiles
+    /// it takes in closed form (a difference of running sums each), as
+    /// [`TiledAtlas::sums`] walks.
+    fn walk(
+        places: &[Place],
+        groups: &[(Bounds, std::ops::Range<usize>)],
+        sides: &PlaneSides,
+    ) -> (usize, usize) {
+        let (mut tests, mut runs, mut open) = (0, 0, false);
+        let mut join = |wet: bool, runs: &mut usize| {
+            *runs += usize::from(wet && !open);
+            open = wet;
+        };
+        for (bounds, tiles) in groups {
+            tests += 1;
+            match sides.side(bounds) {
+                Side::Dry => join(false, &mut runs),
+                Side::Submerged => join(true, &mut runs),
+                Side::Cut { .. } => {
+                    for ti in tiles.clone() {
+                        tests += 1;
+                        match sides.side(&places[ti].bounds) {
+                            Side::Dry | Side::Cut { centre_wet: false } => join(false, &mut runs),
+                            Side::Submerged | Side::Cut { centre_wet: true } => join(true, &mut runs),
+                        }
+                    }
+                }
+            }
+        }
+        (tests, runs)
+    }
+
+    /// Bounds around `tiles` of `places`, as [`TiledAtlas::new`] makes a
+    /// group's.
+    fn bounds_of(places: &[Place], tiles: &[usize]) -> Bounds {
+        let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
+        for &ti in tiles {
+            let b = &places[ti].bounds;
+            lo = lo.inf(&(b.centre - b.half_extent));
+            hi = hi.sup(&(b.centre + b.half_extent));
+        }
+        let centre = (lo + hi) * 0.5;
+        let radius = tiles
+            .iter()
+            .map(|&ti| (places[ti].bounds.centre - centre).norm() + places[ti].bounds.radius)
+            .fold(0.0, f64::max);
+        Bounds {
+            centre,
+            radius,
+            half_extent: (hi - lo) * 0.5,
+        }
+    }
+
+    /// Over 100 poses afloat on calm water (the bench box level or tilted
+    /// by up to 0.1 rad and turned any way about the vertical, the bench
+    /// sphere turned any way, both within 2.5 cm of their draft's
+    /// height), the walk over the bench meshes' 128² tiles grouped by
+    /// their place on the body tests fewer bounds, and takes the
+    /// submerged tiles in fewer runs, than over the same tiles grouped
+    /// by the texture's blocks of 4 × 4 tiles (in the atlas' order within
+    /// a block), which they were before. Printed with `--nocapture`.
+    #[test]
+    fn a_walk_over_groups_by_place_tests_fewer_bounds_than_over_texture_blocks() {
+        for (name, mesh) in [
+            ("box", builtin::cuboid(1.0, 0.6, 0.8)),
+            ("sphere", builtin::sphere(0.5, 64, 32)),
+        ] {
+            let atlas = Atlas::bake(&mesh, BakeOptions::square(128)).unwrap();
+            let tiled = TiledAtlas::new(&atlas);
+            let mass = MassModel::Solid { density: 500.0 }
+                .mass_properties(&atlas)
+                .unwrap();
+            let by_place: Vec<_> = tiled.groups.iter().map(|g| (g.bounds, g.tiles.clone())).collect();
+            // The same tiles in the texture's blocks.
+            let ts = atlas.tile_size();
+            let block = |ti: usize| {
+                let [x, y] = atlas.texels()[tiled.places[ti].range.0 as usize];
+                let span = ts * TiledAtlas::GROUP;
+                (u32::from(y) / span, u32::from(x) / span, tiled.places[ti].range.0)
+            };
+            let mut order: Vec<usize> = (0..tiled.places.len()).collect();
+            order.sort_by_key(|&ti| block(ti));
+            let places: Vec<Place> = order.iter().map(|&ti| tiled.places[ti]).collect();
+            let mut by_block = Vec::new();
+            let mut start = 0;
+            while start < order.len() {
+                let key = |k: usize| {
+                    let (by, bx, _) = block(order[k]);
+                    (by, bx)
+                };
+                let end = (start..order.len())
+                    .find(|&k| key(k) != key(start))
+                    .unwrap_or(order.len());
+                let members: Vec<usize> = (start..end).collect();
+                by_block.push((bounds_of(&places, &members), start..end));
+                start = end;
+            }
+            let (mut place_sums, mut block_sums) = ((0, 0), (0, 0));
+            let mut seed = 1u64;
+            let mut uniform = || {
+                seed = seed
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                (seed >> 11) as f64 / (1u64 << 53) as f64
+            };
+            let water = Water::calm(0.0);
+            for _ in 0..100 {
+                let turn = std::f64::consts::TAU;
+                let rotation = if name == "box" {
+                    UnitQuaternion::from_euler_angles(
+                        0.2 * (uniform() - 0.5),
+                        turn * uniform(),
+                        0.2 * (uniform() - 0.5),
+                    )
+                } else {
+                    UnitQuaternion::from_euler_angles(turn * uniform(), turn * uniform(), turn * uniform())
+                };
+                let y = 0.05 * (uniform() - 0.5);
+                let state =
+                    BodyState::at_rest(Isometry3::from_parts(Vector3::new(0.0, y, 0.0).into(), rotation));
+                let frame = Frame::new(&atlas, &water, &state, &mass, 0.0, 1.0 / 60.0);
+                let (n, offset) = frame.plane.expect("a plane");
+                let alpha = (offset - n.dot(&frame.ow)) / n.y;
+                let beta = -(frame.rot.transpose() * n) / n.y;
+                let sides = PlaneSides::new(alpha, &beta);
+                let (t, r) = walk(&tiled.places, &by_place, &sides);
+                place_sums = (place_sums.0 + t, place_sums.1 + r);
+                let (t, r) = walk(&places, &by_block, &sides);
+                block_sums = (block_sums.0 + t, block_sums.1 + r);
+            }
+            println!(
+                "{name} at 128²: bounds tested {} by blocks, {} by place; runs {} by blocks, {} by place (means over 100 poses)",
+                block_sums.0 / 100,
+                place_sums.0 / 100,
+                block_sums.1 / 100,
+                place_sums.1 / 100
+            );
+            assert!(
+                (place_sums.0 as f64) < 0.85 * block_sums.0 as f64,
+                "{name}: {place_sums:?} against {block_sums:?}"
+            );
+            if name == "box" {
+                assert!(
+                    place_sums.1 * 2 < block_sums.1,
+                    "{name}: {place_sums:?} against {block_sums:?}"
+                );
+            }
+        }
+    }
 
     /// The groups list every tile once, consecutive and in order, each
     /// group's bounds around its tiles' and each chunk a group range; a
