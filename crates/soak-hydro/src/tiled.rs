@@ -80,6 +80,27 @@ struct Bounds {
     half_extent: Vector3<f64>,
 }
 
+impl Bounds {
+    /// Bounds around `parts`' (at least one): the box around their boxes,
+    /// the sphere about its centre around their spheres.
+    fn around(parts: impl Iterator<Item = Bounds> + Clone) -> Self {
+        let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
+        for b in parts.clone() {
+            lo = lo.inf(&(b.centre - b.half_extent));
+            hi = hi.sup(&(b.centre + b.half_extent));
+        }
+        let centre = (lo + hi) * 0.5;
+        let radius = parts
+            .map(|b| (b.centre - centre).norm() + b.radius)
+            .fold(0.0, f64::max);
+        Self {
+            centre,
+            radius,
+            half_extent: (hi - lo) * 0.5,
+        }
+    }
+}
+
 /// What the walk over the tiles reads of each: where it lies and its
 /// texels, one cache line a tile (the moments, six times as large, are
 /// read only for the tiles a walk sums).
@@ -283,27 +304,12 @@ impl TiledAtlas {
         };
         let mut groups = Vec::with_capacity(spans.len());
         for std::ops::Range { start, end } in spans {
-            let members = &tiles[start..end];
-            let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
-            for m in members {
-                lo = lo.inf(&(m.centre - m.half_extent));
-                hi = hi.sup(&(m.centre + m.half_extent));
-            }
             let mut group_facing = HBox::default();
             for b in &facing[start..end] {
                 group_facing.add(b);
             }
-            let centre = (lo + hi) * 0.5;
-            let radius = members
-                .iter()
-                .map(|m| (m.centre - centre).norm() + m.radius)
-                .fold(0.0, f64::max);
             groups.push(Group {
-                bounds: Bounds {
-                    centre,
-                    radius,
-                    half_extent: (hi - lo) * 0.5,
-                },
+                bounds: Bounds::around(tiles[start..end].iter().map(TileMoments::bounds)),
                 facing: group_facing.bounds(),
                 tiles: start..end,
             });
@@ -993,27 +999,6 @@ mod tests {
         (tests, runs)
     }
 
-    /// Bounds around `tiles` of `places`, as [`TiledAtlas::new`] makes a
-    /// group's.
-    fn bounds_of(places: &[Place], tiles: &[usize]) -> Bounds {
-        let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
-        for &ti in tiles {
-            let b = &places[ti].bounds;
-            lo = lo.inf(&(b.centre - b.half_extent));
-            hi = hi.sup(&(b.centre + b.half_extent));
-        }
-        let centre = (lo + hi) * 0.5;
-        let radius = tiles
-            .iter()
-            .map(|&ti| (places[ti].bounds.centre - centre).norm() + places[ti].bounds.radius)
-            .fold(0.0, f64::max);
-        Bounds {
-            centre,
-            radius,
-            half_extent: (hi - lo) * 0.5,
-        }
-    }
-
     /// Over 100 poses afloat on calm water (the bench box level or tilted
     /// by up to 0.1 rad and turned any way about the vertical, the bench
     /// sphere turned any way, both within 2.5 cm of their draft's
@@ -1054,8 +1039,7 @@ mod tests {
                 let end = (start..order.len())
                     .find(|&k| key(k) != key(start))
                     .unwrap_or(order.len());
-                let members: Vec<usize> = (start..end).collect();
-                by_block.push((bounds_of(&places, &members), start..end));
+                by_block.push((Bounds::around((start..end).map(|k| places[k].bounds)), start..end));
                 start = end;
             }
             let (mut place_sums, mut block_sums) = ((0, 0), (0, 0));
